@@ -1,0 +1,4 @@
+#include "rockfit/fitting/version.hpp"
+namespace rockfit::fitting {
+const char* FitSchemaVersion() { return "1"; }
+}  // namespace rockfit::fitting

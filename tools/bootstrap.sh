@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# Set up rockfit on Debian 12 and either run the main job or the tests.
+#
+#   tools/bootstrap.sh run    install what is missing, build, analyse the bundled sample campaign
+#   tools/bootstrap.sh test   install what is missing, build, run every test
+#
+# Installs missing Debian packages with --no-install-recommends (as root, or through sudo).
+# Environment: BUILD_DIR (default build), JOBS (default: number of cores), CMAKE_ARGS (extra).
+set -euo pipefail
+
+mode="${1:-run}"
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build_dir="${BUILD_DIR:-$here/build}"
+jobs="${JOBS:-$(nproc)}"
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev libceres-dev libnlopt-cxx-dev libgsl-dev libhdf5-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libcli11-dev libfmt-dev libtomlplusplus-dev nlohmann-json3-dev libtbb-dev
+  gnuplot-nox python3 python3-h5py python3-numpy
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "rockfit: installing missing Debian packages: ${missing[*]}"
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then
+    command -v sudo >/dev/null || { echo "rockfit: not root and no sudo; install as root: apt-get install --no-install-recommends ${missing[*]}" >&2; exit 1; }
+    sudo="sudo"
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+cmake -S "$here" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release ${CMAKE_ARGS:-}
+cmake --build "$build_dir" -j "$jobs"
+
+case "$mode" in
+  run)
+    exec "$here/tools/main_job.sh" "$build_dir/tools/rockfit"
+    ;;
+  test)
+    cd "$build_dir"
+    ctest --output-on-failure -j "$jobs"
+    ;;
+  *)
+    echo "usage: tools/bootstrap.sh run|test" >&2
+    exit 1
+    ;;
+esac

@@ -1,0 +1,61 @@
+#include "cli_common.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+#include <vector>
+
+#include "rockfit/core/errors.hpp"
+
+namespace rockfit::tools {
+
+void AddBlockOptions(CLI::App& app, BlockArgs& args) {
+  app.add_option("--b1", args.b1_m, "Block half-width along x (b1) [m]")->group("Block");
+  app.add_option("--b2", args.b2_m, "Block half-depth along y (b2) [m]")->group("Block");
+  app.add_option("--h", args.h_m, "Height of the centre of mass above the base (half the block height) [m]")
+      ->group("Block");
+  auto* density = app.add_option("--density", args.density_kg_m3, "Density [kg/m³] (granite: 2692)")->group("Block");
+  auto* mass = app.add_option("--mass", args.mass_kg, "Total mass [kg]")->group("Block");
+  density->excludes(mass);
+  app.add_option("--manifest", args.manifest_path, "Campaign manifest (TOML) to take the block from")->group("Block");
+  app.add_option("--block", args.block_id, "Block id in the manifest")->group("Block");
+}
+
+core::Block MakeBlock(const BlockArgs& args) {
+  if (!args.manifest_path.empty() || !args.block_id.empty()) {
+    throw InvalidArgument("--manifest/--block are not available in this command yet; give --b1 --b2 --h with --density or --mass");
+  }
+  if (!args.b1_m || !args.b2_m || !args.h_m) {
+    throw InvalidArgument("the block needs --b1, --b2 and --h (half-sizes in metres), or --manifest FILE --block ID");
+  }
+  if (args.density_kg_m3.has_value() == args.mass_kg.has_value()) {
+    throw InvalidArgument("give exactly one of --density (kg/m³) or --mass (kg) for the block");
+  }
+  if (args.density_kg_m3) return core::Block::FromDensity(*args.b1_m, *args.b2_m, *args.h_m, *args.density_kg_m3);
+  return core::Block::FromMass(*args.b1_m, *args.b2_m, *args.h_m, *args.mass_kg);
+}
+
+Eigen::Vector3d ParseVector3(const std::string& text, const std::string& option) {
+  std::vector<double> values;
+  std::stringstream stream(text);
+  std::string cell;
+  while (std::getline(stream, cell, ',')) {
+    char* end = nullptr;
+    const double value = std::strtod(cell.c_str(), &end);
+    if (cell.empty() || end == cell.c_str() || *end != '\0' || !std::isfinite(value)) {
+      throw InvalidArgument(option + " expects three finite numbers X,Y,Z separated by commas, got '" + text + "'");
+    }
+    values.push_back(value);
+  }
+  if (values.size() != 3) {
+    throw InvalidArgument(option + " expects three numbers X,Y,Z separated by commas, got '" + text + "'");
+  }
+  return {values[0], values[1], values[2]};
+}
+
+nlohmann::json ToJson(const Eigen::Vector3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
+
+void PrintJson(const nlohmann::json& object) { std::cout << object.dump(2) << std::endl; }
+
+}  // namespace rockfit::tools

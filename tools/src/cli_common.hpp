@@ -1,0 +1,46 @@
+// Options and helpers shared by the subcommands: block geometry, exit codes, JSON output.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include "rockfit/core/block.hpp"
+
+namespace rockfit::tools {
+
+// Exit codes of DESIGN §9.
+enum ExitCodes : int {
+  kExitOk = 0,
+  kExitUsage = 1,
+  kExitBadInput = 2,
+  kExitNumerical = 3,
+  kExitCannotWrite = 4,
+};
+
+// Block geometry from --b1 --b2 --h with --density or --mass, or from --manifest FILE --block ID.
+struct BlockArgs {
+  std::optional<double> b1_m;
+  std::optional<double> b2_m;
+  std::optional<double> h_m;
+  std::optional<double> density_kg_m3;
+  std::optional<double> mass_kg;
+  std::string manifest_path;
+  std::string block_id;
+};
+
+void AddBlockOptions(CLI::App& app, BlockArgs& args);
+// Throws InvalidArgument naming the missing or conflicting option.
+core::Block MakeBlock(const BlockArgs& args);
+
+// Parses "X,Y,Z" into a vector; throws InvalidArgument naming `option` on failure.
+Eigen::Vector3d ParseVector3(const std::string& text, const std::string& option);
+
+nlohmann::json ToJson(const Eigen::Vector3d& v);
+// Prints one JSON object on stdout (pretty, 2 spaces).
+void PrintJson(const nlohmann::json& object);
+
+}  // namespace rockfit::tools
