@@ -1,0 +1,111 @@
+// The hybrid simulator of free 3D rocking (paper Sect. 4.1, Fig. 7; DESIGN §4).
+//
+// Modes: Edge(i,j) (1 DOF about a base edge), Vertex(k) (3 DOF about a base vertex), Rest, and the
+// terminal states Overturned and Failed. Impacts go through the maps of impact_maps.hpp.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "rockfit/core/block.hpp"
+#include "rockfit/core/impact_maps.hpp"
+
+namespace rockfit::core {
+
+enum class ModeKind { kEdge, kVertex, kRest, kOverturned, kFailed };
+
+struct Mode {
+  ModeKind kind = ModeKind::kEdge;
+  Contact contact;  // the edge or vertex in contact (empty for Rest, Overturned, Failed)
+  // "V1V2", "V3", "rest", "overturned", "failed".
+  std::string ToString() const;
+};
+
+enum class StopCondition { kPhase4, kRest, kOverturned, kTMax };
+enum class EndReason { kPhase4, kRest, kOverturned, kTMax, kFailed };
+const char* ToString(StopCondition stop);  // "phase4", "rest", "overturned", "t_max"
+const char* ToString(EndReason reason);    // "phase4", "rest", "overturned", "t_max", "failed"
+
+// Initial conditions and impact parameters of one run (constant during the run).
+struct ModelParameters {
+  double alpha_rad = 0.2;    // release tilt
+  double lambda = 1.0;       // edge impacts (19)
+  double tau_edge = 0.0;     // edge impacts [N·m·s]
+  double lambda_lat = 0.0;   // facet impacts (21)
+  double lambda_lon = 1.0;   // facet impacts (21)
+  FacetTauRule facet_tau_rule = FacetTauRule::kNoSpin;  // kFixed means τ = 0 (the paper's Sect. 5)
+};
+
+// Start from a given state instead of the release from rest.
+struct InitialState {
+  Contact contact;                                      // vertex or edge in contact
+  Eigen::Quaterniond q_WB = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d w_B = Eigen::Vector3d::Zero();
+};
+
+struct SimulationOptions {
+  double rate_hz = 256.0;               // output samples at t_k = k / rate_hz after the release
+  std::vector<double> sample_times_s;   // if non-empty (ascending): sample at these times instead
+  StopCondition stop = StopCondition::kPhase4;
+  double t_max_s = 20.0;
+  int release_edge_first = 1;           // release edge V_iV_j (default V1V2, +x side lifted)
+  int release_edge_second = 2;
+  double zeno_dt_s = 1e-4;              // edge-impact interval below which a Zeno switch happens
+  double rest_energy_height_m = 1e-9;   // kinetic energy below m·g·this ends in Rest
+  double gravity_m_s2 = kStandardGravity;
+  double rel_tol = 1e-12;               // integrator relative tolerance
+  double abs_tol = 1e-14;               // integrator absolute tolerance
+  double event_time_tol_s = 1e-12;      // event location tolerance
+  double max_step_s = 2e-3;             // largest integrator step (bounds missed lift-off-and-land events)
+  std::size_t max_impacts = 100000;     // a run with more impacts ends as Failed
+  bool sample_attitude = true;          // false: fill only t, w_B and mode (faster, for fitting)
+  std::optional<InitialState> initial_state;
+  // Throws InvalidArgument naming the bad option.
+  void Validate() const;
+};
+
+struct ImpactRecord {
+  double t_s = 0.0;
+  std::string kind;  // "facet", "edge", "zeno", "rest"
+  Contact contact_before;
+  Contact contact_after;
+  Eigen::Vector3d w_minus_B = Eigen::Vector3d::Zero();
+  Eigen::Vector3d w_plus_B = Eigen::Vector3d::Zero();
+  Eigen::Vector3d w_minus_W = Eigen::Vector3d::Zero();
+  Eigen::Vector3d w_plus_W = Eigen::Vector3d::Zero();
+  double tau = 0.0;
+  double delta_energy_J = 0.0;
+  ImpactStatus status = ImpactStatus::kOk;
+};
+
+struct SegmentDiagnostics {
+  double t_begin_s = 0.0;
+  double t_end_s = 0.0;
+  Mode mode;
+  double min_normal_force_N = 0.0;   // negative: the no-lift-off assumption failed
+  double max_friction_ratio = 0.0;   // largest |F_t| / F_n needed for no slip
+  double energy_drift_rel = 0.0;     // |E_end − E_begin| / E_begin
+};
+
+struct Trajectory {
+  std::vector<double> t_s;
+  std::vector<Eigen::Vector3d> w_B;
+  std::vector<Eigen::Quaterniond> q_WB;    // empty when sample_attitude is false
+  std::vector<Eigen::Vector3d> euler_zyx;  // (φz, φy, φx); empty when sample_attitude is false
+  std::vector<Mode> mode;
+  std::vector<ImpactRecord> impacts;
+  std::vector<SegmentDiagnostics> segments;
+  double t_end_s = 0.0;
+  EndReason end_reason = EndReason::kFailed;
+  std::string message;  // why a Failed run failed
+  double wall_time_s = 0.0;
+};
+
+Trajectory Simulate(const Block& block, const ModelParameters& params, const SimulationOptions& options);
+
+}  // namespace rockfit::core
