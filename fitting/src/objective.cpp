@@ -52,6 +52,24 @@ Objective::Objective(MeasuredSignal signal, double t_end_s, std::shared_ptr<cons
   }
 }
 
+Objective Objective::WithParameters(ParameterSet parameters) const {
+  parameters.Validate();
+  Objective copy = *this;
+  copy.parameters_ = std::move(parameters);
+  copy.free_ids_ = copy.parameters_.FreeIds();
+  return copy;
+}
+
+Objective Objective::WithWindowEnd(double t_end_s) const {
+  if (!(std::isfinite(t_end_s) && t_end_s > signal_->t_s.front() && t_end_s <= signal_->t_s.back())) {
+    throw InvalidArgument(fmt::format("t_end = {} s lies outside the recording ({} s to {} s)", t_end_s,
+                                      signal_->t_s.front(), signal_->t_s.back()));
+  }
+  Objective copy = *this;
+  copy.t_end_s_ = t_end_s;
+  return copy;
+}
+
 ParameterSet Objective::WithFree(const Eigen::VectorXd& x) const {
   ParameterSet set = parameters_;
   for (std::size_t i = 0; i < free_ids_.size(); ++i) set[free_ids_[i]].value = x[static_cast<Eigen::Index>(i)];

@@ -55,6 +55,11 @@ class Objective {
   Objective(MeasuredSignal signal, double t_end_s, std::shared_ptr<const TrajectoryModel> model,
             ParameterSet parameters, ObjectiveOptions options = {});
 
+  // The same problem (signal, window, model, shared counters) with other fixed flags, values or bounds.
+  Objective WithParameters(ParameterSet parameters) const;
+  // The same problem with the window ending at another t_end (inside the recording, InvalidArgument otherwise).
+  Objective WithWindowEnd(double t_end_s) const;
+
   const MeasuredSignal& signal() const { return *signal_; }
   double t_end_s() const { return t_end_s_; }
   const TrajectoryModel& model() const { return *model_; }
