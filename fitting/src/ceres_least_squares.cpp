@@ -17,16 +17,25 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <mutex>
 #include <vector>
 
 #include <Eigen/SVD>
 #include <ceres/ceres.h>
 #include <fmt/format.h>
+#include <glog/logging.h>
 
 #include "rockfit/fitting/local_optimizer.hpp"
 
 namespace rockfit::fitting {
 namespace {
+
+// Ceres reports through glog on stderr (e.g. "Residual and Jacobian evaluation failed" when the model fails at
+// the start point). The fit summary already carries every termination; keep stderr for rockfit's own messages.
+void SilenceCeresLogging() {
+  static std::once_flag once;
+  std::call_once(once, [] { FLAGS_minloglevel = google::GLOG_FATAL; });
+}
 
 enum class ResidualScaling {
   kSoftL1,        // f_k = (T_ref/T)·(w_k/√Δt)·(ω_m − ω_s), used with SoftLOneLoss(c·√Δt)
@@ -236,6 +245,7 @@ class CeresLeastSquares final : public LocalOptimizer {
   const char* name() const override { return "ceres"; }
 
   LocalResult Minimize(const Objective& objective, const Eigen::VectorXd& x0) const override {
+    SilenceCeresLogging();
     const auto start = std::chrono::steady_clock::now();
     Eigen::VectorXd x = x0.cwiseMax(objective.FreeLower()).cwiseMin(objective.FreeUpper());
     const double t0_start = objective.WithFree(x).value(ParameterId::kT0);
@@ -285,6 +295,7 @@ std::unique_ptr<LocalOptimizer> MakeCeres(const CeresOptions& options) {
 
 StandardErrors ComputeStandardErrors(const Objective& objective, const Eigen::VectorXd& x_in,
                                      const CeresOptions& options) {
+  SilenceCeresLogging();
   StandardErrors result;
   const auto n = static_cast<Eigen::Index>(objective.num_free());
   result.std_error = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN());

@@ -50,6 +50,7 @@ FitMethod ParseFitMethod(const std::string& name) {
 void NelderMeadOptions::Validate() const {
   RequireAtLeast(max_evaluations, 1, "nelder_mead.max_evaluations");
   RequirePositive(ftol_abs_rad_s, "nelder_mead.ftol_abs_rad_s");
+  RequireAtLeast(restarts, 0, "nelder_mead.restarts");
   RequirePositive(xtol_abs, "nelder_mead.xtol_abs");
   RequirePositive(initial_step, "nelder_mead.initial_step");
 }
@@ -74,6 +75,10 @@ void GlobalStageOptions::Validate() const {
   }
   RequireAtLeast(continuation_evaluations, 1, "global.continuation_evaluations");
   RequireAtLeast(scan_points, 1, "global.scan_points");
+  if (!(continuation_step_fraction > 0.0 && continuation_step_fraction <= 1.0)) {
+    throw InvalidArgument(fmt::format("fit option global.continuation_step_fraction must lie in (0, 1], got {}",
+                                      continuation_step_fraction));
+  }
   RequirePositive(t0_halfwidth_s, "global.t0_halfwidth_s");
   RequirePositive(alpha_halfwidth_rad, "global.alpha_halfwidth_rad");
 }

@@ -5,6 +5,7 @@
 #include <numeric>
 #include <optional>
 
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -19,7 +20,9 @@ constexpr double kDistinctStartDistance = 0.05;
 
 template <typename Body>
 void ParallelFor(std::size_t n, int num_threads, const Body& body) {
-  tbb::task_arena arena(num_threads > 0 ? num_threads : tbb::task_arena::automatic);
+  // More threads than cores only makes TBB warn; 0 means all cores.
+  const int cores = tbb::info::default_concurrency();
+  tbb::task_arena arena(num_threads > 0 ? std::min(num_threads, cores) : cores);
   arena.execute([&] { tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) { body(i); }); });
 }
 
@@ -122,10 +125,25 @@ GlobalStageResult RunGlobalStage(const Objective& objective, const Eigen::Vector
     for (Eigen::VectorXd& p : LatinHypercube(lower, upper, g.num_samples, g.seed)) points.push_back(std::move(p));
     std::vector<Evaluation> values(points.size());
     ParallelFor(points.size(), options.num_threads, [&](std::size_t i) { values[i] = first->EvaluateFree(points[i]); });
-    result.num_samples = static_cast<int>(points.size());
-    result.num_feasible_samples =
-        static_cast<int>(std::count_if(values.begin(), values.end(), [](const Evaluation& e) { return e.feasible; }));
+    auto count_feasible = [&] {
+      return static_cast<int>(std::count_if(values.begin(), values.end(), [](const Evaluation& e) { return e.feasible; }));
+    };
     result.evaluations += static_cast<std::int64_t>(points.size());
+    if (count_feasible() == 0) {
+      // The estimate sits in an infeasible region (e.g. a tilt beyond the critical angle): sample the whole
+      // bounds instead.
+      lower = first->FreeLower();
+      upper = first->FreeUpper();
+      std::vector<Eigen::VectorXd> wide = LatinHypercube(lower, upper, g.num_samples, g.seed + 1);
+      const std::size_t offset = points.size();
+      points.insert(points.end(), wide.begin(), wide.end());
+      values.resize(points.size());
+      ParallelFor(wide.size(), options.num_threads,
+                  [&](std::size_t i) { values[offset + i] = first->EvaluateFree(points[offset + i]); });
+      result.evaluations += static_cast<std::int64_t>(wide.size());
+    }
+    result.num_samples = static_cast<int>(points.size());
+    result.num_feasible_samples = count_feasible();
 
     // Starts to polish: the best of each sign of λ_lat, then the best distinct others.
     std::vector<std::size_t> order(points.size());
@@ -199,6 +217,8 @@ GlobalStageResult RunGlobalStage(const Objective& objective, const Eigen::Vector
   std::vector<char> converged(polished.size(), 0);
   NelderMeadOptions step_options = options.nelder_mead;
   step_options.max_evaluations = g.continuation_evaluations;
+  // Each window refines the previous one: a smaller simplex keeps the search in the basin it tracks.
+  for (double& step : step_options.initial_step) step *= g.continuation_step_fraction;
   ParallelFor(polished.size(), options.num_threads, [&](std::size_t i) {
     ParameterSet at = polished[i];
     double window_end = t_first_end;
@@ -220,6 +240,24 @@ GlobalStageResult RunGlobalStage(const Objective& objective, const Eigen::Vector
       bool step_converged = false;
       at = MinimizeIn(*window, at, step_options, &evaluations[i], &step_converged);
       ok = step_converged;
+    }
+    // On the full window, every parameter sampled over its whole bounds (not t0 and α, which phase 1 pins
+    // down) is scanned once more: later impacts can make its landscape multimodal where the first windows
+    // were not (e.g. λ with a long cascade of small lateral edge impacts). Then a last local search.
+    if (g.final_scan) {
+      ParameterSet scanned = at;
+      const Evaluation before = objective.Evaluate(at);
+      ++evaluations[i];
+      for (ParameterId id : objective.free_ids()) {
+        if (id == ParameterId::kT0 || id == ParameterId::kAlpha) continue;
+        scanned = ScanParameter(objective, scanned, id, g.scan_points, &evaluations[i]);
+      }
+      if (objective.Evaluate(scanned).epsilon_rad_s < before.epsilon_rad_s) {
+        bool step_converged = false;
+        at = MinimizeIn(objective, scanned, step_options, &evaluations[i], &step_converged);
+        ok = step_converged;
+      }
+      ++evaluations[i];
     }
     continued[i] = at;
     converged[i] = ok ? 1 : 0;

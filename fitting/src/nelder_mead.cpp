@@ -76,32 +76,48 @@ class NelderMead final : public LocalOptimizer {
     }
 
     LocalResult result;
-    try {
-      nlopt::opt opt(nlopt::LN_NELDERMEAD, static_cast<unsigned>(n));
-      opt.set_lower_bounds(lb);
-      opt.set_upper_bounds(ub);
-      opt.set_min_objective(NelderMeadObjective, &problem);
-      opt.set_initial_step(step);
-      opt.set_xtol_abs(xtol);
-      opt.set_ftol_abs(options_.ftol_abs_rad_s);
-      opt.set_maxeval(options_.max_evaluations);
-      double f = 0.0;
-      const nlopt::result code = opt.optimize(x, f);
-      result.termination = std::string("nlopt: ") + ResultText(code);
-      result.converged = code == nlopt::SUCCESS || code == nlopt::FTOL_REACHED || code == nlopt::XTOL_REACHED ||
-                         code == nlopt::STOPVAL_REACHED;
-    } catch (const nlopt::roundoff_limited&) {
-      // The simplex cannot shrink further in floating point: a normal end at a (locally) flat minimum.
-      result.termination = "nlopt: roundoff limited";
-      result.converged = true;
-    } catch (const nlopt::forced_stop&) {
-      result.termination = "nlopt: forced stop";
-    } catch (const std::bad_alloc&) {
-      result.termination = "nlopt: out of memory";
-    } catch (const std::invalid_argument& e) {
-      result.termination = std::string("nlopt: invalid argument: ") + e.what();
-    } catch (const std::runtime_error& e) {
-      result.termination = std::string("nlopt: failure: ") + e.what();
+    // Nelder–Mead can stall on the small steps of (28) (simulated impacts crossing sample times); a restart
+    // from the best point with a fresh simplex costs little and often moves on.
+    for (int run = 0; run <= options_.restarts; ++run) {
+      const double best_before = problem.best_epsilon;
+      const int remaining = options_.max_evaluations - static_cast<int>(problem.evaluations);
+      if (run > 0) {
+        if (remaining <= static_cast<int>(2 * n + 2) || !problem.best_feasible) break;
+        for (std::size_t i = 0; i < n; ++i) x[i] = problem.best_x[static_cast<Eigen::Index>(i)];
+      }
+      try {
+        nlopt::opt opt(nlopt::LN_NELDERMEAD, static_cast<unsigned>(n));
+        opt.set_lower_bounds(lb);
+        opt.set_upper_bounds(ub);
+        opt.set_min_objective(NelderMeadObjective, &problem);
+        opt.set_initial_step(step);
+        opt.set_xtol_abs(xtol);
+        opt.set_ftol_abs(options_.ftol_abs_rad_s);
+        opt.set_maxeval(remaining);
+        double f = 0.0;
+        const nlopt::result code = opt.optimize(x, f);
+        result.termination = std::string("nlopt: ") + ResultText(code);
+        result.converged = code == nlopt::SUCCESS || code == nlopt::FTOL_REACHED || code == nlopt::XTOL_REACHED ||
+                           code == nlopt::STOPVAL_REACHED;
+      } catch (const nlopt::roundoff_limited&) {
+        // The simplex cannot shrink further in floating point: a normal end at a (locally) flat minimum.
+        result.termination = "nlopt: roundoff limited";
+        result.converged = true;
+      } catch (const nlopt::forced_stop&) {
+        result.termination = "nlopt: forced stop";
+        result.converged = false;
+      } catch (const std::bad_alloc&) {
+        result.termination = "nlopt: out of memory";
+        result.converged = false;
+      } catch (const std::invalid_argument& e) {
+        result.termination = std::string("nlopt: invalid argument: ") + e.what();
+        result.converged = false;
+      } catch (const std::runtime_error& e) {
+        result.termination = std::string("nlopt: failure: ") + e.what();
+        result.converged = false;
+      }
+      if (!result.converged) break;
+      if (run > 0 && !(problem.best_epsilon < best_before - options_.ftol_abs_rad_s)) break;  // no progress
     }
 
     if (problem.best_x.size() == static_cast<Eigen::Index>(n)) {

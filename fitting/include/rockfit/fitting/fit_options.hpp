@@ -25,6 +25,9 @@ struct NelderMeadOptions {
   PerParameter xtol_abs = {1e-5, 1e-5, 1e-4, 1e-4, 1e-5, 1e-7};
   // Size of the initial simplex along each parameter.
   PerParameter initial_step = {4e-3, 5e-3, 0.2, 0.3, 0.05, 1e-3};
+  // After convergence, restart from the best point with a fresh simplex up to this many times while that
+  // improves ε by more than ftol_abs_rad_s (within max_evaluations in total).
+  int restarts = 2;
   void Validate() const;
 };
 
@@ -47,18 +50,21 @@ struct CeresOptions {
 // Global stage: multi-start on a short first window, continuation to the full window (global_stage.hpp).
 struct GlobalStageOptions {
   bool enabled = true;
-  int num_samples = 48;          // Latin-hypercube starts in the first window (plus the data estimate)
-  int num_polished = 4;          // best distinct starts polished there (the best of each sign of λ_lat included)
-  int polish_evaluations = 200;  // Nelder–Mead evaluations per polished start
+  int num_samples = 32;          // Latin-hypercube starts in the first window (plus the data estimate)
+  int num_polished = 3;          // best distinct starts polished there (the best of each sign of λ_lat included)
+  int polish_evaluations = 120;  // Nelder–Mead evaluations per polished start
   int num_continued = 2;         // polished starts carried to the full window
   // The first window ends this long after the model's first impact [s]: long enough to see the jump and the
   // start of the lateral motion, short enough that no lateral half-cycle completes.
   double first_window_s = 0.03;
   double continuation_growth = 2.0;   // each window is this factor longer (after the first impact)
-  int continuation_evaluations = 150; // Nelder–Mead evaluations per continuation window
+  int continuation_evaluations = 100; // Nelder–Mead evaluations per continuation window
+  double continuation_step_fraction = 0.25;  // their initial simplex, as a fraction of nelder_mead.initial_step
   // A parameter that starts acting in a continuation window (λ at the first edge impact) is first scanned
   // over its bounds at this many equally spaced values.
   int scan_points = 24;
+  // On the full window, scan every parameter sampled over its whole bounds once more, then search locally.
+  bool final_scan = true;
   std::uint64_t seed = 20211230;
   // Half-widths of the sampling box around the data estimate for the parameters that phase 1 determines
   // well; the other parameters are sampled over their whole bounds.

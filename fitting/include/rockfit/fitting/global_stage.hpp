@@ -14,7 +14,8 @@
 //     window (λ before the first edge impact) are held fixed there; when one starts to act, it is first
 //     scanned over its bounds, because its first influence (the timing of the next lateral half-cycles) is
 //     again multimodal.
-//  3. The best on the full window by (28) is the result.
+//  3. On the full window, the impact parameters (everything but t0 and α) are scanned over their bounds once
+//     more, one at a time, followed by a last Nelder–Mead run; the best carried start by (28) is the result.
 #pragma once
 
 #include <cstdint>
