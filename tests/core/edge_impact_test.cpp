@@ -12,6 +12,7 @@
 
 #include "impact_equations.hpp"
 #include "rockfit/core/errors.hpp"
+#include "rockfit/core/facet_impact.hpp"
 
 namespace rockfit::core {
 namespace {
@@ -244,6 +245,22 @@ TEST(EdgeImpact, RotationAboutTheImpactingEdgeIsUnchangedAndKeepsEdgeContact) {
         EXPECT_EQ(out.contact_after, Contact::Edge(pivot, landing));
         EXPECT_LE(std::abs(out.delta_energy_J), 1e-14 * out.energy_before_J);
       }
+    }
+  }
+}
+
+TEST(EdgeImpact, FlatLandingEqualsTheFacetCandidateWithTheResultantOnThatEdge) {
+  // At tilt 0 a block rocking about V1V2 (ω⁻ = (0, ω, 0)) lands flat. Seen as an edge impact on V2V3 with
+  // pivot V2, R = (λ b1, b2, 0) (19) is the point (21) with λ_lat = 1, λ_lon = λ, and V_a = V3: both
+  // parameterisations must give the same ω⁺ for the same τ.
+  const Block block = Fig11Block();
+  const Eigen::Vector3d w_minus(0.0, 1.3, 0.0);
+  for (double lambda : {-0.5, 0.0, 0.4, 1.0}) {
+    for (double tau : {0.0, 1e-4}) {
+      const ImpactOutcome edge = EdgeImpact(block, EdgeImpactAttitude(block, 2, 3, 0.0), 2, 3, w_minus, {lambda, tau});
+      const ImpactOutcome facet = FacetImpact(block, 2, w_minus, {1.0, lambda, FacetTauRule::kFixed, tau});
+      EXPECT_LE((edge.w_plus_W - facet.candidates[2].w_plus).norm(), kVectorRelTol * w_minus.norm())
+          << "λ " << lambda << " τ " << tau;
     }
   }
 }
