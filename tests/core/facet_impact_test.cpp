@@ -122,34 +122,36 @@ TEST(FacetImpact, WithLambdaLatZeroEqualsThePlanarMap6) {
   }
 }
 
-TEST(FacetImpact, UnifiedMapHasExactlyOneFeasibleOutcomeWithTheVertexSideOfDesign) {
-  // Over (λ_lat, λ_lon) ∈ [−3, 3]²: λ_lat > 0 → V_{b+2}, λ_lat < 0 → V_{b+1}, λ_lat = 0 → edge V_{b+1}V_{b+2}
-  // (DESIGN §3 erratum; V4, V3 and V3V4 for b = 2). The vertex is picked by feasibility; the sign rule is
-  // only checked here.
-  for (const Block& block : {Fig11Block(), Block::FromMass(0.05, 0.05, 0.20, 1.0), Block::FromMass(0.04, 0.1, 0.25, 3.0)}) {
-    for (int b = 1; b <= 4; ++b) {
-      const int n = 30;
-      for (int i = -n; i <= n; ++i) {
-        for (int j = -n; j <= n; ++j) {
-          const double lat = GridValue(i, n, 3.0), lon = GridValue(j, n, 3.0);
-          const ImpactOutcome out = FacetImpact(block, b, FallingOmega(block, b, 1.0), {lat, lon});
-          ASSERT_EQ(out.status, ImpactStatus::kOk) << "b " << b << " λ_lat " << lat << " λ_lon " << lon;
-          int feasible = 0;
-          for (const FacetCandidate& c : out.candidates) feasible += c.feasible ? 1 : 0;
-          if (i > 0) {
-            EXPECT_EQ(out.contact_after, Contact::Vertex(b + 2)) << "λ_lat " << lat << " λ_lon " << lon;
-            EXPECT_EQ(feasible, 1);
-          } else if (i < 0) {
-            EXPECT_EQ(out.contact_after, Contact::Vertex(b + 1)) << "λ_lat " << lat << " λ_lon " << lon;
-            EXPECT_EQ(feasible, 1);
-          } else {
-            EXPECT_EQ(out.contact_after, Contact::Edge(b + 1, b + 2));
-            EXPECT_EQ(feasible, 2);
-          }
-          EXPECT_EQ(out.w_plus_W.z(), 0.0);  // (24)
-        }
+// Counts the grid points of (λ_lat, λ_lon) ∈ [−3, 3]² (2n+1 values each, exact zero included) where the unified
+// map does not give the outcome of DESIGN §3: λ_lat > 0 → V_{b+2}, λ_lat < 0 → V_{b+1} (one feasible vertex
+// each), λ_lat = 0 → edge V_{b+1}V_{b+2} (two). Reports the first failure.
+int CountUnifiedMapViolations(const Block& block, int b, int n) {
+  int violations = 0;
+  for (int i = -n; i <= n; ++i) {
+    for (int j = -n; j <= n; ++j) {
+      const double lat = GridValue(i, n, 3.0), lon = GridValue(j, n, 3.0);
+      const ImpactOutcome out = FacetImpact(block, b, FallingOmega(block, b, 1.0), {lat, lon});
+      int feasible = 0;
+      for (const FacetCandidate& c : out.candidates) feasible += c.feasible ? 1 : 0;
+      const Contact expected = i > 0 ? Contact::Vertex(b + 2) : i < 0 ? Contact::Vertex(b + 1) : Contact::Edge(b + 1, b + 2);
+      const bool good = out.status == ImpactStatus::kOk && out.contact_after == expected && feasible == (i == 0 ? 2 : 1) &&
+                        out.w_plus_W.z() == 0.0;  // (24)
+      if (!good && violations++ == 0) {
+        ADD_FAILURE() << "b " << b << " λ_lat " << lat << " λ_lon " << lon << ": status " << ToString(out.status)
+                      << ", contact " << out.contact_after.ToString() << ", " << feasible << " feasible";
       }
     }
+  }
+  return violations;
+}
+
+TEST(FacetImpact, UnifiedMapHasExactlyOneFeasibleOutcomeWithTheVertexSideOfDesign) {
+  // The vertex is picked by feasibility; the sign rule of DESIGN §3 is only checked here. Step 0.1 for the
+  // Fig. 11 block falling about V1V2, step 0.5 for the other pivot edges and two other blocks (a square base
+  // and a deep one) to keep the sanitizer run short.
+  EXPECT_EQ(CountUnifiedMapViolations(Fig11Block(), 2, 30), 0);
+  for (const Block& block : {Fig11Block(), Block::FromMass(0.05, 0.05, 0.20, 1.0), Block::FromMass(0.04, 0.1, 0.25, 3.0)}) {
+    for (int b = 1; b <= 4; ++b) EXPECT_EQ(CountUnifiedMapViolations(block, b, 6), 0) << "b " << b;
   }
 }
 
