@@ -1,0 +1,35 @@
+// Sample rates from an x-IMU GUI "<prefix>_Registers.csv" (reference ximu-formats.md §1.4): register
+// 69 InertialAndMagneticDataRate and 70 QuaternionDataRate hold a value v, the rate is 2^(v−1) Hz
+// (v = 1 … 10 → 1 … 512 Hz) and v = 0 means the output is disabled. The device sends every register
+// at start-up and whenever one is read or written, so a register may appear several times.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+
+#include "rockfit/io/csv_table.hpp"
+
+namespace rockfit::io {
+
+inline constexpr int kXimuInertialRateRegister = 69;
+inline constexpr int kXimuQuaternionRateRegister = 70;
+
+// 2^(v−1) Hz for v = 1 … 10, 0 for v = 0 (disabled); std::nullopt for other v.
+std::optional<double> XimuRateFromRegisterValue(long long value);
+
+struct XimuRegisterRate {
+  double rate_hz = 0.0;   // 0 = output disabled
+  long long value = 0;    // the register value v
+  TextPosition at;        // the cell it was read from
+};
+
+struct XimuRegisterRates {
+  std::optional<XimuRegisterRate> inertial;     // register 69
+  std::optional<XimuRegisterRate> orientation;  // register 70
+};
+
+// Reads columns "Address" and "Value". Throws BadInput for a value outside 0 … 10, or a register
+// that holds two different values in one recording (the rate changed while recording).
+XimuRegisterRates ReadXimuRegisterRates(const CsvTable& registers);
+
+}  // namespace rockfit::io
