@@ -192,8 +192,8 @@ CsvTable CsvTable::FromText(std::string text, std::string display_name, std::vec
           ThrowBadInput(
               {{name, line_number, *comma + 1},
                "",
-               std::to_string(cells.size()) + " fields and numbers written with a decimal comma ('" +
-                   std::string(content.substr(0, std::min<std::size_t>(content.size(), 32))) + "…')",
+               std::to_string(cells.size()) + " fields and numbers written with a decimal comma (" +
+                   QuoteCell(content) + ")",
                std::to_string(columns) + " fields (one per header column) with decimal points",
                "The file was written with decimal commas, which x-IMU GUI versions before 13.2 do on Windows set "
                "to a language such as Hungarian or German; such rows cannot be split reliably. Export it again "
