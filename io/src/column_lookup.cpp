@@ -51,11 +51,12 @@ std::vector<std::optional<std::size_t>> ResolveColumns(const CsvTable& table, co
                                                 : table.header()[column]);
       unclaimed_column.push_back(column);
     }
-    const std::string wanted = "a column '" + spec.names.front() + "' (" + spec.meaning + ")";
+    const std::string shown = spec.display.empty() ? spec.names.front() : spec.display;
+    const std::string wanted = "a column '" + shown + "' (" + spec.meaning + ")";
     if (const auto suggestion = ClosestHeader(unclaimed, spec.names)) {
       const std::size_t column = unclaimed_column[suggestion->index];
       ThrowBadInput({table.HeaderPosition(column), "", "the header '" + table.header()[column] + "'", wanted,
-                     "If this is that column, rename its header to '" + spec.names.front() + "'."});
+                     "If this is that column, rename its header to '" + shown + "'."});
     }
     ThrowBadInput({{table.name(), table.header_line()}, "", "the header " + ListHeader(table), wanted,
                    "Add the column, or check that this is the right file."});

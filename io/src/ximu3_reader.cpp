@@ -32,7 +32,7 @@ std::optional<std::filesystem::path> FindFile(const std::filesystem::path& direc
   return std::nullopt;
 }
 
-ColumnSpec TimestampSpec() { return {{"Timestamp"}, "device time in microseconds", true, true}; }
+ColumnSpec TimestampSpec() { return {{"Timestamp"}, "device time in microseconds", true, true, "Timestamp (us)"}; }
 
 // Timestamps of a table in µs (whole numbers, strictly increasing).
 std::vector<double> Timestamps(const CsvTable& table, std::size_t column) {
@@ -64,9 +64,9 @@ bool ReadAhrsFile(const std::filesystem::path& path, AhrsKind kind, int priority
   std::vector<ColumnSpec> specs = {TimestampSpec()};
   switch (kind) {
     case AhrsKind::kEuler:
-      specs.push_back({{"Roll"}, "roll φx", true, true});
-      specs.push_back({{"Pitch"}, "pitch φy", true, true});
-      specs.push_back({{"Yaw"}, "yaw φz", true, true});
+      specs.push_back({{"Roll"}, "roll φx", true, true, "Roll (deg)"});
+      specs.push_back({{"Pitch"}, "pitch φy", true, true, "Pitch (deg)"});
+      specs.push_back({{"Yaw"}, "yaw φz", true, true, "Yaw (deg)"});
       break;
     case AhrsKind::kQuaternion:
       for (const char* axis : {"W", "X", "Y", "Z"}) {
@@ -146,12 +146,12 @@ Recording ReadXimu3Recording(const std::filesystem::path& directory, const LoadO
   const CsvTable inertial = CsvTable::ReadFile(*inertial_path, recording.warnings);
   const std::string inertial_name = inertial_path->filename().string();
   const auto c = ResolveColumns(inertial, {TimestampSpec(),
-                                           {{"Gyroscope X"}, "the gyroscope's x axis in deg/s", true, true},
-                                           {{"Gyroscope Y"}, "the gyroscope's y axis in deg/s", true, true},
-                                           {{"Gyroscope Z"}, "the gyroscope's z axis in deg/s", true, true},
-                                           {{"Accelerometer X"}, "the accelerometer's x axis in g", true, true},
-                                           {{"Accelerometer Y"}, "the accelerometer's y axis in g", true, true},
-                                           {{"Accelerometer Z"}, "the accelerometer's z axis in g", true, true}});
+                                           {{"Gyroscope X"}, "the gyroscope's x axis in deg/s", true, true, "Gyroscope X (deg/s)"},
+                                           {{"Gyroscope Y"}, "the gyroscope's y axis in deg/s", true, true, "Gyroscope Y (deg/s)"},
+                                           {{"Gyroscope Z"}, "the gyroscope's z axis in deg/s", true, true, "Gyroscope Z (deg/s)"},
+                                           {{"Accelerometer X"}, "the accelerometer's x axis in g", true, true, "Accelerometer X (g)"},
+                                           {{"Accelerometer Y"}, "the accelerometer's y axis in g", true, true, "Accelerometer Y (g)"},
+                                           {{"Accelerometer Z"}, "the accelerometer's z axis in g", true, true, "Accelerometer Z (g)"}});
   const std::vector<double> timestamps_us = Timestamps(inertial, *c[0]);
   const std::size_t n = inertial.row_count();
   if (n < 2) {

@@ -109,9 +109,9 @@ AttitudeRows ReadEulerFile(const std::filesystem::path& path, const std::optiona
                            Recording& recording) {
   const CsvTable table = CsvTable::ReadFile(path, recording.warnings);
   const auto c = ResolveColumns(table, {{{"Packet number"}, "the shared packet counter", false},
-                                        {{"Roll | Phi | X"}, "roll φx in degrees", true, true},
-                                        {{"Pitch | Theta | Y"}, "pitch φy in degrees", true, true},
-                                        {{"Yaw | Psi | Z"}, "yaw φz in degrees", true, true}});
+                                        {{"Roll | Phi | X"}, "roll φx in degrees", true, true, "Roll | Phi | X (degrees)"},
+                                        {{"Pitch | Theta | Y"}, "pitch φy in degrees", true, true, "Pitch | Theta | Y (degrees)"},
+                                        {{"Yaw | Psi | Z"}, "yaw φz in degrees", true, true, "Yaw | Psi | Z (degrees)"}});
   std::array<double, 3> scale{};
   for (std::size_t k = 0; k < 3; ++k) {
     scale[k] = ToSi(HeaderUnit(table, *c[k + 1], &ParseAngleUnit, "degrees, deg, rad"));
@@ -214,12 +214,12 @@ Recording ReadXimuGuiRecording(const XimuGuiFileSet& files, const LoadOptions& o
   const CsvTable inertial = CsvTable::ReadFile(*files.cal_inertial, warnings);
   const std::string inertial_name = FileName(*files.cal_inertial);
   const auto c = ResolveColumns(inertial, {{{"Packet number"}, "the shared packet counter", false},
-                                           {{"Gyroscope X"}, "the gyroscope's x axis in deg/s", true, true},
-                                           {{"Gyroscope Y"}, "the gyroscope's y axis in deg/s", true, true},
-                                           {{"Gyroscope Z"}, "the gyroscope's z axis in deg/s", true, true},
-                                           {{"Accelerometer X"}, "the accelerometer's x axis in g", true, true},
-                                           {{"Accelerometer Y"}, "the accelerometer's y axis in g", true, true},
-                                           {{"Accelerometer Z"}, "the accelerometer's z axis in g", true, true}});
+                                           {{"Gyroscope X"}, "the gyroscope's x axis in deg/s", true, true, "Gyroscope X (deg/s)"},
+                                           {{"Gyroscope Y"}, "the gyroscope's y axis in deg/s", true, true, "Gyroscope Y (deg/s)"},
+                                           {{"Gyroscope Z"}, "the gyroscope's z axis in deg/s", true, true, "Gyroscope Z (deg/s)"},
+                                           {{"Accelerometer X"}, "the accelerometer's x axis in g", true, true, "Accelerometer X (g)"},
+                                           {{"Accelerometer Y"}, "the accelerometer's y axis in g", true, true, "Accelerometer Y (g)"},
+                                           {{"Accelerometer Z"}, "the accelerometer's z axis in g", true, true, "Accelerometer Z (g)"}});
   const std::vector<double> packets = PacketNumbers(inertial, c[0]);
   const std::size_t n = inertial.row_count();
 

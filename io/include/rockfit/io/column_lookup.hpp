@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rockfit/io/csv_table.hpp"
@@ -13,12 +14,22 @@
 namespace rockfit::io {
 
 struct ColumnSpec {
+  ColumnSpec(std::vector<std::string> accepted_names, std::string what, bool is_required = true,
+             bool match_name_before_unit = false, std::string shown_as = {})
+      : names(std::move(accepted_names)),
+        meaning(std::move(what)),
+        required(is_required),
+        name_before_unit(match_name_before_unit),
+        display(std::move(shown_as)) {}
+
   std::vector<std::string> names;  // accepted header texts; the first is the one to suggest
   std::string meaning;             // for messages, e.g. "the gyroscope's y axis in deg/s"
   bool required = true;
   // Compare only the text before a final "(unit)" of the header cell ("Gyroscope X" matches
   // "Gyroscope X (deg/s)" and "Gyroscope X (rad/s)"); the reader then checks the unit with HeaderUnit.
   bool name_before_unit = false;
+  // How to write the column in messages when it is not names.front(), e.g. "Gyroscope X (deg/s)".
+  std::string display;
 };
 
 // The column of each spec (std::nullopt for an optional column that is absent). Throws BadInput for
