@@ -270,7 +270,7 @@ TEST(ReadXimuGuiRecording, RealOscillatoryEulerAnglesAgreeWithItsQuaternions) {
   }
   EXPECT_LE(worst, kEulerVsQuaternion_rad);
   EXPECT_GT(worst, 0.0);  // the two files really are different data
-  RecordProperty("max_euler_vs_quaternion_rad", std::to_string(worst));
+  RecordProperty("max_euler_vs_quaternion_rad", testing::G7(worst));
 }
 
 TEST(ReadXimuGuiRecording, RealOscillatoryAttitudeIsTheSameFromEulerQuaternionAndMatrixFiles) {
