@@ -55,16 +55,20 @@ std::string DelimiterName(char delimiter) {
   return std::string("'") + delimiter + "'";
 }
 
-// Offset of the first "digit,digit" in a line, the mark of decimal commas in a ','-file.
+// Offset of the comma in the first unmistakable decimal-comma number of a ','-separated line, the
+// mark of an x-IMU GUI export made with a decimal-comma language: no '.' anywhere in the line, and a
+// negative number "-0,125" or a fraction with a leading zero "0,0625" (integers never print as "0625").
 std::optional<std::size_t> FindDecimalComma(std::string_view line) {
-  for (std::size_t i = 1; i + 1 < line.size(); ++i) {
-    if (line[i] == ',' && IsDigit(line[i - 1]) && IsDigit(line[i + 1])) {
-      // "-0,125" or "12,5": the digits before the comma start a signed number, after a separator.
-      std::size_t j = i;
-      while (j > 0 && IsDigit(line[j - 1])) --j;
-      if (j > 0 && line[j - 1] == '-') return i;
-      if (j > 0 && line[j - 1] == ',' && j + 1 == i && line[j] == '0') return i;  // ",0,0625"
-    }
+  if (line.find('.') != std::string_view::npos) return std::nullopt;
+  for (std::size_t i = 1; i + 2 < line.size(); ++i) {
+    if (line[i] != ',' || !IsDigit(line[i - 1]) || !IsDigit(line[i + 1])) continue;
+    std::size_t begin = i;
+    while (begin > 0 && IsDigit(line[begin - 1])) --begin;
+    std::size_t end = i + 1;
+    while (end < line.size() && IsDigit(line[end])) ++end;
+    const bool negative = begin > 0 && line[begin - 1] == '-';
+    const bool leading_zero_fraction = line[i + 1] == '0' && end - (i + 1) >= 2;
+    if (negative || leading_zero_fraction) return i;
   }
   return std::nullopt;
 }
