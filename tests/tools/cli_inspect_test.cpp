@@ -76,8 +76,9 @@ TEST(CliInspect, EveryCraftedBadFileExitsWithCodeTwoAndItsMessage) {
     const CommandResult r = RunRockfit(args);
     if (c.repaired) {
       ASSERT_EQ(r.exit_code, 0) << r.err;
+      const auto json = nlohmann::json::parse(r.out);
       std::string warnings;
-      for (const auto& warning : nlohmann::json::parse(r.out)["warnings"]) warnings += warning.get<std::string>() + "\n";
+      for (const auto& warning : json["warnings"]) warnings += warning.get<std::string>() + "\n";
       for (const std::string& fragment : c.fragments) EXPECT_THAT(warnings, HasSubstr(fragment));
       continue;
     }
