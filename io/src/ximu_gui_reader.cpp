@@ -224,8 +224,8 @@ Recording ReadXimuGuiRecording(const XimuGuiFileSet& files, const LoadOptions& o
   const std::size_t n = inertial.row_count();
 
   // Sample rate.
-  std::optional<XimuRegisterRates> registers;
-  if (files.registers) registers = ReadXimuRegisterRates(CsvTable::ReadFile(*files.registers, warnings));
+  std::optional<XimuRegisterSettings> registers;
+  if (files.registers) registers = ReadXimuRegisters(CsvTable::ReadFile(*files.registers, warnings));
   double rate_hz = 0.0;
   if (registers && registers->inertial) {
     const XimuRegisterRate& reg = *registers->inertial;
@@ -310,6 +310,22 @@ Recording ReadXimuGuiRecording(const XimuGuiFileSet& files, const LoadOptions& o
   }
   for (std::size_t k = 1; k < c.size(); ++k) {
     if (c[k]) recording.columns.push_back(inertial_name + ": " + inertial.header()[*c[k]]);
+  }
+  if (registers && registers->gyroscope_full_scale_dps) {
+    // Samples at the rail are clipped: the block turned faster than the gyroscope can tell.
+    const double rail_rad_s = (*registers->gyroscope_full_scale_dps - kGyroscopeRailMargin_dps) * kRadPerDeg;
+    std::size_t clipped = 0;
+    std::size_t first = 0;
+    for (std::size_t row = 0; row < n; ++row) {
+      if (samples.w_S[row].cwiseAbs().maxCoeff() < rail_rad_s) continue;
+      if (clipped++ == 0) first = row;
+    }
+    if (clipped > 0) {
+      warnings.push_back(fmt::format(
+          "{}: {} gyroscope sample(s) at the ±{:g} °/s full scale of the x-IMU (register 8), first on line {} "
+          "(t = {:.4f} s): the angular velocity there is clipped",
+          inertial_name, clipped, *registers->gyroscope_full_scale_dps, inertial.Line(first), samples.t_s[first]));
+    }
   }
 
   // Attitude.

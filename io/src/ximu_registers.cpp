@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "rockfit/io/column_lookup.hpp"
+#include "rockfit/io/number_parsing.hpp"
 
 namespace rockfit::io {
 
@@ -14,13 +15,23 @@ std::optional<double> XimuRateFromRegisterValue(long long value) {
   return std::ldexp(1.0, static_cast<int>(value - 1));
 }
 
-XimuRegisterRates ReadXimuRegisterRates(const CsvTable& registers) {
+XimuRegisterSettings ReadXimuRegisters(const CsvTable& registers) {
   const auto columns = ResolveColumns(registers, {{{"Address"}, "the register address"}, {{"Value"}, "the register value"}});
   const std::size_t address_column = *columns[0];
   const std::size_t value_column = *columns[1];
-  XimuRegisterRates rates;
+  XimuRegisterSettings rates;
+  bool full_scale_conflict = false;
   for (std::size_t row = 0; row < registers.row_count(); ++row) {
     const std::int64_t address = registers.Integer(row, address_column);
+    if (address == kXimuGyroscopeFullScaleRegister && !full_scale_conflict) {
+      const std::optional<std::int64_t> value = ParseInteger(registers.Cell(row, value_column));
+      const std::optional<double> full_scale =
+          value && *value >= 0 && *value <= 3 ? std::optional<double>(250.0 * std::ldexp(1.0, static_cast<int>(*value)))
+                                               : std::nullopt;
+      if (rates.gyroscope_full_scale_dps && full_scale != rates.gyroscope_full_scale_dps) full_scale_conflict = true;
+      rates.gyroscope_full_scale_dps = full_scale_conflict ? std::nullopt : full_scale;
+      continue;
+    }
     if (address != kXimuInertialRateRegister && address != kXimuQuaternionRateRegister) continue;
     const std::int64_t value = registers.Integer(row, value_column);
     const std::optional<double> rate = XimuRateFromRegisterValue(value);

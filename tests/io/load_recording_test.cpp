@@ -1,6 +1,7 @@
 #include "rockfit/io/load_recording.hpp"
 
 #include <fstream>
+#include <random>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -131,6 +132,50 @@ TEST(LoadRecording, TruncatedAndCrlfFilesGiveTheSameSamplesAsTheCleanFile) {
   ASSERT_EQ(repaired.size(), clean.size());
   for (std::size_t k = 0; k < clean.size(); ++k) EXPECT_EQ(repaired.w_B[k], clean.w_B[k]);
   EXPECT_EQ(repaired.warnings.size(), 1u);
+}
+
+TEST(LoadRecording, RandomlyDamagedFilesLoadOrThrowBadInputButNeverAnythingElse) {
+  // Byte-level damage (deleted, replaced, inserted bytes) to a small set of each format, with a fixed
+  // seed: every outcome must be a Recording or a BadInput, never a crash or another exception.
+  const testing::ScratchDir dir("load_damage");
+  const testing::GuiSpin spin = testing::MakeGuiSpin(12, 256.0, 20.0, 2);
+  const std::vector<std::pair<std::string, std::string>> originals = {
+      {"S_CalInertialAndMag.csv", spin.inertial}, {"S_EulerAngles.csv", spin.euler},
+      {"x3/Inertial.csv", testing::MakeXimu3Inertial({19990, 19990, 39980, 19990})}};
+  std::mt19937 random(20240601u);
+  std::string alphabet = "0123456789,.;-+eENa \r\n\t\xef";
+  alphabet.push_back('\0');
+  std::size_t loaded = 0;
+  std::size_t refused = 0;
+  for (const auto& [name, text] : originals) dir.Write(name, text);
+  for (int trial = 0; trial < 150; ++trial) {
+    const auto& [name, text] = originals[static_cast<std::size_t>(trial) % originals.size()];
+    std::string damaged = text;
+    const int edits = 1 + static_cast<int>(random() % 4);
+    for (int e = 0; e < edits && !damaged.empty(); ++e) {
+      const std::size_t at = random() % damaged.size();
+      const char byte = alphabet[random() % alphabet.size()];
+      switch (random() % 3) {
+        case 0: damaged.erase(at, 1 + random() % 8); break;
+        case 1: damaged[at] = byte; break;
+        default: damaged.insert(at, 1, byte); break;
+      }
+    }
+    dir.Write(name, damaged);
+    LoadOptions options;
+    if (name.rfind("x3/", 0) != 0) options.rate_hz = 256.0;
+    try {
+      const Recording r = LoadRecording(dir / (name.rfind("x3/", 0) == 0 ? "x3" : "S"), options);
+      EXPECT_EQ(r.w_B.size(), r.t_s.size());
+      for (const auto& w : r.w_B) EXPECT_TRUE(w.allFinite());
+      ++loaded;
+    } catch (const BadInput&) {
+      ++refused;
+    }
+    dir.Write(name, text);
+  }
+  EXPECT_GT(loaded, 0u);
+  EXPECT_GT(refused, 0u);
 }
 
 TEST(LoadRecording, HdfFilesAreSentToTheHdf5StoreAndColumnMapsOnlyFitCsvFiles) {

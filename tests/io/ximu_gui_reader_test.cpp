@@ -125,6 +125,16 @@ TEST(ReadXimuGuiRecording, RatesComeFromTheRegistersAndMustAgreeWithWhatIsGiven)
                               "expected the rate given with --rate (256 Hz)")));
 }
 
+TEST(ReadXimuGuiRecording, WarnsAboutGyroscopeSamplesAtTheFullScaleOfRegister8) {
+  const ScratchDir dir("gui_rail");
+  dir.Write("S_CalInertialAndMag.csv", testing::kGuiInertialHeader +
+                                           "\n0,0,0,0,0,0,1,0,0,0\n2,249.9375,0,0,0,0,1,0,0,0\n4,0,-250,0,0,0,1,0,0,0\n");
+  dir.Write("S_Registers.csv", testing::kGuiRegistersHeader + "\n1,8,0,NaN,GyroscopeFullScale\n");
+  const Recording r = ReadXimuGuiRecording(XimuGuiFileSet::Find(dir / "S"), WithRate(256.0));
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_THAT(r.warnings[0], AllOf(HasSubstr("2 gyroscope sample(s) at the ±250 °/s full scale"), HasSubstr("line 3")));
+}
+
 TEST(ReadXimuGuiRecording, RefusesAttitudeRowsThatDisagreeWithTheQuaternionRateRegister) {
   const ScratchDir dir("gui_register70");
   const GuiSpin spin = MakeGuiSpin(64, 256.0, 30.0, 2);  // attitude at 128 Hz

@@ -14,6 +14,7 @@
 //    _RotationMatrix.csv is R_WS row by row; _EulerAngles.csv is ZYX (roll φx, pitch φy, yaw φz) of R_WS.
 //  * A NaN pitch (the GUI writes it at ±90°) is recomputed from the quaternion of the same packet
 //    when _Quaternion.csv exists (warning), else BadInput.
+//  * Gyroscope samples at the full scale of register 8 are clipped: a warning counts them.
 #pragma once
 
 #include "rockfit/io/load_options.hpp"
@@ -27,6 +28,9 @@ namespace rockfit::io {
 inline constexpr double kRateMismatchTolerance = 0.2;
 // Fewer inertial rows per clock second than (1 − this) × rate: packets were lost, warn.
 inline constexpr double kLostPacketTolerance = 0.01;
+// A gyroscope sample within one fixed-point step (Q4: 1/16 °/s) of the full scale of register 8 is
+// at the rail, i.e. clipped; the reader warns about such samples.
+inline constexpr double kGyroscopeRailMargin_dps = 0.0625;
 // |‖q‖ − 1| beyond this is not a printed unit quaternion (Q15 and 7 digits give < 1e-4).
 inline constexpr double kQuaternionNormTolerance = 0.01;
 
