@@ -105,7 +105,7 @@ void PrintText(const io::Recording& r) {
             << fmt::format("rate         {:.6g} Hz ({})\n", r.rate_hz, RateSourceText(r.rate_source))
             << fmt::format("samples      {} over {:.4f} s\n", r.size(), r.duration_s());
   if (r.has_euler()) {
-    std::cout << fmt::format("attitude     {} at {:.6g} Hz, resampled onto the gyro samples\n", r.orientation_source,
+    std::cout << fmt::format("attitude     {} at {:.6g} Hz, on the gyro time base\n", r.orientation_source,
                              r.orientation_rate_hz);
   } else {
     std::cout << "attitude     none\n";
