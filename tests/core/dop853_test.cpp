@@ -160,7 +160,7 @@ TEST(Dop853, BlowUpEndsWithStepTooSmall) {
     ++steps;
   }
   EXPECT_EQ(status, StepStatus::kStepTooSmall);
-  EXPECT_LE(integrator.t(), 1.0);  // never past the singularity
+  EXPECT_LT(integrator.t(), 1.0 + 1e-9);  // stops at the singularity (to the accuracy of the solution)
   EXPECT_TRUE(integrator.y().allFinite());
 }
 
