@@ -39,6 +39,8 @@ struct ModelParameters {
   double lambda_lat = 0.0;   // facet impacts (21)
   double lambda_lon = 1.0;   // facet impacts (21)
   FacetTauRule facet_tau_rule = FacetTauRule::kNoSpin;  // kFixed means τ = 0 (the paper's Sect. 5)
+  // Throws InvalidArgument for a non-finite value or a tilt α ≤ 0 (α is checked only for a release run).
+  void Validate(bool check_alpha = true) const;
 };
 
 // Start from a given state instead of the release from rest.
@@ -104,6 +106,8 @@ struct Trajectory {
   EndReason end_reason = EndReason::kFailed;
   std::string message;  // why a Failed run failed
   double wall_time_s = 0.0;
+  long num_steps = 0;        // accepted integrator steps over all segments
+  long num_evaluations = 0;  // right-hand-side evaluations over all segments
 };
 
 Trajectory Simulate(const Block& block, const ModelParameters& params, const SimulationOptions& options);
