@@ -371,7 +371,9 @@ HybridRun::Next HybridRun::AfterFacetImpact(const EdgeMode& mode, double t, cons
                     " has no solution (map status " + ToString(map.status) + ")");
   }
   Mode after_mode;
-  after_mode.kind = map.contact_after.is_edge() ? ModeKind::kEdge : ModeKind::kVertex;
+  after_mode.kind = map.contact_after.is_edge()     ? ModeKind::kEdge
+                    : map.contact_after.is_vertex() ? ModeKind::kVertex
+                                                    : ModeKind::kRest;  // ω⁺ = 0: the base stays down
   after_mode.contact = map.contact_after;
   const EndState after{after_mode, q_flat, map.w_plus_B};
   if (!BookImpact(record, after)) return Next::kStopped;
@@ -393,13 +395,14 @@ HybridRun::Next HybridRun::AfterFacetImpact(const EdgeMode& mode, double t, cons
   if (map.contact_after.is_vertex()) {
     const VertexDynamics about_a(block_, map.contact_after.first, gravity_);
     kinetic_after = about_a.KineticEnergy(VertexDynamics::MakeState(q_flat, map.w_plus_B));
-  } else {
+  } else if (map.contact_after.is_edge()) {
     const EdgeDynamics about_edge(block_, map.contact_after.first, map.contact_after.second, gravity_);
     const double rate = about_edge.ProjectAngularVelocity(map.w_plus_B, about_edge.p_BP_B());
     kinetic_after = about_edge.KineticEnergy(EdgeDynamics::State(0.0, rate));
   }
   const double rest_energy = block_.mass() * gravity_ * options_.rest_energy_height_m;
-  if (kinetic_after < rest_energy || facet_impacts_.Shrinking(options_.zeno_dt_s)) {
+  const bool stays_down = !map.contact_after.is_vertex() && !map.contact_after.is_edge();
+  if (stays_down || kinetic_after < rest_energy || facet_impacts_.Shrinking(options_.zeno_dt_s)) {
     return Rest(t, q_flat, record);
   }
   // All base vertices are on the ground at a facet impact.
