@@ -24,6 +24,8 @@ struct Mode {
   Contact contact;  // the edge or vertex in contact (empty for Rest, Overturned, Failed)
   // "V1V2", "V3", "rest", "overturned", "failed".
   std::string ToString() const;
+  bool operator==(const Mode& other) const { return kind == other.kind && contact == other.contact; }
+  bool operator!=(const Mode& other) const { return !(*this == other); }
 };
 
 enum class StopCondition { kPhase4, kRest, kOverturned, kTMax };
