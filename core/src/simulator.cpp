@@ -31,6 +31,9 @@ constexpr int kMaxImpactsAtOneInstant = 16;
 // Edge impacts on one edge closer than this many event tolerances switch to edge rocking even when their
 // intervals are not (yet) shrinking: the event locator cannot separate them any further.
 constexpr double kZenoFloorFactor = 100.0;
+// Kinetic energy after an impact above this multiple of m·g·|p_VC| (the work to lift the COM by its whole
+// distance from a base vertex) means impacts keep adding energy (e.g. λ < 0): the motion blows up.
+constexpr double kBlowUpEnergyFactor = 1e3;
 // A given initial state may have its base vertices below the ground by at most this [m].
 constexpr double kInitialPenetrationTol_m = 1e-9;
 // A given edge-contact state may have an angular velocity off the edge axis of at most this [rad/s].
@@ -121,8 +124,9 @@ class HybridRun {
                 int vertex_off_ground_first, int vertex_off_ground_second);
   Next Rest(double t, const Eigen::Quaterniond& q_flat, const ImpactRecord& trigger);
   Next Stop(EndReason reason, double t, const EndState& state, std::string message = {});
-  // Books an impact; false (and the run has failed) when impacts no longer advance time.
-  bool BookImpact(const ImpactRecord& record, const EndState& state);
+  // Books an impact; false (and the run has failed) when impacts no longer advance time or the kinetic
+  // energy after it, `kinetic_after_J`, shows that impacts keep adding energy without bound.
+  bool BookImpact(const ImpactRecord& record, const EndState& state, double kinetic_after_J);
   bool IsReleaseVertex(int k) const { return k == release_.first || k == release_.second; }
   EdgeStart MakeEdgeStart(const Contact& edge, const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B,
                           const Eigen::Vector3d& p_BQ_B) const;
@@ -248,8 +252,17 @@ HybridRun::Next HybridRun::RunEdge() {
   return AfterFacetImpact(mode, outcome.t_s, outcome.y);
 }
 
-bool HybridRun::BookImpact(const ImpactRecord& record, const EndState& state) {
+bool HybridRun::BookImpact(const ImpactRecord& record, const EndState& state, double kinetic_after_J) {
   out_->impacts.push_back(record);
+  const double blow_up_J =
+      kBlowUpEnergyFactor * block_.mass() * gravity_ * (block_.p_BC_B() - block_.p_BV_B(1)).norm();
+  if (!(kinetic_after_J < blow_up_J)) {
+    Stop(EndReason::kFailed, record.t_s, state,
+         "the kinetic energy grows without bound (" + std::to_string(kinetic_after_J) + " J after the " + record.kind +
+             " impact at t = " + FormatTime(record.t_s) +
+             "): the impact parameters add energy at impacts (see delta_energy in the impact log)");
+    return false;
+  }
   const double same_instant = kSameInstantFactor * options_.event_time_tol_s;
   impacts_at_instant_ = (record.t_s - last_impact_t_ <= same_instant) ? impacts_at_instant_ + 1 : 0;
   last_impact_t_ = record.t_s;
@@ -300,7 +313,9 @@ HybridRun::Next HybridRun::AfterEdgeImpact(const VertexMode& mode, double t, con
   after_mode.kind = map.contact_after.is_edge() ? ModeKind::kEdge : ModeKind::kVertex;
   after_mode.contact = map.contact_after;
   const EndState after{after_mode, q_WB, record.w_plus_B};
-  if (!BookImpact(record, after)) return Next::kStopped;
+  const VertexDynamics about_landing(block_, landing, gravity_);
+  const double kinetic_after = about_landing.KineticEnergy(VertexDynamics::MakeState(q_WB, record.w_plus_B));
+  if (!BookImpact(record, after, kinetic_after)) return Next::kStopped;
   facet_impacts_.Clear();
   edge_impacts_.Add(t, Contact::Edge(pivot, landing));
 
@@ -376,7 +391,17 @@ HybridRun::Next HybridRun::AfterFacetImpact(const EdgeMode& mode, double t, cons
                                                     : ModeKind::kRest;  // ω⁺ = 0: the base stays down
   after_mode.contact = map.contact_after;
   const EndState after{after_mode, q_flat, map.w_plus_B};
-  if (!BookImpact(record, after)) return Next::kStopped;
+  // Kinetic energy after the impact (zero when the base stays down).
+  double kinetic_after = 0.0;
+  if (map.contact_after.is_vertex()) {
+    const VertexDynamics about_a(block_, map.contact_after.first, gravity_);
+    kinetic_after = about_a.KineticEnergy(VertexDynamics::MakeState(q_flat, map.w_plus_B));
+  } else if (map.contact_after.is_edge()) {
+    const EdgeDynamics about_edge(block_, map.contact_after.first, map.contact_after.second, gravity_);
+    const double rate = about_edge.ProjectAngularVelocity(map.w_plus_B, about_edge.p_BP_B());
+    kinetic_after = about_edge.KineticEnergy(EdgeDynamics::State(0.0, rate));
+  }
+  if (!BookImpact(record, after, kinetic_after)) return Next::kStopped;
   edge_impacts_.Clear();
   facet_impacts_.Add(t, Contact{});
 
@@ -391,15 +416,6 @@ HybridRun::Next HybridRun::AfterFacetImpact(const EdgeMode& mode, double t, cons
   facet_seen_ = true;
 
   // Rest: too little kinetic energy to lift the COM by rest_energy_height, or facet impacts accumulating.
-  double kinetic_after = 0.0;
-  if (map.contact_after.is_vertex()) {
-    const VertexDynamics about_a(block_, map.contact_after.first, gravity_);
-    kinetic_after = about_a.KineticEnergy(VertexDynamics::MakeState(q_flat, map.w_plus_B));
-  } else if (map.contact_after.is_edge()) {
-    const EdgeDynamics about_edge(block_, map.contact_after.first, map.contact_after.second, gravity_);
-    const double rate = about_edge.ProjectAngularVelocity(map.w_plus_B, about_edge.p_BP_B());
-    kinetic_after = about_edge.KineticEnergy(EdgeDynamics::State(0.0, rate));
-  }
   const double rest_energy = block_.mass() * gravity_ * options_.rest_energy_height_m;
   const bool stays_down = !map.contact_after.is_vertex() && !map.contact_after.is_edge();
   if (stays_down || kinetic_after < rest_energy || facet_impacts_.Shrinking(options_.zeno_dt_s)) {

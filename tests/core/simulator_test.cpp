@@ -488,6 +488,9 @@ TEST(Simulator, RandomParameterSetsAlwaysEndWithAStatus) {
   options.stop = StopCondition::kRest;
   options.t_max_s = 3.0;
   options.rate_hz = 100.0;
+  // A fixed τ_edge can sustain a spinning wobble with an impact every few tens of µs until t_max; this bound
+  // ends such runs (as failed) quickly.
+  options.max_impacts = 3000;
   for (int i = 0; i < 30; ++i) {
     ModelParameters p;
     p.alpha_rad = tilt(rng);
@@ -615,6 +618,23 @@ TEST(Simulator, InvalidOptionsAndParametersAreRejectedWithAMessage) {
   s.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(-0.1, Eigen::Vector3d::UnitY()));
   options.initial_state = s;
   EXPECT_THROW(Simulate(block, ModelParameters{}, options), InvalidArgument);
+}
+
+TEST(Simulator, ImpactsThatKeepAddingEnergyEndAsFailedWithAMessage) {
+  // λ < 0 makes edge impacts add energy (Sect. 4.8): the block spins up around its corners without bound.
+  ModelParameters params;
+  params.alpha_rad = 0.027;
+  params.lambda = -2.042;
+  params.lambda_lat = -6.516;
+  params.lambda_lon = 3.136;
+  params.facet_tau_rule = FacetTauRule::kFixed;
+  SimulationOptions options;
+  options.stop = StopCondition::kRest;
+  const Trajectory tr = Simulate(Fig14Block(), params, options);
+  EXPECT_EQ(tr.end_reason, EndReason::kFailed);
+  EXPECT_NE(tr.message.find("energy"), std::string::npos) << tr.message;
+  ASSERT_FALSE(tr.impacts.empty());
+  EXPECT_GT(tr.impacts.back().delta_energy_J, 0.0);
 }
 
 TEST(Simulator, TooManyImpactsEndAsFailedWithAMessage) {
