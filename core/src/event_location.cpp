@@ -26,14 +26,10 @@ RootPolisher::~RootPolisher() { gsl_root_fsolver_free(static_cast<gsl_root_fsolv
 std::optional<double> RootPolisher::SolveErased(double (*f)(double, void*), void* params, double lo, double hi,
                                                 double tolerance) {
   auto* solver = static_cast<gsl_root_fsolver*>(solver_);
-  const double f_lo = f(lo, params);
-  const double f_hi = f(hi, params);
-  if (f_lo == 0.0) return lo;
-  if (f_hi == 0.0) return hi;
-  if (!std::isfinite(f_lo) || !std::isfinite(f_hi) || (f_lo > 0.0) == (f_hi > 0.0)) return std::nullopt;
   gsl_function function;
   function.function = f;
   function.params = params;
+  // The solver evaluates both ends and refuses a bracket without a sign change (the error handler is off).
   if (gsl_root_fsolver_set(solver, &function, lo, hi) != GSL_SUCCESS) return std::nullopt;
   for (int iteration = 0; iteration < kMaxBrentIterations; ++iteration) {
     if (gsl_root_fsolver_iterate(solver) != GSL_SUCCESS) return std::nullopt;

@@ -28,13 +28,6 @@ Eigen::Quaterniond VertexDynamics::Attitude(const State& y) {
   return Eigen::Quaterniond(y[0], y[1], y[2], y[3]).normalized();
 }
 
-Eigen::Vector3d VertexDynamics::UpInBody(const State& y) {
-  // Third row of R(q) for q = (w, x, y, z), scaled by 2/|q|² so that a non-unit q still gives a rotation.
-  const double qw = y[0], qx = y[1], qy = y[2], qz = y[3];
-  const double s = 2.0 / (qw * qw + qx * qx + qy * qy + qz * qz);
-  return {s * (qx * qz - qw * qy), s * (qy * qz + qw * qx), 1.0 - s * (qx * qx + qy * qy)};
-}
-
 double VertexDynamics::ComHeight(const State& y) const { return UpInBody(y).dot(p_PC_B_); }
 
 double VertexDynamics::PointHeight(const State& y, const Eigen::Vector3d& p_BX_B) const {

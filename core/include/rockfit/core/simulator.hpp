@@ -65,7 +65,10 @@ struct SimulationOptions {
   double rel_tol = 1e-12;               // integrator relative tolerance
   double abs_tol = 1e-14;               // integrator absolute tolerance
   double event_time_tol_s = 1e-12;      // event location tolerance
-  double max_step_s = 2e-3;             // largest integrator step (bounds missed lift-off-and-land events)
+  // Largest integrator step. Events inside a step are found from the guards' slopes at both ends (a dip
+  // below zero and back is an interior minimum), which assumes at most one extremum of a vertex height per
+  // step: the bound keeps that true for rotation rates up to a few hundred rad/s.
+  double max_step_s = 1e-2;
   std::size_t max_impacts = 100000;     // a run with more impacts ends as Failed
   bool sample_attitude = true;          // false: fill only t, w_B and mode (faster, for fitting)
   std::optional<InitialState> initial_state;

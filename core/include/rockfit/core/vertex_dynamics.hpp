@@ -35,8 +35,13 @@ class VertexDynamics {
   static State MakeState(const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B);
   static Eigen::Quaterniond Attitude(const State& y);  // normalised q_WB
   static Eigen::Vector3d AngularVelocity(const State& y) { return y.tail<3>(); }
-  // R_WBᵀ e_z: the world vertical in B, from a possibly non-unit quaternion.
-  static Eigen::Vector3d UpInBody(const State& y);
+  // R_WBᵀ e_z: the world vertical in B, from a possibly non-unit quaternion (the third row of R(q) for
+  // q = (w, x, y, z), scaled by 2/|q|² so that a non-unit q still gives a rotation).
+  static Eigen::Vector3d UpInBody(const State& y) {
+    const double qw = y[0], qx = y[1], qy = y[2], qz = y[3];
+    const double s = 2.0 / (qw * qw + qx * qx + qy * qy + qz * qz);
+    return {s * (qx * qz - qw * qy), s * (qy * qz + qw * qx), 1.0 - s * (qx * qx + qy * qy)};
+  }
 
   // The right-hand side of the equations above (time-invariant; t is ignored).
   void operator()(double /*t*/, const State& y, State& dydt) const {
