@@ -264,11 +264,11 @@ bool HybridRun::BookImpact(const ImpactRecord& record, const EndState& state, do
     return false;
   }
   const double same_instant = kSameInstantFactor * options_.event_time_tol_s;
-  impacts_at_instant_ = (record.t_s - last_impact_t_ <= same_instant) ? impacts_at_instant_ + 1 : 0;
+  impacts_at_instant_ = (record.t_s - last_impact_t_ <= same_instant) ? impacts_at_instant_ + 1 : 1;
   last_impact_t_ = record.t_s;
-  if (impacts_at_instant_ >= kMaxImpactsAtOneInstant) {
+  if (impacts_at_instant_ > kMaxImpactsAtOneInstant) {
     Stop(EndReason::kFailed, record.t_s, state,
-         std::to_string(kMaxImpactsAtOneInstant) + " impacts at t = " + FormatTime(record.t_s) +
+         "more than " + std::to_string(kMaxImpactsAtOneInstant) + " impacts at t = " + FormatTime(record.t_s) +
              " without the contact resolving (last " + record.kind + " impact " + record.contact_before.ToString() +
              " → " + record.contact_after.ToString() + ")");
     return false;

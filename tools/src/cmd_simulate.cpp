@@ -187,9 +187,11 @@ int RunSimulate(SimulateCommand& cmd) {
     }
   }
   if (trajectory.end_reason == core::EndReason::kFailed) {
+    const bool too_many = trajectory.message.find("max_impacts") != std::string::npos;
     std::cerr << "rockfit: the simulation failed at t = " << trajectory.t_end_s << " s: " << trajectory.message
-              << "\nThe output holds the trajectory up to the failure. Check the impact parameters (e.g. against the "
-                 "bounds (25), (27)) or loosen --max-impacts."
+              << "\nThe output holds the trajectory up to the failure. "
+              << (too_many ? "Raise --max-impacts, lower --t-max, or check the impact parameters."
+                           : "Check the impact parameters against the bounds (25) and (27) of the paper.")
               << std::endl;
     return kExitNumerical;
   }
