@@ -61,7 +61,14 @@ core::StopCondition ParseStop(const std::string& text) {
   return core::StopCondition::kTMax;
 }
 
-nlohmann::json QuaternionJson(const Eigen::Quaterniond& q) { return nlohmann::json::array({q.w(), q.x(), q.y(), q.z()}); }
+// −0 (e.g. ψ̇·a_B with ψ̇ = 0) printed as 0.
+double Clean(double v) { return v == 0.0 ? 0.0 : v; }
+
+nlohmann::json VectorJson(const Eigen::Vector3d& v) { return nlohmann::json::array({Clean(v.x()), Clean(v.y()), Clean(v.z())}); }
+
+nlohmann::json QuaternionJson(const Eigen::Quaterniond& q) {
+  return nlohmann::json::array({Clean(q.w()), Clean(q.x()), Clean(q.y()), Clean(q.z())});
+}
 
 nlohmann::json TrajectoryJson(const core::Block& block, const core::ModelParameters& params,
                               const core::SimulationOptions& options, const core::Trajectory& trajectory) {
@@ -80,12 +87,12 @@ nlohmann::json TrajectoryJson(const core::Block& block, const core::ModelParamet
                        {"kind", impact.kind},
                        {"contact_before", impact.contact_before.ToString()},
                        {"contact_after", impact.kind == "rest" ? std::string("base") : impact.contact_after.ToString()},
-                       {"omega_minus_B", ToJson(impact.w_minus_B)},
-                       {"omega_plus_B", ToJson(impact.w_plus_B)},
-                       {"omega_minus_W", ToJson(impact.w_minus_W)},
-                       {"omega_plus_W", ToJson(impact.w_plus_W)},
-                       {"tau", impact.tau},
-                       {"delta_energy", impact.delta_energy_J},
+                       {"omega_minus_B", VectorJson(impact.w_minus_B)},
+                       {"omega_plus_B", VectorJson(impact.w_plus_B)},
+                       {"omega_minus_W", VectorJson(impact.w_minus_W)},
+                       {"omega_plus_W", VectorJson(impact.w_plus_W)},
+                       {"tau", Clean(impact.tau)},
+                       {"delta_energy", Clean(impact.delta_energy_J)},
                        {"status", core::ToString(impact.status)}});
   }
   out["impacts"] = std::move(impacts);
@@ -93,9 +100,9 @@ nlohmann::json TrajectoryJson(const core::Block& block, const core::ModelParamet
   samples["t"] = trajectory.t_s;
   nlohmann::json w_B = nlohmann::json::array(), q_WB = nlohmann::json::array(), euler = nlohmann::json::array(),
                  mode = nlohmann::json::array();
-  for (const auto& w : trajectory.w_B) w_B.push_back(ToJson(w));
+  for (const auto& w : trajectory.w_B) w_B.push_back(VectorJson(w));
   for (const auto& q : trajectory.q_WB) q_WB.push_back(QuaternionJson(q));
-  for (const auto& e : trajectory.euler_zyx) euler.push_back(ToJson(e));
+  for (const auto& e : trajectory.euler_zyx) euler.push_back(VectorJson(e));
   for (const auto& m : trajectory.mode) mode.push_back(m.ToString());
   samples["w_B"] = std::move(w_B);
   samples["q_WB"] = std::move(q_WB);
@@ -134,8 +141,9 @@ std::string TrajectoryCsv(const core::Trajectory& trajectory) {
     const Eigen::Vector3d& w = trajectory.w_B[k];
     const Eigen::Quaterniond& q = trajectory.q_WB[k];
     const Eigen::Vector3d& e = trajectory.euler_zyx[k];
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", trajectory.t_s[k], w.x(), w.y(), w.z(), q.w(), q.x(),
-                       q.y(), q.z(), e[0], e[1], e[2], trajectory.mode[k].ToString());
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", Clean(trajectory.t_s[k]), Clean(w.x()), Clean(w.y()),
+                       Clean(w.z()), Clean(q.w()), Clean(q.x()), Clean(q.y()), Clean(q.z()), Clean(e[0]), Clean(e[1]),
+                       Clean(e[2]), trajectory.mode[k].ToString());
   }
   return csv;
 }
