@@ -119,9 +119,11 @@ class HybridRun {
   Next RunEdge();
   Next AfterEdgeImpact(const VertexMode& mode, double t, const VertexDynamics::State& y, int landing);
   Next AfterFacetImpact(const EdgeMode& mode, double t, const EdgeDynamics::State& y);
-  // Continues in `contact` (from an impact map) with attitude q_WB and angular velocity w_B about the new pivot.
+  // Continues in `contact` (from an impact map) with attitude q_WB and w_B, a rotation about vertex `pivot`
+  // (V_a of the map; for edge contact ω is projected onto the edge as a rotation about it). Vertices that were
+  // on the ground before the impact (−1: all) start their guards at zero.
   Next Continue(const Contact& contact, double t, const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B,
-                int vertex_off_ground_first, int vertex_off_ground_second);
+                int pivot, int vertex_off_ground_first, int vertex_off_ground_second);
   Next Rest(double t, const Eigen::Quaterniond& q_flat, const ImpactRecord& trigger);
   Next Stop(EndReason reason, double t, const EndState& state, std::string message = {});
   // Books an impact; false (and the run has failed) when impacts no longer advance time or the kinetic
@@ -309,6 +311,15 @@ HybridRun::Next HybridRun::AfterEdgeImpact(const VertexMode& mode, double t, con
                 std::string("the edge impact on V") + std::to_string(pivot) + "V" + std::to_string(landing) +
                     " at t = " + FormatTime(t) + " has no solution (map status " + ToString(map.status) + ")");
   }
+  if (map.contact_after.is_edge()) {
+    // Edge contact V_aV_b after the impact: the block turns about the edge, with the angular momentum about the
+    // edge line of the map's ω⁺ (a rotation about V_a). The log shows that motion and its energy change.
+    const EdgeStart start = MakeEdgeStart(map.contact_after, q_WB, record.w_plus_B, block_.p_BV_B(landing));
+    const EdgeDynamics about_edge(block_, map.contact_after.first, map.contact_after.second, gravity_);
+    record.w_plus_B = about_edge.AngularVelocity_B(start.y);
+    record.w_plus_W = R_WB * record.w_plus_B;
+    record.delta_energy_J = about_edge.KineticEnergy(start.y) - map.energy_before_J;
+  }
   Mode after_mode;
   after_mode.kind = map.contact_after.is_edge() ? ModeKind::kEdge : ModeKind::kVertex;
   after_mode.contact = map.contact_after;
@@ -349,7 +360,7 @@ HybridRun::Next HybridRun::AfterEdgeImpact(const VertexMode& mode, double t, con
     t_start_ = t;
     return Next::kEdge;
   }
-  return Continue(map.contact_after, t, q_WB, record.w_plus_B, pivot, 0);
+  return Continue(map.contact_after, t, q_WB, record.w_plus_B, landing, pivot, 0);
 }
 
 HybridRun::Next HybridRun::AfterFacetImpact(const EdgeMode& mode, double t, const EdgeDynamics::State& y) {
@@ -422,11 +433,11 @@ HybridRun::Next HybridRun::AfterFacetImpact(const EdgeMode& mode, double t, cons
     return Rest(t, q_flat, record);
   }
   // All base vertices are on the ground at a facet impact.
-  return Continue(map.contact_after, t, q_flat, map.w_plus_B, -1, -1);
+  return Continue(map.contact_after, t, q_flat, map.w_plus_B, map.contact_after.first, -1, -1);
 }
 
 HybridRun::Next HybridRun::Continue(const Contact& contact, double t, const Eigen::Quaterniond& q_WB,
-                                    const Eigen::Vector3d& w_B, int vertex_off_ground_first,
+                                    const Eigen::Vector3d& w_B, int pivot, int vertex_off_ground_first,
                                     int vertex_off_ground_second) {
   t_start_ = t;
   if (contact.is_vertex()) {
@@ -445,7 +456,7 @@ HybridRun::Next HybridRun::Continue(const Contact& contact, double t, const Eige
     return Next::kVertex;
   }
   // Edge contact after the impact: rotation about the edge, as the map's rotation about V_a projected onto it.
-  edge_start_ = MakeEdgeStart(contact, q_WB, w_B, block_.p_BV_B(contact.first));
+  edge_start_ = MakeEdgeStart(contact, q_WB, w_B, block_.p_BV_B(pivot));
   return Next::kEdge;
 }
 

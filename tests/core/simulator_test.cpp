@@ -345,6 +345,31 @@ TEST(Simulator, ZenoSwitchKeepsTheAngularMomentumAboutTheEdge) {
   EXPECT_LT(edge_times[n - 1] - edge_times[n - 2], edge_times[n - 2] - edge_times[n - 3]);
 }
 
+TEST(Simulator, EdgeContactAfterAnEdgeImpactContinuesAsEdgeRocking) {
+  // λ far above (25) reverses the rocking at an edge impact; V_b then stays down and the block keeps edge
+  // contact V_aV_b (DESIGN §3), turning about the edge with the angular momentum about the edge line.
+  const Block block = Fig14Block();
+  ModelParameters params = WithinBoundsParameters();
+  params.lambda = 40.0;
+  SimulationOptions options;
+  options.rate_hz = 1000.0;
+  const Trajectory tr = Simulate(block, params, options);
+  ASSERT_EQ(tr.end_reason, EndReason::kPhase4) << tr.message;
+  ASSERT_GE(tr.impacts.size(), 2u);
+  const ImpactRecord& edge = tr.impacts[1];
+  EXPECT_EQ(edge.kind, "edge");
+  ASSERT_TRUE(edge.contact_after.is_edge());
+  const Eigen::Vector3d e = (block.p_BV_B(edge.contact_after.second) - block.p_BV_B(edge.contact_after.first)).normalized();
+  EXPECT_NEAR((edge.w_plus_B - edge.w_plus_B.dot(e) * e).norm(), 0.0, 1e-14);
+  EXPECT_LE(edge.delta_energy_J, 0.0);
+  for (std::size_t i = 0; i < tr.t_s.size(); ++i) {
+    if (tr.t_s[i] >= edge.t_s && tr.t_s[i] < tr.impacts[2].t_s) {
+      EXPECT_EQ(tr.mode[i].contact, edge.contact_after);
+      EXPECT_NEAR((tr.w_B[i] - tr.w_B[i].dot(e) * e).norm(), 0.0, 1e-14);
+    }
+  }
+}
+
 TEST(Simulator, NoVertexEverEndsBelowTheGround) {
   const Block block = Fig14Block();
   SimulationOptions options;
