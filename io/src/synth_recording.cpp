@@ -1,0 +1,309 @@
+#include "rockfit/io/synth_recording.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include <nlohmann/json.hpp>
+
+#include "rockfit/core/errors.hpp"
+#include "rockfit/io/ximu_registers.hpp"
+
+namespace rockfit::io {
+namespace {
+
+using nlohmann::json;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDegPerRad = 180.0 / kPi;
+// A trajectory sample time must match the requested one to this (the simulator samples exactly there).
+constexpr double kSampleTimeTolerance_s = 1e-9;
+// Schema of <prefix>_truth.json; bump when keys change meaning.
+constexpr int kTruthSchemaVersion = 1;
+
+std::size_t SampleCount(const SynthRecordingOptions& o) { return static_cast<std::size_t>(std::llround(o.duration_s * o.rate_hz)); }
+
+// First inertial sample n with n / rate − t0 ≥ 0.
+std::size_t ReleaseSample(double t0_s, double rate_hz) {
+  auto n = static_cast<std::size_t>(std::max(0.0, std::ceil(t0_s * rate_hz)));
+  while (n > 0 && static_cast<double>(n - 1) / rate_hz - t0_s >= 0.0) --n;
+  while (static_cast<double>(n) / rate_hz - t0_s < 0.0) ++n;
+  return n;
+}
+
+core::SimulationOptions RecordingSimulation(const SynthRecordingOptions& o) {
+  core::SimulationOptions sim = o.simulation;
+  const std::size_t samples = SampleCount(o);
+  const std::size_t release = ReleaseSample(o.t0_s, o.rate_hz);
+  sim.sample_times_s = {0.0};
+  for (std::size_t n = release; n < samples; ++n) {
+    const double tau = static_cast<double>(n) / o.rate_hz - o.t0_s;
+    if (tau > 0.0) sim.sample_times_s.push_back(tau);
+  }
+  sim.stop = core::StopCondition::kRest;
+  sim.t_max_s = static_cast<double>(samples - 1) / o.rate_hz - o.t0_s;
+  sim.sample_attitude = true;
+  sim.initial_state.reset();
+  return sim;
+}
+
+Eigen::Vector3d PivotOf(const core::Block& block, const core::Mode& mode) {
+  if (mode.kind == core::ModeKind::kVertex) return block.p_BV_B(mode.contact.first);
+  if (mode.kind == core::ModeKind::kEdge) return 0.5 * (block.p_BV_B(mode.contact.first) + block.p_BV_B(mode.contact.second));
+  return Eigen::Vector3d::Zero();  // at rest on the base: any point will do, nothing moves
+}
+
+json Vec(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
+
+json Matrix(const Eigen::Matrix3d& m) {
+  return json::array({json::array({m(0, 0), m(0, 1), m(0, 2)}), json::array({m(1, 0), m(1, 1), m(1, 2)}),
+                      json::array({m(2, 0), m(2, 1), m(2, 2)})});
+}
+
+json TruthJson(const core::Block& block, const core::ModelParameters& params, const SynthRecordingOptions& o,
+               const SynthRecording& r, const std::vector<std::string>& files) {
+  json j;
+  j["format"] = "rockfit synthetic recording truth";
+  j["schema_version"] = kTruthSchemaVersion;
+  j["synthetic"] = true;
+  if (!o.command_line.empty()) j["command"] = o.command_line;
+  j["block"] = {{"b1_m", block.b1()}, {"b2_m", block.b2()}, {"h_m", block.h()}, {"mass_kg", block.mass()},
+                {"density_kg_m3", block.density()}};
+  j["parameters"] = {{"alpha_rad", params.alpha_rad},
+                     {"lambda", params.lambda},
+                     {"tau_edge_N_m_s", params.tau_edge},
+                     {"lambda_lat", params.lambda_lat},
+                     {"lambda_lon", params.lambda_lon},
+                     {"facet_tau_rule", core::ToString(params.facet_tau_rule)},
+                     {"t0_s", o.t0_s}};
+  j["recording"] = {{"duration_s", o.duration_s},
+                    {"rate_hz", o.rate_hz},
+                    {"samples", r.motion.size()},
+                    {"release_sample", r.release_sample},
+                    {"quaternion_rate_hz", o.files.quaternion_rate_hz},
+                    {"time_base", "the n-th row of _CalInertialAndMag.csv is at t = n / rate_hz (n from 0)"}};
+  j["mounting"] = {{"text", o.mounting_text}, {"R_BS", Matrix(r.mounting.R_BS)}, {"p_BS_B_m", Vec(r.mounting.p_BS_B)}};
+  const MeasurementOptions& m = o.measurement;
+  j["measurement"] = {{"seed", m.seed},
+                      {"gyro_noise_dps", m.gyro_noise_dps},
+                      {"gyro_bias_dps", Vec(m.gyro_bias_dps)},
+                      {"gyro_full_scale_dps", m.gyro_full_scale_dps},
+                      {"ringing_gain", m.ringing_gain},
+                      {"ringing_frequency_hz", m.ringing_frequency_hz},
+                      {"ringing_decay_time_s", m.ringing_decay_time_s},
+                      {"drift_slope_dps", Vec(m.drift_slope_dps)},
+                      {"drift_walk_deg_per_rt_s", Vec(m.drift_walk_deg_per_rt_s)},
+                      {"accel_noise_g", m.accel_noise_g},
+                      {"accel_full_scale_g", m.accel_full_scale_g},
+                      {"mag_field_W_G", Vec(m.mag_field_W_G)},
+                      {"mag_noise_G", m.mag_noise_G},
+                      {"quantisation", m.quantisation}};
+  j["files"] = {{"written", files},
+                {"date_time_rate_hz", o.files.date_time_rate_hz},
+                {"battery_rate_hz", o.files.battery_rate_hz},
+                {"rotation_matrix_file", o.files.rotation_matrix_file},
+                {"crlf_line_endings", o.files.crlf_line_endings},
+                {"rtc_start_s", o.files.rtc_start_s}};
+
+  const core::Trajectory& t = r.trajectory;
+  const core::SimulationOptions& s = o.simulation;
+  j["simulation"] = {{"stop", "rest"},
+                     {"t_max_s", RecordingSimulation(o).t_max_s},
+                     {"end_reason", core::ToString(t.end_reason)},
+                     {"t_end_since_release_s", t.t_end_s},
+                     {"t_end_s", o.t0_s + t.t_end_s},
+                     {"release_edge", "V" + std::to_string(s.release_edge_first) + "V" + std::to_string(s.release_edge_second)},
+                     {"gravity_m_s2", s.gravity_m_s2},
+                     {"zeno_dt_s", s.zeno_dt_s},
+                     {"rest_energy_height_m", s.rest_energy_height_m},
+                     {"rel_tol", s.rel_tol},
+                     {"abs_tol", s.abs_tol}};
+  if (!t.message.empty()) j["simulation"]["message"] = t.message;
+
+  // Summary of the true motion: impact counts and the out-of-plane motion after the first impact (the OPMF
+  // of DESIGN §6 on the true, drift-free Euler angles).
+  std::size_t facet = 0;
+  std::size_t edge = 0;
+  std::size_t zeno = 0;
+  for (const auto& impact : t.impacts) {
+    facet += impact.kind == "facet";
+    edge += impact.kind == "edge";
+    zeno += impact.kind == "zeno";
+  }
+  json summary = {{"impacts", t.impacts.size()}, {"facet_impacts", facet}, {"edge_impacts", edge}, {"zeno_switches", zeno}};
+  if (!t.impacts.empty()) {
+    const double first_impact_s = o.t0_s + t.impacts.front().t_s;
+    summary["first_impact_s"] = first_impact_s;
+    Eigen::Vector3d max_abs_deg = Eigen::Vector3d::Zero();  // (x, y, z)
+    for (std::size_t n = 0; n < r.motion.size(); ++n) {
+      if (r.motion.t_s(n) < first_impact_s) continue;
+      const Eigen::Vector3d zyx = EulerZyxFromRotation(r.motion.q_WB[n].toRotationMatrix());
+      max_abs_deg = max_abs_deg.cwiseMax(kDegPerRad * Eigen::Vector3d(zyx[2], zyx[1], zyx[0]).cwiseAbs());
+    }
+    summary["max_abs_euler_after_first_impact_deg"] = Vec(max_abs_deg);
+    if (max_abs_deg.y() > 0.0) summary["opmf"] = max_abs_deg.x() / max_abs_deg.y();
+  }
+  summary["phase4_end_s"] = r.phase4_end_s ? json(*r.phase4_end_s) : json(nullptr);
+  j["summary"] = summary;
+
+  json impacts = json::array();
+  for (const auto& impact : t.impacts) {
+    impacts.push_back({{"t_s", o.t0_s + impact.t_s},
+                       {"t_since_release_s", impact.t_s},
+                       {"kind", impact.kind},
+                       {"contact_before", impact.contact_before.ToString()},
+                       {"contact_after", impact.contact_after.ToString()},
+                       {"w_minus_B_rad_s", Vec(impact.w_minus_B)},
+                       {"w_plus_B_rad_s", Vec(impact.w_plus_B)},
+                       {"w_minus_W_rad_s", Vec(impact.w_minus_W)},
+                       {"w_plus_W_rad_s", Vec(impact.w_plus_W)},
+                       {"tau_N_m_s", impact.tau},
+                       {"delta_energy_J", impact.delta_energy_J},
+                       {"status", core::ToString(impact.status)}});
+  }
+  j["impacts"] = impacts;
+  return j;
+}
+
+void WriteTextAtomically(const std::string& path, const std::string& text) {
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) {
+      throw OutputError("cannot create " + temporary + ": " + std::strerror(errno) +
+                        "; check that the directory exists and is writable");
+    }
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+    out.close();
+    if (!out) {
+      std::remove(temporary.c_str());
+      throw OutputError("cannot write " + temporary + " (disk full?); nothing was replaced");
+    }
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    std::remove(temporary.c_str());
+    throw OutputError("cannot rename " + temporary + " to " + path + ": " + reason);
+  }
+}
+
+}  // namespace
+
+void SynthRecordingOptions::Validate() const {
+  XimuRateRegisterValue(rate_hz, "the sample rate (--rate)");
+  if (rate_hz == 0.0) throw InvalidArgument("the sample rate (--rate) must not be 0");
+  if (!(std::isfinite(duration_s) && duration_s > 0.0)) {
+    throw InvalidArgument("the recording duration must be a positive number of seconds, got " + std::to_string(duration_s));
+  }
+  const std::size_t samples = SampleCount(*this);
+  if (samples < 2) throw InvalidArgument("the recording must hold at least two samples; increase the duration");
+  const double last_s = static_cast<double>(samples - 1) / rate_hz;
+  if (!(std::isfinite(t0_s) && t0_s >= 0.0 && t0_s < last_s)) {
+    throw InvalidArgument("the release time t0 must lie in [0, " + std::to_string(last_s) + ") s of the recording, got " +
+                          std::to_string(t0_s));
+  }
+  SensorMounting mounting{R_BS, sensor_position_B.value_or(Eigen::Vector3d::Zero())};
+  mounting.Validate();
+  measurement.Validate();
+  files.Validate(rate_hz);
+  RecordingSimulation(*this).Validate();
+}
+
+BlockMotion BlockMotionFromTrajectory(const core::Block& block, const core::Trajectory& trajectory, double t0_s,
+                                      double rate_hz, std::size_t samples, std::size_t release_sample, double gravity_m_s2) {
+  if (trajectory.t_s.empty() || trajectory.q_WB.size() != trajectory.t_s.size() ||
+      trajectory.w_B.size() != trajectory.t_s.size() || trajectory.mode.size() != trajectory.t_s.size()) {
+    throw NumericalFailure("the simulated trajectory has no attitude samples; cannot synthesise a recording");
+  }
+  BlockMotion m;
+  m.rate_hz = rate_hz;
+  m.gravity_m_s2 = gravity_m_s2;
+  m.w_B.reserve(samples);
+  m.q_WB.reserve(samples);
+  m.p_BK_B.reserve(samples);
+  const double first_tau = static_cast<double>(release_sample) / rate_hz - t0_s;
+  const std::size_t first_index = first_tau > 0.0 ? 1 : 0;  // trajectory index of the release sample
+  const Eigen::Quaterniond q_release = trajectory.q_WB.front();
+  const Eigen::Vector3d pivot_release = PivotOf(block, trajectory.mode.front());
+  for (std::size_t n = 0; n < samples; ++n) {
+    if (n < release_sample) {
+      m.w_B.push_back(Eigen::Vector3d::Zero());
+      m.q_WB.push_back(q_release);
+      m.p_BK_B.push_back(pivot_release);
+      continue;
+    }
+    const std::size_t k = first_index + (n - release_sample);
+    if (k < trajectory.t_s.size()) {
+      const double tau = static_cast<double>(n) / rate_hz - t0_s;
+      if (std::abs(trajectory.t_s[k] - tau) > kSampleTimeTolerance_s) {
+        throw NumericalFailure("the simulator returned a sample at τ = " + std::to_string(trajectory.t_s[k]) +
+                               " s where τ = " + std::to_string(tau) + " s was requested");
+      }
+      m.w_B.push_back(trajectory.w_B[k]);
+      m.q_WB.push_back(trajectory.q_WB[k].normalized());
+      m.p_BK_B.push_back(PivotOf(block, trajectory.mode[k]));
+    } else {
+      // After the motion has ended: at rest in the final attitude.
+      m.w_B.push_back(Eigen::Vector3d::Zero());
+      m.q_WB.push_back(trajectory.q_WB.back().normalized());
+      m.p_BK_B.push_back(Eigen::Vector3d::Zero());
+    }
+  }
+  m.breaks_s.push_back(t0_s);
+  for (const auto& impact : trajectory.impacts) {
+    m.breaks_s.push_back(t0_s + impact.t_s);
+    m.impacts.push_back({t0_s + impact.t_s, impact.w_minus_B, impact.w_plus_B});
+  }
+  m.breaks_s.push_back(t0_s + trajectory.t_end_s);
+  std::sort(m.breaks_s.begin(), m.breaks_s.end());
+  return m;
+}
+
+SynthRecording Synthesize(const core::Block& block, const core::ModelParameters& params, const SynthRecordingOptions& o) {
+  o.Validate();
+  const std::size_t samples = SampleCount(o);
+  SynthRecording r;
+  r.release_sample = ReleaseSample(o.t0_s, o.rate_hz);
+  const core::SimulationOptions sim = RecordingSimulation(o);
+  r.trajectory = core::Simulate(block, params, sim);
+  if (r.trajectory.end_reason == core::EndReason::kFailed) {
+    throw NumericalFailure("the simulation failed at " + std::to_string(r.trajectory.t_end_s) +
+                           " s after the release: " + r.trajectory.message);
+  }
+  if (r.trajectory.end_reason == core::EndReason::kOverturned) {
+    throw NumericalFailure("the block overturned " + std::to_string(r.trajectory.t_end_s) +
+                           " s after the release; a rocking trial needs a smaller tilt α or other impact parameters");
+  }
+  r.motion = BlockMotionFromTrajectory(block, r.trajectory, o.t0_s, o.rate_hz, samples, r.release_sample, sim.gravity_m_s2);
+  r.mounting.R_BS = o.R_BS;
+  r.mounting.p_BS_B = o.sensor_position_B.value_or(Eigen::Vector3d(0.0, 0.0, 2.0 * block.h()));
+  r.device = MeasureMotion(r.motion, r.mounting, o.measurement);
+
+  // Phase 4 ends with the first impact on the release side after the first facet impact (DESIGN §4).
+  core::SimulationOptions phase4 = sim;
+  phase4.stop = core::StopCondition::kPhase4;
+  phase4.sample_times_s = {0.0};
+  phase4.sample_attitude = false;
+  const core::Trajectory phase4_run = core::Simulate(block, params, phase4);
+  if (phase4_run.end_reason == core::EndReason::kPhase4) r.phase4_end_s = o.t0_s + phase4_run.t_end_s;
+  return r;
+}
+
+std::vector<std::string> WriteSynthRecording(const std::string& prefix, const core::Block& block,
+                                             const core::ModelParameters& params, const SynthRecordingOptions& options,
+                                             const SynthRecording& recording) {
+  std::vector<std::string> files = WriteXimuGuiCsv(prefix, recording.device, options.files);
+  const std::string truth_path = prefix + "_truth.json";
+  std::vector<std::string> names;
+  for (const auto& f : files) names.push_back(std::filesystem::path(f).filename().string());
+  WriteTextAtomically(truth_path, TruthJson(block, params, options, recording, names).dump(2) + "\n");
+  files.push_back(truth_path);
+  return files;
+}
+
+}  // namespace rockfit::io
