@@ -111,6 +111,18 @@ Eigen::Vector4f DeviceQuaternion(const Eigen::Quaterniond& q_file, bool quantise
   return q / norm;
 }
 
+// ZYX Euler angles (φz, φy, φx) of R = Rz(φz)·Ry(φy)·Rx(φx) [rad] (DESIGN §2).
+Eigen::Vector3d EulerZyx(const Eigen::Matrix3d& R) {
+  const double phi_y = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
+  return {std::atan2(R(1, 0), R(0, 0)), phi_y, std::atan2(R(2, 1), R(2, 2))};
+}
+
+// Rz(φz)·Ry(φy)·Rx(φx) from (φz, φy, φx) [rad].
+Eigen::Quaterniond QuaternionZyx(const Eigen::Vector3d& euler_zyx) {
+  return Eigen::AngleAxisd(euler_zyx[0], Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(euler_zyx[1], Eigen::Vector3d::UnitY()) *
+         Eigen::AngleAxisd(euler_zyx[2], Eigen::Vector3d::UnitX());
+}
+
 }  // namespace
 
 void SensorMounting::Validate() const {
@@ -150,19 +162,6 @@ void MeasurementOptions::Validate() const {
   RequirePositive(accel_full_scale_g, "accel_full_scale_g");
   if (!mag_field_W_G.allFinite()) throw InvalidArgument("measurement option mag_field_W_G must be finite");
   RequireNonNegative(mag_noise_G, "mag_noise_G");
-}
-
-Eigen::Vector3d EulerZyxFromRotation(const Eigen::Matrix3d& R) {
-  const double phi_y = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
-  const double phi_x = std::atan2(R(2, 1), R(2, 2));
-  const double phi_z = std::atan2(R(1, 0), R(0, 0));
-  return {phi_z, phi_y, phi_x};
-}
-
-Eigen::Quaterniond QuaternionFromEulerZyx(const Eigen::Vector3d& euler_zyx) {
-  return Eigen::AngleAxisd(euler_zyx[0], Eigen::Vector3d::UnitZ()) *
-         Eigen::AngleAxisd(euler_zyx[1], Eigen::Vector3d::UnitY()) *
-         Eigen::AngleAxisd(euler_zyx[2], Eigen::Vector3d::UnitX());
 }
 
 Eigen::Vector3f XimuEulerDegFromFileQuaternion(const Eigen::Vector4f& q) {
@@ -238,9 +237,9 @@ DeviceSamples MeasureMotion(const BlockMotion& motion, const SensorMounting& mou
     // Attitude estimate: ZYX Euler angles of the sensor plus drift, as a quaternion.
     if (n > 0) walk_deg += std::sqrt(dt_s) * o.drift_walk_deg_per_rt_s.cwiseProduct(normal3(drift_walk));
     out.drift_deg[n] = o.drift_slope_dps * t + walk_deg;
-    Eigen::Vector3d euler_zyx = EulerZyxFromRotation(R_WS);  // (φz, φy, φx)
+    Eigen::Vector3d euler_zyx = EulerZyx(R_WS);  // (φz, φy, φx)
     euler_zyx += Eigen::Vector3d(out.drift_deg[n].z(), out.drift_deg[n].y(), out.drift_deg[n].x()) / kDegPerRad;
-    Eigen::Quaterniond q_WS = QuaternionFromEulerZyx(euler_zyx);
+    Eigen::Quaterniond q_WS = QuaternionZyx(euler_zyx);
     if (n > 0 && q_WS.dot(previous_q_WS) < 0.0) q_WS.coeffs() = -q_WS.coeffs();  // the device's estimate is continuous
     previous_q_WS = q_WS;
     out.quaternion[n] = DeviceQuaternion(q_WS.conjugate(), o.quantisation);

@@ -10,7 +10,7 @@
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/dotnet_float_format.hpp"
 #include "rockfit/io/synth_random.hpp"
-#include "rockfit/io/ximu_registers.hpp"
+#include "rockfit/io/ximu_register_map.hpp"
 
 namespace rockfit::io {
 namespace {

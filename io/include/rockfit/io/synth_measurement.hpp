@@ -91,10 +91,6 @@ struct DeviceSamples {
 // The measurement model above. Throws InvalidArgument for invalid motion, mounting or options.
 DeviceSamples MeasureMotion(const BlockMotion& motion, const SensorMounting& mounting, const MeasurementOptions& options);
 
-// ZYX Euler angles (φz, φy, φx) of a rotation R = Rz(φz)·Ry(φy)·Rx(φx) [rad]; φy in [−π/2, π/2].
-Eigen::Vector3d EulerZyxFromRotation(const Eigen::Matrix3d& R);
-// The rotation Rz(φz)·Ry(φy)·Rx(φx) as a unit quaternion, from euler_zyx = (φz, φy, φx) [rad].
-Eigen::Quaterniond QuaternionFromEulerZyx(const Eigen::Vector3d& euler_zyx);
 // The x-IMU GUI's ZYX Euler angles (roll φx, pitch φy, yaw φz) [deg] of a file quaternion (Earth relative to
 // sensor, scalar first), computed as the GUI does in single precision.
 Eigen::Vector3f XimuEulerDegFromFileQuaternion(const Eigen::Vector4f& q_file);

@@ -1,4 +1,4 @@
-#include "rockfit/io/ximu_registers.hpp"
+#include "rockfit/io/ximu_register_map.hpp"
 
 #include <cmath>
 #include <limits>
@@ -146,14 +146,6 @@ std::uint16_t XimuRateRegisterValue(double rate_hz, const std::string& what) {
   }
   throw InvalidArgument(what + " must be one of the x-IMU's rates 1, 2, 4, …, 512 Hz (2^(v−1) Hz) or 0 (off), got " +
                         std::to_string(rate_hz) + " Hz");
-}
-
-double XimuRateFromRegisterValue(std::uint16_t value) {
-  if (value > kMaxRateRegisterValue) {
-    throw InvalidArgument("x-IMU rate register value " + std::to_string(value) + " is above " +
-                          std::to_string(kMaxRateRegisterValue) + " (512 Hz)");
-  }
-  return value == 0 ? 0.0 : std::ldexp(1.0, value - 1);
 }
 
 std::vector<XimuRegister> XimuRegisters(const XimuRegisterSettings& settings) {

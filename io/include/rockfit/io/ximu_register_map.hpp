@@ -29,8 +29,6 @@ struct XimuRegister {
 // Rate register value of a data rate: v with rate = 2^(v−1) Hz, v = 1 … 10 (1 … 512 Hz); 0 for 0 Hz (disabled).
 // Throws InvalidArgument for any other rate, naming `what`.
 std::uint16_t XimuRateRegisterValue(double rate_hz, const std::string& what);
-// The rate of a rate register value: 2^(v−1) Hz, 0 for v = 0. Throws InvalidArgument for v > 10.
-double XimuRateFromRegisterValue(std::uint16_t value);
 
 struct XimuRegisterSettings {
   double inertial_rate_hz = 256.0;    // register 69
