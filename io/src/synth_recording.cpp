@@ -45,7 +45,8 @@ core::SimulationOptions RecordingSimulation(const SynthRecordingOptions& o) {
     const double tau = static_cast<double>(n) / o.rate_hz - o.t0_s;
     if (tau > 0.0) sim.sample_times_s.push_back(tau);
   }
-  sim.stop = core::StopCondition::kRest;
+  // t_max at the end of the recording: the simulator keeps a block that came to rest at rest until then.
+  sim.stop = core::StopCondition::kTMax;
   sim.t_max_s = static_cast<double>(samples - 1) / o.rate_hz - o.t0_s;
   sim.sample_attitude = true;
   sim.initial_state.reset();
@@ -112,7 +113,7 @@ json TruthJson(const core::Block& block, const core::ModelParameters& params, co
 
   const core::Trajectory& t = r.trajectory;
   const core::SimulationOptions& s = o.simulation;
-  j["simulation"] = {{"stop", "rest"},
+  j["simulation"] = {{"stop", "t_max (at rest after a rest record)"},
                      {"t_max_s", RecordingSimulation(o).t_max_s},
                      {"end_reason", core::ToString(t.end_reason)},
                      {"t_end_since_release_s", t.t_end_s},
@@ -136,6 +137,8 @@ json TruthJson(const core::Block& block, const core::ModelParameters& params, co
     zeno += impact.kind == "zeno";
   }
   json summary = {{"impacts", t.impacts.size()}, {"facet_impacts", facet}, {"edge_impacts", edge}, {"zeno_switches", zeno}};
+  // The simulator marks the end of the motion with a "rest" record; without one the recording ends in motion.
+  summary["rest_s"] = !t.impacts.empty() && t.impacts.back().kind == "rest" ? json(o.t0_s + t.impacts.back().t_s) : json(nullptr);
   if (!t.impacts.empty()) {
     const double first_impact_s = o.t0_s + t.impacts.front().t_s;
     summary["first_impact_s"] = first_impact_s;
@@ -154,23 +157,32 @@ json TruthJson(const core::Block& block, const core::ModelParameters& params, co
   summary["phase4_end_s"] = r.phase4_end_s ? json(*r.phase4_end_s) : json(nullptr);
   j["summary"] = summary;
 
-  json impacts = json::array();
-  for (const auto& impact : t.impacts) {
-    impacts.push_back({{"t_s", o.t0_s + impact.t_s},
-                       {"t_since_release_s", impact.t_s},
-                       {"kind", impact.kind},
-                       {"contact_before", impact.contact_before.ToString()},
-                       {"contact_after", impact.contact_after.ToString()},
-                       {"w_minus_B_rad_s", Vec(impact.w_minus_B)},
-                       {"w_plus_B_rad_s", Vec(impact.w_plus_B)},
-                       {"w_minus_W_rad_s", Vec(impact.w_minus_W)},
-                       {"w_plus_W_rad_s", Vec(impact.w_plus_W)},
-                       {"tau_N_m_s", impact.tau},
-                       {"delta_energy_J", impact.delta_energy_J},
-                       {"status", core::ToString(impact.status)}});
-  }
-  j["impacts"] = impacts;
   return j;
+}
+
+// The truth file's text: the summary as indented JSON, then the impact log as one compact row per impact
+// (a trial can have thousands of small impacts; one object per impact would make the file several times larger).
+std::string TruthText(const json& truth, const core::Trajectory& trajectory, double t0_s) {
+  std::string text = truth.dump(2);
+  text.erase(text.find_last_of('}'));
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  text += ",\n  \"impact_columns\": " +
+          json::array({"t_s", "kind", "contact_before", "contact_after", "w_minus_B_x_rad_s", "w_minus_B_y_rad_s",
+                       "w_minus_B_z_rad_s", "w_plus_B_x_rad_s", "w_plus_B_y_rad_s", "w_plus_B_z_rad_s", "tau_N_m_s",
+                       "delta_energy_J", "status"})
+              .dump() +
+          ",\n  \"impacts\": [";
+  const char* separator = "\n    ";
+  for (const auto& impact : trajectory.impacts) {
+    const json row = {t0_s + impact.t_s, impact.kind, impact.contact_before.ToString(), impact.contact_after.ToString(),
+                      impact.w_minus_B.x(), impact.w_minus_B.y(), impact.w_minus_B.z(),
+                      impact.w_plus_B.x(), impact.w_plus_B.y(), impact.w_plus_B.z(),
+                      impact.tau, impact.delta_energy_J, core::ToString(impact.status)};
+    text += separator + row.dump();
+    separator = ",\n    ";
+  }
+  text += trajectory.impacts.empty() ? "]\n}\n" : "\n  ]\n}\n";
+  return text;
 }
 
 void WriteTextAtomically(const std::string& path, const std::string& text) {
@@ -304,7 +316,7 @@ std::vector<std::string> WriteSynthRecording(const std::string& prefix, const co
   const std::string truth_path = prefix + "_truth.json";
   std::vector<std::string> names;
   for (const auto& f : files) names.push_back(std::filesystem::path(f).filename().string());
-  WriteTextAtomically(truth_path, TruthJson(block, params, options, recording, names).dump(2) + "\n");
+  WriteTextAtomically(truth_path, TruthText(TruthJson(block, params, options, recording, names), recording.trajectory, options.t0_s));
   files.push_back(truth_path);
   return files;
 }

@@ -30,7 +30,7 @@ struct SynthRecordingOptions {
   std::optional<Eigen::Vector3d> sensor_position_B;
   MeasurementOptions measurement;
   XimuGuiWriterOptions files;
-  // Simulator settings. Synthesize() overrides sample_times_s, stop (rest) and t_max_s (the end of the
+  // Simulator settings. Synthesize() overrides sample_times_s, stop (t_max) and t_max_s (the last sample of the
   // recording) and needs sample_attitude; the rest (release edge, tolerances, Zeno and rest thresholds) is used.
   core::SimulationOptions simulation;
   std::string command_line;  // provenance, copied into the truth file when not empty
