@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "rockfit/core/errors.hpp"
@@ -25,6 +26,9 @@ constexpr double kDegPerRad = 180.0 / kPi;
 constexpr double kSampleTimeTolerance_s = 1e-9;
 // Schema of <prefix>_truth.json; bump when keys change meaning.
 constexpr int kTruthSchemaVersion = 1;
+// Significant digits of the impact log's numbers: 1e-12 relative, far below any measurement resolution, and a
+// third smaller than the 17 digits of an exact double (a trial can log thousands of impacts).
+constexpr int kImpactDigits = 12;
 
 std::size_t SampleCount(const SynthRecordingOptions& o) { return static_cast<std::size_t>(std::llround(o.duration_s * o.rate_hz)); }
 
@@ -160,8 +164,9 @@ json TruthJson(const core::Block& block, const core::ModelParameters& params, co
   return j;
 }
 
-// The truth file's text: the summary as indented JSON, then the impact log as one compact row per impact
-// (a trial can have thousands of small impacts; one object per impact would make the file several times larger).
+// The truth file's text: the summary as indented JSON, then the impact log as one compact row per impact with
+// kImpactDigits significant digits (a trial can have thousands of small impacts; one object per impact with
+// exact doubles would make the file several times larger).
 std::string TruthText(const json& truth, const core::Trajectory& trajectory, double t0_s) {
   std::string text = truth.dump(2);
   text.erase(text.find_last_of('}'));
@@ -173,12 +178,15 @@ std::string TruthText(const json& truth, const core::Trajectory& trajectory, dou
               .dump() +
           ",\n  \"impacts\": [";
   const char* separator = "\n    ";
+  const auto number = [](double x) { return std::isfinite(x) ? fmt::format("{:.{}g}", x, kImpactDigits) : std::string("null"); };
   for (const auto& impact : trajectory.impacts) {
-    const json row = {t0_s + impact.t_s, impact.kind, impact.contact_before.ToString(), impact.contact_after.ToString(),
-                      impact.w_minus_B.x(), impact.w_minus_B.y(), impact.w_minus_B.z(),
-                      impact.w_plus_B.x(), impact.w_plus_B.y(), impact.w_plus_B.z(),
-                      impact.tau, impact.delta_energy_J, core::ToString(impact.status)};
-    text += separator + row.dump();
+    const Eigen::Vector3d& a = impact.w_minus_B;
+    const Eigen::Vector3d& b = impact.w_plus_B;
+    text += separator;
+    text += fmt::format("[{},\"{}\",\"{}\",\"{}\",{},{},{},{},{},{},{},{},\"{}\"]", number(t0_s + impact.t_s), impact.kind,
+                        impact.contact_before.ToString(), impact.contact_after.ToString(), number(a.x()), number(a.y()),
+                        number(a.z()), number(b.x()), number(b.y()), number(b.z()), number(impact.tau),
+                        number(impact.delta_energy_J), core::ToString(impact.status));
     separator = ",\n    ";
   }
   text += trajectory.impacts.empty() ? "]\n}\n" : "\n  ]\n}\n";
