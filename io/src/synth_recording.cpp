@@ -22,8 +22,6 @@ using nlohmann::json;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegPerRad = 180.0 / kPi;
-// A trajectory sample time must match the requested one to this (the simulator samples exactly there).
-constexpr double kSampleTimeTolerance_s = 1e-9;
 // Schema of <prefix>_truth.json; bump when keys change meaning.
 constexpr int kTruthSchemaVersion = 1;
 // Significant digits of the impact log's numbers: 1e-12 relative, far below any measurement resolution, and a
@@ -55,12 +53,6 @@ core::SimulationOptions RecordingSimulation(const SynthRecordingOptions& o) {
   sim.sample_attitude = true;
   sim.initial_state.reset();
   return sim;
-}
-
-Eigen::Vector3d PivotOf(const core::Block& block, const core::Mode& mode) {
-  if (mode.kind == core::ModeKind::kVertex) return block.p_BV_B(mode.contact.first);
-  if (mode.kind == core::ModeKind::kEdge) return 0.5 * (block.p_BV_B(mode.contact.first) + block.p_BV_B(mode.contact.second));
-  return Eigen::Vector3d::Zero();  // at rest on the base: any point will do, nothing moves
 }
 
 json Vec(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
@@ -235,56 +227,6 @@ void SynthRecordingOptions::Validate() const {
   measurement.Validate();
   files.Validate(rate_hz);
   RecordingSimulation(*this).Validate();
-}
-
-BlockMotion BlockMotionFromTrajectory(const core::Block& block, const core::Trajectory& trajectory, double t0_s,
-                                      double rate_hz, std::size_t samples, std::size_t release_sample, double gravity_m_s2) {
-  if (trajectory.t_s.empty() || trajectory.q_WB.size() != trajectory.t_s.size() ||
-      trajectory.w_B.size() != trajectory.t_s.size() || trajectory.mode.size() != trajectory.t_s.size()) {
-    throw NumericalFailure("the simulated trajectory has no attitude samples; cannot synthesise a recording");
-  }
-  BlockMotion m;
-  m.rate_hz = rate_hz;
-  m.gravity_m_s2 = gravity_m_s2;
-  m.w_B.reserve(samples);
-  m.q_WB.reserve(samples);
-  m.p_BK_B.reserve(samples);
-  const double first_tau = static_cast<double>(release_sample) / rate_hz - t0_s;
-  const std::size_t first_index = first_tau > 0.0 ? 1 : 0;  // trajectory index of the release sample
-  const Eigen::Quaterniond q_release = trajectory.q_WB.front();
-  const Eigen::Vector3d pivot_release = PivotOf(block, trajectory.mode.front());
-  for (std::size_t n = 0; n < samples; ++n) {
-    if (n < release_sample) {
-      m.w_B.push_back(Eigen::Vector3d::Zero());
-      m.q_WB.push_back(q_release);
-      m.p_BK_B.push_back(pivot_release);
-      continue;
-    }
-    const std::size_t k = first_index + (n - release_sample);
-    if (k < trajectory.t_s.size()) {
-      const double tau = static_cast<double>(n) / rate_hz - t0_s;
-      if (std::abs(trajectory.t_s[k] - tau) > kSampleTimeTolerance_s) {
-        throw NumericalFailure("the simulator returned a sample at τ = " + std::to_string(trajectory.t_s[k]) +
-                               " s where τ = " + std::to_string(tau) + " s was requested");
-      }
-      m.w_B.push_back(trajectory.w_B[k]);
-      m.q_WB.push_back(trajectory.q_WB[k].normalized());
-      m.p_BK_B.push_back(PivotOf(block, trajectory.mode[k]));
-    } else {
-      // After the motion has ended: at rest in the final attitude.
-      m.w_B.push_back(Eigen::Vector3d::Zero());
-      m.q_WB.push_back(trajectory.q_WB.back().normalized());
-      m.p_BK_B.push_back(Eigen::Vector3d::Zero());
-    }
-  }
-  m.breaks_s.push_back(t0_s);
-  for (const auto& impact : trajectory.impacts) {
-    m.breaks_s.push_back(t0_s + impact.t_s);
-    m.impacts.push_back({t0_s + impact.t_s, impact.w_minus_B, impact.w_plus_B});
-  }
-  m.breaks_s.push_back(t0_s + trajectory.t_end_s);
-  std::sort(m.breaks_s.begin(), m.breaks_s.end());
-  return m;
 }
 
 SynthRecording Synthesize(const core::Block& block, const core::ModelParameters& params, const SynthRecordingOptions& o) {

@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "rockfit/core/block.hpp"
+#include "rockfit/core/simulator.hpp"
 
 namespace rockfit::io {
 
@@ -36,5 +37,13 @@ struct BlockMotion {
   // Throws InvalidArgument: sizes differ, empty, non-finite values, non-unit quaternions, unsorted times.
   void Validate() const;
 };
+
+// The true block motion of a simulated trial at every inertial sample: at rest at the trajectory's first
+// sample before t0, the trajectory after it, at rest in its final attitude once it has ended. The pivot is the
+// contact vertex or the midpoint of the contact edge. `trajectory` must be sampled at τ = 0 followed by
+// τ_n = n / rate − t0 for n ≥ release_sample (as far as it reaches).
+BlockMotion BlockMotionFromTrajectory(const core::Block& block, const core::Trajectory& trajectory, double t0_s,
+                                      double rate_hz, std::size_t samples, std::size_t release_sample,
+                                      double gravity_m_s2);
 
 }  // namespace rockfit::io

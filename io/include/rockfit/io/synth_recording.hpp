@@ -57,12 +57,4 @@ std::vector<std::string> WriteSynthRecording(const std::string& prefix, const co
                                              const core::ModelParameters& params, const SynthRecordingOptions& options,
                                              const SynthRecording& recording);
 
-// The true block motion of a simulated trial at every inertial sample: at rest at the trajectory's first
-// sample before t0, the trajectory after it, at rest in its final attitude once it has ended. The pivot is the
-// contact vertex or the midpoint of the contact edge. `trajectory` must be sampled at τ = 0 followed by
-// τ_n = n / rate − t0 for n ≥ release_sample (as far as it reaches).
-BlockMotion BlockMotionFromTrajectory(const core::Block& block, const core::Trajectory& trajectory, double t0_s,
-                                      double rate_hz, std::size_t samples, std::size_t release_sample,
-                                      double gravity_m_s2);
-
 }  // namespace rockfit::io
