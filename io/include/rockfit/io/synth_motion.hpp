@@ -1,5 +1,5 @@
 // The true motion of a block at the sample times of a recording: the input of the measurement model
-// (synth_measurement.hpp). It is made from a simulated trajectory (synth_recording.hpp) or by hand in tests.
+// (synth_measurement.hpp). It is made from a simulated trajectory (BlockMotionFromTrajectory below) or by hand.
 #pragma once
 
 #include <vector>
