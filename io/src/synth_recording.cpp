@@ -28,7 +28,15 @@ constexpr int kTruthSchemaVersion = 1;
 // third smaller than the 17 digits of an exact double (a trial can log thousands of impacts).
 constexpr int kImpactDigits = 12;
 
-std::size_t SampleCount(const SynthRecordingOptions& o) { return static_cast<std::size_t>(std::llround(o.duration_s * o.rate_hz)); }
+// round(duration · rate) inertial samples; with a slower orientation stream the recording ends on an orientation
+// packet (the largest count ≤ that with (N − 1) a multiple of the decimation), so every gyro sample lies
+// within the attitude samples and a reader need not drop or extrapolate any.
+std::size_t SampleCount(const SynthRecordingOptions& o) {
+  const auto samples = static_cast<std::size_t>(std::llround(o.duration_s * o.rate_hz));
+  const auto decimation = static_cast<std::size_t>(std::llround(o.rate_hz / o.files.quaternion_rate_hz));
+  if (samples == 0 || decimation <= 1) return samples;
+  return (samples - 1) / decimation * decimation + 1;
+}
 
 // First inertial sample n with n / rate − t0 ≥ 0.
 std::size_t ReleaseSample(double t0_s, double rate_hz) {
@@ -215,6 +223,7 @@ void SynthRecordingOptions::Validate() const {
   if (!(std::isfinite(duration_s) && duration_s > 0.0)) {
     throw InvalidArgument("the recording duration must be a positive number of seconds, got " + std::to_string(duration_s));
   }
+  files.Validate(rate_hz);
   const std::size_t samples = SampleCount(*this);
   if (samples < 2) throw InvalidArgument("the recording must hold at least two samples; increase the duration");
   const double last_s = static_cast<double>(samples - 1) / rate_hz;
@@ -225,7 +234,6 @@ void SynthRecordingOptions::Validate() const {
   SensorMounting mounting{R_BS, sensor_position_B.value_or(Eigen::Vector3d::Zero())};
   mounting.Validate();
   measurement.Validate();
-  files.Validate(rate_hz);
   RecordingSimulation(*this).Validate();
 }
 

@@ -22,7 +22,8 @@ namespace rockfit::io {
 
 struct SynthRecordingOptions {
   double t0_s = 2.0;          // release time in recording time [s]
-  double duration_s = 10.0;   // recording length [s]; the n-th inertial sample is at n / rate_hz
+  double duration_s = 10.0;   // recording length [s]: round(duration·rate) samples, the n-th at n / rate_hz (with a
+                              // slower orientation rate, cut back to end on an orientation sample)
   double rate_hz = 256.0;     // inertial (gyroscope) rate, an x-IMU rate 2^(v−1) Hz
   Eigen::Matrix3d R_BS = Eigen::Matrix3d::Identity();  // mounting, sensor → block
   std::string mounting_text = "x,y,z";                 // how the mounting was given (for the truth file)
