@@ -5,12 +5,13 @@
 #include <string>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/io/attitude.hpp"
 #include "rockfit/io/synth_random.hpp"
+#include "rockfit/io/units.hpp"
 
 namespace rockfit::io {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegPerRad = 180.0 / kPi;
 // The GUI's single-precision degrees-per-radian constant (QuaternionData.Rad2Deg).
 constexpr float kGuiDegPerRad = 57.2957795130823f;
@@ -109,18 +110,6 @@ Eigen::Vector4f DeviceQuaternion(const Eigen::Quaterniond& q_file, bool quantise
   const float sum = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
   const float norm = static_cast<float>(std::sqrt(static_cast<double>(sum)));
   return q / norm;
-}
-
-// ZYX Euler angles (φz, φy, φx) of R = Rz(φz)·Ry(φy)·Rx(φx) [rad] (DESIGN §2).
-Eigen::Vector3d EulerZyx(const Eigen::Matrix3d& R) {
-  const double phi_y = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
-  return {std::atan2(R(1, 0), R(0, 0)), phi_y, std::atan2(R(2, 1), R(2, 2))};
-}
-
-// Rz(φz)·Ry(φy)·Rx(φx) from (φz, φy, φx) [rad].
-Eigen::Quaterniond QuaternionZyx(const Eigen::Vector3d& euler_zyx) {
-  return Eigen::AngleAxisd(euler_zyx[0], Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(euler_zyx[1], Eigen::Vector3d::UnitY()) *
-         Eigen::AngleAxisd(euler_zyx[2], Eigen::Vector3d::UnitX());
 }
 
 }  // namespace
@@ -237,9 +226,9 @@ DeviceSamples MeasureMotion(const BlockMotion& motion, const SensorMounting& mou
     // Attitude estimate: ZYX Euler angles of the sensor plus drift, as a quaternion.
     if (n > 0) walk_deg += std::sqrt(dt_s) * o.drift_walk_deg_per_rt_s.cwiseProduct(normal3(drift_walk));
     out.drift_deg[n] = o.drift_slope_dps * t + walk_deg;
-    Eigen::Vector3d euler_zyx = EulerZyx(R_WS);  // (φz, φy, φx)
+    Eigen::Vector3d euler_zyx = EulerZyxFromRotation(R_WS);  // (φz, φy, φx)
     euler_zyx += Eigen::Vector3d(out.drift_deg[n].z(), out.drift_deg[n].y(), out.drift_deg[n].x()) / kDegPerRad;
-    Eigen::Quaterniond q_WS = QuaternionZyx(euler_zyx);
+    Eigen::Quaterniond q_WS = QuaternionFromEulerZyx(euler_zyx);
     if (n > 0 && q_WS.dot(previous_q_WS) < 0.0) q_WS.coeffs() = -q_WS.coeffs();  // the device's estimate is continuous
     previous_q_WS = q_WS;
     out.quaternion[n] = DeviceQuaternion(q_WS.conjugate(), o.quantisation);

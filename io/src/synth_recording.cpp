@@ -13,6 +13,8 @@
 #include <nlohmann/json.hpp>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/io/attitude.hpp"
+#include "rockfit/io/units.hpp"
 #include "rockfit/io/ximu_register_map.hpp"
 
 namespace rockfit::io {
@@ -20,7 +22,6 @@ namespace {
 
 using nlohmann::json;
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegPerRad = 180.0 / kPi;
 // Schema of <prefix>_truth.json; bump when keys change meaning.
 constexpr int kTruthSchemaVersion = 1;
@@ -149,11 +150,8 @@ json TruthJson(const core::Block& block, const core::ModelParameters& params, co
     Eigen::Vector3d max_abs_deg = Eigen::Vector3d::Zero();  // (x, y, z)
     for (std::size_t n = 0; n < r.motion.size(); ++n) {
       if (r.motion.t_s(n) < first_impact_s) continue;
-      // ZYX angles of R_WB: φx = atan2(R21, R22), φy = −asin(R20), φz = atan2(R10, R00) (DESIGN §2).
-      const Eigen::Matrix3d R = r.motion.q_WB[n].toRotationMatrix();
-      const Eigen::Vector3d euler_xyz(std::atan2(R(2, 1), R(2, 2)), std::asin(std::clamp(-R(2, 0), -1.0, 1.0)),
-                                      std::atan2(R(1, 0), R(0, 0)));
-      max_abs_deg = max_abs_deg.cwiseMax(kDegPerRad * euler_xyz.cwiseAbs());
+      const Eigen::Vector3d zyx = EulerZyxFromQuaternion(r.motion.q_WB[n]);
+      max_abs_deg = max_abs_deg.cwiseMax(kDegPerRad * Eigen::Vector3d(zyx[2], zyx[1], zyx[0]).cwiseAbs());
     }
     summary["max_abs_euler_after_first_impact_deg"] = Vec(max_abs_deg);
     if (max_abs_deg.y() > 0.0) summary["opmf"] = max_abs_deg.x() / max_abs_deg.y();
