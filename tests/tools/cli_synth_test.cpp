@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "cli_runner.hpp"
-#include "rockfit/core/attitude.hpp"
+#include "rockfit/io/attitude.hpp"
 #include "rockfit/core/block.hpp"
 #include "rockfit/core/simulator.hpp"
 
@@ -150,7 +150,7 @@ TEST(CliSynth, WithoutNoiseTheFilesHoldTheSimulatedAngularVelocityAndAttitude) {
     for (int i = 0; i < 3; ++i) {
       ASSERT_NEAR(gyro[n][1 + i], w_dps[i], PrintedPrecision(w_dps[i])) << "sample " << n << " axis " << i;
     }
-    const Eigen::Vector3d zyx = core::EulerZyxFromQuaternion(truth.q_WB[k]);
+    const Eigen::Vector3d zyx = io::EulerZyxFromQuaternion(truth.q_WB[k]);
     const Eigen::Vector3d xyz_deg = kDegPerRad * Eigen::Vector3d(zyx[2], zyx[1], zyx[0]);
     for (int i = 0; i < 3; ++i) {
       // Through a single-precision quaternion (≈4 ulps, 2.4e-7 rad) and the printed digits.
@@ -213,13 +213,32 @@ TEST(CliSynth, JsonOutputListsTheFilesAndTheMotion) {
   EXPECT_EQ(json["samples"].get<int>(), 768);
   EXPECT_EQ(json["rate_hz"].get<double>(), 256.0);
   EXPECT_EQ(json["files"].size(), 8u);
-  for (const char* key : {"end_reason", "t_end_s", "impacts", "phase4_end_s", "seed", "t0_s", "duration_s"}) {
+  for (const char* key : {"impacts", "first_impact_s", "phase4_end_s", "rest_s", "seed", "t0_s", "duration_s", "prefix"}) {
     EXPECT_TRUE(json.contains(key)) << key;
   }
   const auto truth = nlohmann::json::parse(ReadWholeFile(dir.path() / "t_truth.json"));
   EXPECT_EQ(truth["parameters"]["t0_s"].get<double>(), 1.0);
   EXPECT_EQ(truth["impacts"].size(), json["impacts"].get<std::size_t>());
   EXPECT_EQ(truth["impact_columns"].size(), truth["impacts"][0].size());
+}
+
+TEST(CliSynth, InspectReadsTheRateFromTheRegistersFileWithoutWarnings) {
+  TempDir dir;
+  const std::string prefix = (dir.path() / "t").string();
+  ASSERT_EQ(RunRockfit(Args(Args({"synth"}, kBlock), {"--t0", "1", "--duration", "4", "--mounting=x,-y,-z", "-o", prefix}))
+                .exit_code,
+            0);
+  const CommandResult r = RunRockfit({"inspect", prefix, "--mounting=x,-y,-z", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["format"], "ximu-gui");
+  EXPECT_EQ(json["rate_source"], "registers");
+  EXPECT_EQ(json["rate_hz"].get<double>(), 256.0);
+  EXPECT_EQ(json["samples"].get<int>(), 1024);
+  EXPECT_TRUE(json["warnings"].empty()) << json["warnings"];
+  EXPECT_TRUE(json["gaps"].empty());
+  // The upside-down sensor's readings are turned back: the block stands at φy = −α = −0.2 rad before t0.
+  EXPECT_NEAR(json["ranges"]["euler_zyx_rad"]["phi_y"][0].get<double>(), -0.2, 0.01);
 }
 
 TEST(CliSynth, RateTheDeviceCannotSendIsAUsageError) {
