@@ -1,8 +1,9 @@
 // `rockfit synth`: a synthetic x-IMU recording of one rocking trial from known parameters, with the
 // measurement model of io/README.md ("Synthetic recordings"): noise, bias, quantisation, ringing, drift.
-#include <cmath>
+#include <cstdint>
 #include <iostream>
-#include <sstream>
+#include <optional>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -62,10 +63,22 @@ core::FacetTauRule ParseFacetTau(const std::string& text) {
 
 std::string Vector3Text(const Eigen::Vector3d& v) { return fmt::format("{},{},{}", v.x(), v.y(), v.z()); }
 
+// A path as one shell word: in single quotes when it holds anything but letters, digits and ./_-+,=.
+std::string ShellWord(const std::string& text) {
+  const bool plain = !text.empty() && text.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                             "0123456789./_-+,=") == std::string::npos;
+  if (plain) return text;
+  std::string quoted = "'";
+  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
 // The command that reproduces this recording, with every effective value spelled out (for the truth file).
 std::string ReproducingCommand(const SynthCommand& cmd, const core::ModelParameters& p, const io::SynthRecordingOptions& o) {
   std::string c = "rockfit synth";
-  if (!cmd.block.manifest_path.empty()) c += fmt::format(" --manifest {} --block {}", cmd.block.manifest_path, cmd.block.block_id);
+  if (!cmd.block.manifest_path.empty()) {
+    c += fmt::format(" --manifest {} --block {}", ShellWord(cmd.block.manifest_path), ShellWord(cmd.block.block_id));
+  }
   if (cmd.block.b1_m) c += fmt::format(" --b1 {} --b2 {} --h {}", *cmd.block.b1_m, *cmd.block.b2_m, *cmd.block.h_m);
   if (cmd.block.density_kg_m3) c += fmt::format(" --density {}", *cmd.block.density_kg_m3);
   if (cmd.block.mass_kg) c += fmt::format(" --mass {}", *cmd.block.mass_kg);
@@ -91,7 +104,7 @@ std::string ReproducingCommand(const SynthCommand& cmd, const core::ModelParamet
          Vector3Text(m.drift_walk_deg_per_rt_s);
     c += fmt::format(" --accel-noise-g {}", m.accel_noise_g);
   }
-  return c + " -o " + cmd.output;
+  return c + " -o " + ShellWord(cmd.output);
 }
 
 int RunSynth(const SynthCommand& cmd) {
