@@ -241,7 +241,9 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   }
 
   app->add_option("-o,--output", cmd->output, "Output prefix: writes PREFIX_CalInertialAndMag.csv, …, PREFIX_truth.json")->required();
-  app->add_flag("--json", cmd->json, "Print one JSON object");
+  app->add_flag("--json", cmd->json,
+                "Print one JSON object: prefix, files, samples, rate_hz, duration_s, t0_s, seed, impacts, first_impact_s, "
+                "phase4_end_s, rest_s (times in recording time [s]; null when the event does not happen)");
   app->callback([cmd] { SetExitCode(RunSynth(*cmd)); });
 });
 
