@@ -1,0 +1,44 @@
+// Facet impacts (18)+(21) of Sects. 4.5–4.7: the block rocking about the base edge V_{b−1}V_b lands flat.
+// With a given τ every candidate post-impact vertex is tested against (22)–(23); the unified map (default)
+// takes τ from the no-spin postulate (24). The errata of DESIGN §3 apply.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "rockfit/core/block.hpp"
+#include "rockfit/core/impact_outcome.hpp"
+
+namespace rockfit::core {
+
+enum class FacetTauRule { kNoSpin, kFixed };
+// "no-spin" or "fixed".
+const char* ToString(FacetTauRule rule);
+
+struct FacetImpactParameters {
+  double lambda_lat = 0.0;  // (21)
+  double lambda_lon = 1.0;  // (21)
+  FacetTauRule tau_rule = FacetTauRule::kNoSpin;  // kNoSpin: τ from (24); kFixed: τ below
+  double tau = 0.0;         // [N·m·s], used with kFixed
+  // Throws InvalidArgument if λ_lat, λ_lon or τ is not finite.
+  void Validate() const;
+};
+
+// The point R of (21) in B: centroid + λ_lon(r_{b+1} − r_b)/2 + λ_lat(r_b − r_{b−1})/2.
+// For b = 2: (λ_lon·b1, λ_lat·b2, 0).
+Eigen::Vector3d FacetResultantPoint(const Block& block, int pivot_b, double lambda_lat, double lambda_lon);
+
+// Facet impact (18)+(21) of the flat block after rocking about the edge V_{b−1}V_b, b = `pivot_b` (any
+// integer, taken cyclically). w_minus_B is in the body frame (W and B coincide up to a yaw, to which the map
+// is invariant). The block falls onto the facet when ω⁻ is a positive multiple of r_b − r_{b−1}.
+// kNoSpin solves (18) with (24) for (ω⁺_x, ω⁺_y, τ); kFixed uses the given τ. Every candidate vertex is
+// tested against (22)–(23) and listed; the outcome is the unique feasible one (status kOk, contact V_a), two
+// neighbouring feasible candidates with the same ω⁺ (the edge between them, e.g. λ_lat = 0), or all
+// feasible candidates at ω⁺ = 0 (rest, empty contact). Otherwise kAmbiguous (several feasible),
+// kInfeasible (none), or kSingular (none feasible and some candidate singular).
+// Throws InvalidArgument if ω⁻ or a parameter is not finite.
+ImpactOutcome FacetImpact(const Block& block, int pivot_b, const Eigen::Vector3d& w_minus_B,
+                          const FacetImpactParameters& params);
+
+bool WithinFacetBounds(double lambda_lat, double lambda_lon);  // (27): |λ_lat| ≤ 1, |λ_lon| ≤ 1
+
+}  // namespace rockfit::core

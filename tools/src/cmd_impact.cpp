@@ -1,0 +1,343 @@
+// `rockfit impact edge|facet`: evaluate one impact map of the paper (Sect. 4.4–4.7, DESIGN §3) for a given
+// block, contact, pre-impact angular velocity and impact parameters.
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include "cli_common.hpp"
+#include "command_registry.hpp"
+#include "rockfit/core/errors.hpp"
+#include "rockfit/core/impact_maps.hpp"
+
+namespace rockfit::tools {
+namespace {
+
+// Warnings about ω⁻ (not falling, not along the pivot edge) compare velocities with this fraction of
+// |ω⁻|·L. Dimensionless; only decides whether a hint is printed.
+constexpr double kWarningRelTol = 1e-9;
+
+constexpr const char* kExitCodesHelp =
+    "Exit codes: 0 status ok; 1 bad arguments; 3 the map has no single answer (status singular, infeasible or\n"
+    "ambiguous) — the result, with the status and every candidate, is still printed.";
+
+struct EdgeCommand {
+  BlockArgs block;
+  int pivot = 0;
+  int landing = 0;
+  double tilt_rad = 0.0;
+  std::string omega_minus;
+  double lambda = 1.0;
+  double tau = 0.0;
+  bool json = false;
+};
+
+struct FacetCommand {
+  BlockArgs block;
+  std::string pivot_edge = "1,2";
+  std::string omega_minus;
+  double lambda_lat = 0.0;
+  double lambda_lon = 1.0;
+  std::optional<double> tau;
+  bool json = false;
+};
+
+void RequireFinite(double value, const std::string& option, const std::string& what) {
+  if (!std::isfinite(value)) throw InvalidArgument(option + " must be a finite number (" + what + ")");
+}
+
+void RequireVertex(int k, const std::string& option) {
+  if (k < 1 || k > 4) {
+    throw InvalidArgument(option + " must be a base vertex 1, 2, 3 or 4 (V1=(−b1,−b2), V2=(−b1,+b2), V3=(+b1,+b2), "
+                          "V4=(+b1,−b2)), got " + std::to_string(k));
+  }
+}
+
+// "I,J" with I, J cyclic neighbours → b of the pivot edge V_{b−1}V_b (either order names the same edge).
+int ParsePivotEdge(const std::string& text) {
+  const std::string allowed = "--pivot-edge expects two neighbouring base vertices I,J (1,2 2,3 3,4 or 4,1, in either order)";
+  std::stringstream stream(text);
+  std::string cell;
+  std::vector<int> vertices;
+  while (std::getline(stream, cell, ',')) {
+    char* end = nullptr;
+    const long value = std::strtol(cell.c_str(), &end, 10);
+    if (cell.empty() || end == cell.c_str() || *end != '\0' || value < 1 || value > 4) {
+      throw InvalidArgument(allowed + ", got '" + text + "'");
+    }
+    vertices.push_back(static_cast<int>(value));
+  }
+  if (vertices.size() != 2 || !core::Block::AreNeighbours(vertices[0], vertices[1])) {
+    throw InvalidArgument(allowed + ", got '" + text + "'");
+  }
+  // In cyclic order the edge is V_{b−1}V_b: b is the vertex that follows the other one.
+  return core::Block::WrapVertex(vertices[0] + 1) == vertices[1] ? vertices[1] : vertices[0];
+}
+
+std::string FormatVector(const Eigen::Vector3d& v) { return fmt::format("({:+.9f}, {:+.9f}, {:+.9f})", v.x(), v.y(), v.z()); }
+
+std::string YesNo(bool value) { return value ? "yes" : "no"; }
+
+// The contact after the impact as printed: "V4", "V3V4", "facet" (rest on the whole base), or null.
+nlohmann::json ContactAfterJson(const core::ImpactOutcome& out) {
+  if (out.status != core::ImpactStatus::kOk) return nullptr;
+  return out.contact_after.first == 0 ? std::string("facet") : out.contact_after.ToString();
+}
+
+// Keys shared by both kinds; ω⁺ and energies after are null unless the status is ok.
+nlohmann::json OutcomeJson(const char* kind, const core::ImpactOutcome& out) {
+  const bool ok = out.status == core::ImpactStatus::kOk;
+  nlohmann::json j;
+  j["kind"] = kind;
+  j["status"] = core::ToString(out.status);
+  j["contact_before"] = out.contact_before.ToString();
+  j["omega_minus"] = ToJson(out.w_minus_W);
+  j["omega_plus"] = ok ? ToJson(out.w_plus_W) : nlohmann::json(nullptr);
+  j["omega_plus_body"] = ok ? ToJson(out.w_plus_B) : nlohmann::json(nullptr);
+  j["tau"] = ok ? nlohmann::json(out.tau) : nlohmann::json(nullptr);
+  j["contact_after"] = ContactAfterJson(out);
+  j["energy_before"] = out.energy_before_J;
+  j["energy_after"] = ok ? nlohmann::json(out.energy_after_J) : nlohmann::json(nullptr);
+  j["delta_energy"] = ok ? nlohmann::json(out.delta_energy_J) : nlohmann::json(nullptr);
+  j["within_bounds"] = out.within_geometric_bounds;
+  j["energy_nonincreasing"] = ok ? nlohmann::json(out.energy_nonincreasing) : nlohmann::json(nullptr);
+  j["units"] = {{"omega", "rad/s"}, {"tau", "N*m*s"}, {"energy", "J"}, {"tilt", "rad"}};
+  return j;
+}
+
+void PrintOutcomeTable(const core::ImpactOutcome& out, const char* bounds_name, const char* omega_plus_frame) {
+  const bool ok = out.status == core::ImpactStatus::kOk;
+  std::cout << fmt::format("status          {}\n", core::ToString(out.status));
+  std::cout << fmt::format("contact before  {}\n", out.contact_before.ToString());
+  if (ok) {
+    std::cout << fmt::format("contact after   {}\n", ContactAfterJson(out).get<std::string>())
+              << fmt::format("ω⁻ {:<12} {} rad/s\n", omega_plus_frame, FormatVector(out.w_minus_W))
+              << fmt::format("ω⁺ {:<12} {} rad/s\n", omega_plus_frame, FormatVector(out.w_plus_W));
+    if (std::string(omega_plus_frame) == "(W)") {
+      std::cout << fmt::format("ω⁺ {:<12} {} rad/s\n", "(B)", FormatVector(out.w_plus_B));
+    }
+    std::cout << fmt::format("τ               {:+.6e} N·m·s\n", out.tau)
+              << fmt::format("energy          before {:.9g} J, after {:.9g} J, ΔE {:+.6e} J\n", out.energy_before_J,
+                             out.energy_after_J, out.delta_energy_J)
+              << fmt::format("ΔE ≤ 0 (26)     {}\n", YesNo(out.energy_nonincreasing));
+  } else {
+    std::cout << fmt::format("ω⁻ {:<12} {} rad/s\n", omega_plus_frame, FormatVector(out.w_minus_W))
+              << fmt::format("energy          before {:.9g} J\n", out.energy_before_J);
+  }
+  std::cout << fmt::format("within {:<8} {}\n", bounds_name, YesNo(out.within_geometric_bounds));
+}
+
+// Exit code and a hint on stderr for a map without a single answer.
+int FinishWithStatus(const core::ImpactOutcome& out, const std::string& hint) {
+  if (out.status == core::ImpactStatus::kOk) return kExitOk;
+  std::cerr << "rockfit: the impact map returned status '" << core::ToString(out.status) << "'. " << hint << std::endl;
+  return kExitNumerical;
+}
+
+void PrintWarnings(const std::vector<std::string>& warnings) {
+  for (const auto& w : warnings) std::cerr << "rockfit: warning: " << w << std::endl;
+}
+
+// ------------------------------------------------------------------------------------------ edge
+
+int RunEdge(const EdgeCommand& cmd) {
+  const core::Block block = MakeBlock(cmd.block);
+  RequireVertex(cmd.pivot, "--pivot");
+  RequireVertex(cmd.landing, "--landing");
+  if (!core::Block::AreNeighbours(cmd.pivot, cmd.landing)) {
+    throw InvalidArgument("--landing must be a neighbour of --pivot V" + std::to_string(cmd.pivot) + " (V" +
+                          std::to_string(core::Block::WrapVertex(cmd.pivot - 1)) + " or V" +
+                          std::to_string(core::Block::WrapVertex(cmd.pivot + 1)) + "), got " + std::to_string(cmd.landing));
+  }
+  RequireFinite(cmd.tilt_rad, "--tilt", "rad, in [0, π/2]");
+  if (cmd.tilt_rad < 0.0 || cmd.tilt_rad > core::kMaxEdgeImpactTilt) {
+    throw InvalidArgument("--tilt must be in [0, π/2] rad (0: flat base), got " + std::to_string(cmd.tilt_rad));
+  }
+  RequireFinite(cmd.lambda, "--lambda", "position of the resultant along the edge, (19)");
+  RequireFinite(cmd.tau, "--tau", "N·m·s");
+  const Eigen::Vector3d w_minus_W = ParseVector3(cmd.omega_minus, "--omega-minus");
+
+  const Eigen::Matrix3d R_WB = core::EdgeImpactAttitude(block, cmd.pivot, cmd.landing, cmd.tilt_rad);
+  const core::EdgeImpactParameters params{cmd.lambda, cmd.tau};
+  const core::ImpactOutcome out = core::EdgeImpact(block, R_WB, cmd.pivot, cmd.landing, w_minus_W, params);
+  const std::vector<double> singular = core::EdgeImpactSingularLambdas(block, R_WB, cmd.pivot, cmd.landing);
+
+  std::vector<std::string> warnings;
+  const Eigen::Vector3d p_ba_W = R_WB * (block.p_BV_B(cmd.landing) - block.p_BV_B(cmd.pivot));
+  if (w_minus_W.cross(p_ba_W).z() >= -kWarningRelTol * w_minus_W.norm() * p_ba_W.norm()) {
+    warnings.push_back(fmt::format("with this ω⁻ the landing vertex V{} does not move down (rotation about V{}), so "
+                                   "the edge does not hit the ground",
+                                   cmd.landing, cmd.pivot));
+  }
+
+  if (cmd.json) {
+    nlohmann::json j = OutcomeJson("edge", out);
+    j["pivot"] = cmd.pivot;
+    j["landing"] = cmd.landing;
+    j["tilt"] = cmd.tilt_rad;
+    j["lambda"] = cmd.lambda;
+    j["singular_lambdas"] = singular;
+    j["warnings"] = warnings;
+    PrintJson(j);
+  } else {
+    std::cout << fmt::format("edge impact     rocking about V{}, edge V{}V{} lands, tilt {} rad\n", cmd.pivot, cmd.pivot,
+                             cmd.landing, cmd.tilt_rad)
+              << fmt::format("parameters      λ = {}, τ = {} N·m·s\n", cmd.lambda, cmd.tau);
+    PrintOutcomeTable(out, "(25)", "(W)");
+    std::string roots;
+    for (double r : singular) roots += fmt::format("{}{:.9g}", roots.empty() ? "" : ", ", r);
+    std::cout << fmt::format("singular at λ   {}\n", roots.empty() ? "none" : roots);
+  }
+  PrintWarnings(warnings);
+  return FinishWithStatus(out, "(18) is singular at this λ: choose a λ away from the listed singular values.");
+}
+
+// ----------------------------------------------------------------------------------------- facet
+
+int RunFacet(const FacetCommand& cmd) {
+  const core::Block block = MakeBlock(cmd.block);
+  const int b = ParsePivotEdge(cmd.pivot_edge);
+  RequireFinite(cmd.lambda_lat, "--lambda-lat", "(21)");
+  RequireFinite(cmd.lambda_lon, "--lambda-lon", "(21)");
+  if (cmd.tau) RequireFinite(*cmd.tau, "--tau", "N·m·s");
+  const Eigen::Vector3d w_minus_B = ParseVector3(cmd.omega_minus, "--omega-minus");
+
+  core::FacetImpactParameters params;
+  params.lambda_lat = cmd.lambda_lat;
+  params.lambda_lon = cmd.lambda_lon;
+  params.tau_rule = cmd.tau ? core::FacetTauRule::kFixed : core::FacetTauRule::kNoSpin;
+  params.tau = cmd.tau.value_or(0.0);
+  const core::ImpactOutcome out = core::FacetImpact(block, b, w_minus_B, params);
+
+  std::vector<std::string> warnings;
+  const Eigen::Vector3d edge_B = block.p_BV_B(b) - block.p_BV_B(b - 1);
+  const Eigen::Vector3d falling_B = edge_B.normalized();
+  const double velocity_scale = w_minus_B.norm() * (block.p_BC_B() - block.p_BV_B(b)).norm();
+  if (w_minus_B.cross(block.p_BV_B(b + 1) - block.p_BV_B(b)).z() >= -kWarningRelTol * velocity_scale) {
+    warnings.push_back(fmt::format("with this ω⁻ the base does not fall onto the ground about V{}V{}; in rockfit's "
+                                   "frame a falling block has ω⁻ = +ω·({:+.3g}, {:+.3g}, {:+.3g}), ω > 0 (the paper's "
+                                   "Fig. 11 writes [0, −1, 0] for V1V2 in its own axes)",
+                                   core::Block::WrapVertex(b - 1), b, falling_B.x(), falling_B.y(), falling_B.z()));
+  }
+  if ((w_minus_B - w_minus_B.dot(falling_B) * falling_B).norm() > kWarningRelTol * w_minus_B.norm()) {
+    warnings.push_back(fmt::format("ω⁻ is not along the pivot edge V{}V{}, as rocking about that edge requires; the "
+                                   "part off the edge is mapped as given, with V{} as pre-impact pivot",
+                                   core::Block::WrapVertex(b - 1), b, b));
+  }
+
+  if (cmd.json) {
+    nlohmann::json j = OutcomeJson("facet", out);
+    j["pivot_edge"] = out.contact_before.ToString();
+    j["b"] = b;
+    j["lambda_lat"] = cmd.lambda_lat;
+    j["lambda_lon"] = cmd.lambda_lon;
+    j["tau_rule"] = core::ToString(params.tau_rule);
+    if (params.tau_rule == core::FacetTauRule::kFixed) j["tau"] = params.tau;  // the τ used, whatever the status
+    nlohmann::json candidates = nlohmann::json::array();
+    for (const core::FacetCandidate& c : out.candidates) {
+      const bool solved = c.status == core::ImpactStatus::kOk;
+      candidates.push_back({{"contact", c.contact.ToString()},
+                            {"status", core::ToString(c.status)},
+                            {"feasible", c.feasible},
+                            {"impulse_lifts_22", solved ? nlohmann::json(c.impulse_lifts) : nlohmann::json(nullptr)},
+                            {"no_penetration_23", solved ? nlohmann::json(c.no_penetration) : nlohmann::json(nullptr)},
+                            {"omega_plus", solved ? ToJson(c.w_plus) : nlohmann::json(nullptr)},
+                            {"tau", solved ? nlohmann::json(c.tau) : nlohmann::json(nullptr)}});
+    }
+    j["candidates"] = candidates;
+    j["warnings"] = warnings;
+    PrintJson(j);
+  } else {
+    std::cout << fmt::format("facet impact    pivot edge V{}V{} (b = {}), block flat (W = B)\n",
+                             core::Block::WrapVertex(b - 1), b, b)
+              << fmt::format("parameters      λ_lat = {}, λ_lon = {}, τ rule {}{}\n", cmd.lambda_lat, cmd.lambda_lon,
+                             core::ToString(params.tau_rule),
+                             cmd.tau ? fmt::format(" (τ = {} N·m·s)", *cmd.tau) : std::string(" (24)"));
+    PrintOutcomeTable(out, "(27)", "(W = B)");
+    std::cout << "candidates      vertex  status     (22)  (23)  feasible  ω⁺ [rad/s]                                 τ [N·m·s]\n";
+    for (const core::FacetCandidate& c : out.candidates) {
+      if (c.status != core::ImpactStatus::kOk) {
+        std::cout << fmt::format("                {:<7} {:<10} -     -     no\n", c.contact.ToString(), core::ToString(c.status));
+        continue;
+      }
+      std::cout << fmt::format("                {:<7} {:<10} {:<5} {:<5} {:<9} {} {:+.6e}\n", c.contact.ToString(),
+                               core::ToString(c.status), YesNo(c.impulse_lifts), YesNo(c.no_penetration),
+                               YesNo(c.feasible), FormatVector(c.w_plus), c.tau);
+    }
+  }
+  PrintWarnings(warnings);
+  std::string hint;
+  if (out.status == core::ImpactStatus::kSingular) {
+    hint = "(18) is singular for these parameters: move λ_lat/λ_lon away from this point.";
+  } else if (params.tau_rule == core::FacetTauRule::kFixed) {
+    hint = "With a fixed --tau the facet map need not have exactly one feasible vertex (paper Fig. 11): see the "
+           "candidates, or drop --tau to use the no-spin rule (24).";
+  } else {
+    hint = "No post-impact vertex satisfies (22)–(23): check that --omega-minus brings the base down onto the ground "
+           "(see the candidates).";
+  }
+  return FinishWithStatus(out, hint);
+}
+
+// -------------------------------------------------------------------------------------- register
+
+const CommandRegistration kRegistration([](CLI::App& root) {
+  CLI::App* impact = root.add_subcommand("impact", "Evaluate one impact map of Várkonyi, Kocsis & Ther (2021): edge or facet");
+  impact->require_subcommand(1);
+
+  auto edge = std::make_shared<EdgeCommand>();
+  CLI::App* e = impact->add_subcommand(
+      "edge",
+      "Edge impact (19)–(20): the block rocks about base vertex V_b (--pivot) until the base edge V_bV_a (--landing) "
+      "hits the ground. ω⁻ and ω⁺ are in the world frame W (z up) at the impact attitude: the block rotated "
+      "about that edge by --tilt, the rest of the base above the ground.");
+  AddBlockOptions(*e, edge->block);
+  e->add_option("--pivot", edge->pivot, "Pre-impact contact vertex V_b: 1, 2, 3 or 4")->required()->group("Impact");
+  e->add_option("--landing", edge->landing, "Post-impact contact vertex V_a: a neighbour of V_b")->required()->group("Impact");
+  e->add_option("--tilt", edge->tilt_rad, "Angle of the base above the ground about the edge V_bV_a [rad], in [0, π/2]")
+      ->capture_default_str()->group("Impact");
+  e->add_option("--omega-minus", edge->omega_minus, "Pre-impact angular velocity X,Y,Z in W [rad/s]")->required()->group("Impact");
+  e->add_option("--lambda", edge->lambda, "λ of (19): the resultant at (r_a+r_b)/2 + λ(r_a−r_b)/2; (25) is −1 ≤ λ ≤ 1")
+      ->capture_default_str()->group("Impact");
+  e->add_option("--tau", edge->tau, "Vertical angular impulse τ [N·m·s]")->capture_default_str()->group("Impact");
+  e->add_flag("--json", edge->json,
+              "Print one JSON object: kind, status, contact_before, contact_after, omega_minus, omega_plus (W), "
+              "omega_plus_body (B), tau, energy_before, energy_after, delta_energy (26), within_bounds (25), "
+              "energy_nonincreasing, singular_lambdas, pivot, landing, tilt, lambda, units, warnings");
+  e->footer(kExitCodesHelp);
+  e->callback([edge] { SetExitCode(RunEdge(*edge)); });
+
+  auto facet = std::make_shared<FacetCommand>();
+  CLI::App* f = impact->add_subcommand(
+      "facet",
+      "Facet impact (18)+(21): the flat block, rocking about the base edge V_{b−1}V_b, lands on its base. Every base "
+      "vertex is a candidate post-impact contact, tested against (22)–(23). Default: τ from the no-spin rule (24) "
+      "(the unified map of Sect. 4.7); --tau fixes τ instead. W = B (the block is flat).");
+  AddBlockOptions(*f, facet->block);
+  f->add_option("--pivot-edge", facet->pivot_edge,
+                "Pre-impact pivot edge I,J of neighbouring vertices; taken in cyclic order as V_{b−1}V_b, so 1,2 and 2,1 "
+                "both mean V1V2 with b = 2")
+      ->capture_default_str()->group("Impact");
+  f->add_option("--omega-minus", facet->omega_minus,
+                "Pre-impact angular velocity X,Y,Z [rad/s]; falling about V1V2 is (0,+ω,0)")
+      ->required()->group("Impact");
+  f->add_option("--lambda-lat", facet->lambda_lat, "λ_lat of (21); (27) is −1 ≤ λ_lat ≤ 1")->capture_default_str()->group("Impact");
+  f->add_option("--lambda-lon", facet->lambda_lon, "λ_lon of (21); (27) is −1 ≤ λ_lon ≤ 1")->capture_default_str()->group("Impact");
+  f->add_option("--tau", facet->tau, "Fixed vertical angular impulse τ [N·m·s] instead of the no-spin rule (24)")->group("Impact");
+  f->add_flag("--json", facet->json,
+              "Print one JSON object: kind, status, contact_before, contact_after, omega_minus, omega_plus, "
+              "omega_plus_body, tau, tau_rule, energy_before, energy_after, delta_energy (26), within_bounds (27), "
+              "energy_nonincreasing, candidates (contact, status, feasible, impulse_lifts_22, no_penetration_23, "
+              "omega_plus, tau), pivot_edge, b, lambda_lat, lambda_lon, units, warnings");
+  f->footer(kExitCodesHelp);
+  f->callback([facet] { SetExitCode(RunFacet(*facet)); });
+});
+
+}  // namespace
+}  // namespace rockfit::tools
