@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/core/impact_maps.hpp"
 #include "rockfit/io/peak_finding.hpp"
 
 namespace rockfit::io {
@@ -49,15 +50,6 @@ double Uplift(const core::Block& block, double phi_rad, UpliftFormula formula) {
 }
 
 namespace {
-
-// The inverse of (6) for rocking about y (b = b1, θ = Θ_yy): from
-// r = (θ + m h² − m λ b²)/(θ + m h² + m λ b²), λ = (θ + m h²)(1 − r)/(m b² (1 + r)).
-// Local until core's LambdaFromAvrf (impact_maps.hpp) is available on main.
-double LambdaFromAvrfAboutY(const core::Block& block, double r) {
-  const double m = block.mass(), h = block.h(), b = block.b1();
-  const double theta = block.inertia_C_B()(1, 1);
-  return (theta + m * h * h) * (1.0 - r) / (m * b * b * (1.0 + r));
-}
 
 double Median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
@@ -147,7 +139,8 @@ AvrfResult ComputeAvrf(const std::vector<double>& t_s, const DriftCorrection& co
   }
   result.status = AvrfStatus::kOk;
   result.avrf = Median(result.ratios);
-  if (result.avrf != -1.0) result.lambda_equivalent = LambdaFromAvrfAboutY(block, result.avrf);
+  // λ of (6) with b = b1, θ = Θ_yy (the inverse of (6)); defined for every finite r ≠ −1, and r > 0 here.
+  result.lambda_equivalent = core::LambdaFromAvrf(core::PlanarBlockAboutY(block), result.avrf);
   return result;
 }
 
