@@ -1,2 +1,2 @@
-// Recording is a plain aggregate; this file keeps the io library non-empty until readers land.
+// Recording is a plain aggregate defined in its header; the readers fill it (load_recording.cpp).
 #include "rockfit/io/recording.hpp"

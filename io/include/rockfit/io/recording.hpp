@@ -28,6 +28,10 @@ struct Recording {
   std::vector<Eigen::Vector3d> euler_zyx;  // ZYX Euler angles (φz, φy, φx) of R_WB [rad], unwrapped; empty if absent
   std::vector<Eigen::Vector3d> accel_B;    // specific force in the block frame [m/s²]; empty if absent
 
+  std::string orientation_source;  // file(s) the attitude was read from; empty without attitude
+  double orientation_rate_hz = 0.0;  // rate of those files before resampling onto t_s; 0 without attitude
+  std::string mounting = "identity";  // the sensor→block mounting R_BS that was applied (Mounting::text())
+
   std::vector<std::string> columns;   // source columns that were read, as "file: header"
   std::vector<Gap> gaps;              // dropped samples
   std::vector<std::string> warnings;  // documented repairs that were applied
