@@ -2,20 +2,12 @@
 
 #include <cmath>
 
-#include <Eigen/Geometry>
 
 namespace rockfit::io {
 namespace {
 // |cos φy| below this is treated as gimbal lock (φy within 1e-9 rad of ±π/2).
 constexpr double kGimbalLockCos = 1e-9;
 }  // namespace
-
-Eigen::Matrix3d RotationFromEulerZyx(const Eigen::Vector3d& euler_zyx) {
-  return (Eigen::AngleAxisd(euler_zyx[0], Eigen::Vector3d::UnitZ()) *
-          Eigen::AngleAxisd(euler_zyx[1], Eigen::Vector3d::UnitY()) *
-          Eigen::AngleAxisd(euler_zyx[2], Eigen::Vector3d::UnitX()))
-      .toRotationMatrix();
-}
 
 Eigen::Vector3d BodyRatesFromEulerZyx(const Eigen::Vector3d& euler_zyx, const Eigen::Vector3d& euler_rates_zyx) {
   const double phi_y = euler_zyx[1], phi_x = euler_zyx[2];

@@ -12,6 +12,8 @@
 #include <toml++/toml.h>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/io/load_options.hpp"
+#include "rockfit/io/mounting.hpp"
 
 namespace rockfit::io {
 
@@ -194,13 +196,24 @@ TrialSpec ParseTrial(const Reporter& report, const toml::table& table, std::size
   const std::filesystem::path files(trial.files_as_written);
   trial.files = files.is_absolute() ? files : (base_dir / files).lexically_normal();
   trial.format = OptionalString(report, table, "format", what, "auto");
-  const auto& formats = ManifestFormats();
-  if (std::find(formats.begin(), formats.end(), trial.format) == formats.end()) {
+  if (!ParseFormatName(trial.format)) {
     report.Fail(PositionOf(table.get("format")->source()),
-                fmt::format("{}: unknown format '{}'; use one of {}", what, trial.format, Join(formats)));
+                fmt::format("{}: unknown format '{}'; use one of {}", what, trial.format, Join(ManifestFormats())));
   }
   trial.rate_hz = OptionalPositive(report, table, "rate", what, "Hz");
+  if (trial.rate_hz && *trial.rate_hz > kMaxRate_hz) {
+    report.Fail(PositionOf(table.get("rate")->source()),
+                fmt::format("{}: rate {} Hz is above {} Hz, faster than any IMU rockfit reads", what, *trial.rate_hz,
+                            kMaxRate_hz));
+  }
   trial.mounting = OptionalString(report, table, "mounting", what);
+  if (!trial.mounting.empty()) {
+    try {
+      (void)Mounting::Parse(trial.mounting);
+    } catch (const InvalidArgument& e) {
+      report.Fail(PositionOf(table.get("mounting")->source()), fmt::format("{}: {}", what, e.what()));
+    }
+  }
   trial.notes = OptionalString(report, table, "notes", what);
   return trial;
 }

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "rockfit/core/errors.hpp"
-#include "temp_dir.hpp"
+#include "scratch_dir.hpp"
 
 namespace rockfit::io {
 namespace {
@@ -25,7 +25,7 @@ std::size_t EntriesIn(const std::filesystem::path& dir) {
 }
 
 TEST(AtomicFile, WritesAndReplaces) {
-  const testing::TempDir dir("atomic");
+  const testing::ScratchDir dir("atomic");
   WriteFileAtomically(dir / "a.csv", [](std::ostream& out) { out << "one\n"; });
   WriteFileAtomically(dir / "a.csv", [](std::ostream& out) { out << "two\n"; });
   EXPECT_EQ(Read(dir / "a.csv"), "two\n");
@@ -33,7 +33,7 @@ TEST(AtomicFile, WritesAndReplaces) {
 }
 
 TEST(AtomicFile, AFailureWhileWritingLeavesThePreviousFileAndNoTemporary) {
-  const testing::TempDir dir("atomic");
+  const testing::ScratchDir dir("atomic");
   WriteFileAtomically(dir / "a.csv", [](std::ostream& out) { out << "previous\n"; });
   EXPECT_THROW(WriteFileAtomically(dir / "a.csv",
                                    [](std::ostream& out) {
@@ -46,7 +46,7 @@ TEST(AtomicFile, AFailureWhileWritingLeavesThePreviousFileAndNoTemporary) {
 }
 
 TEST(AtomicFile, MissingDirectoryOrDirectoryTargetIsAnOutputError) {
-  const testing::TempDir dir("atomic");
+  const testing::ScratchDir dir("atomic");
   EXPECT_THROW(WriteFileAtomically(dir / "no/such/dir/a.csv", [](std::ostream&) {}), OutputError);
   EXPECT_THROW(WriteFileAtomically(dir.path(), [](std::ostream&) {}), OutputError);
 }

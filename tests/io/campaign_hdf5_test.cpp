@@ -8,12 +8,12 @@
 #include "rocking_signals.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/hdf5_transaction.hpp"
-#include "temp_dir.hpp"
+#include "scratch_dir.hpp"
 
 namespace rockfit::io {
 namespace {
 
-using testing::TempDir;
+using testing::ScratchDir;
 
 struct Trial {
   Recording recording;
@@ -43,7 +43,7 @@ void WriteCampaign(const std::filesystem::path& path, const Trial& trial) {
 }
 
 TEST(CampaignHdf5, TrialRoundTripsIntoARecording) {
-  const TempDir dir("campaign_hdf5");
+  const ScratchDir dir("campaign_hdf5");
   const Trial trial = MakeTrial();
   WriteCampaign(dir / "c.h5", trial);
   const StoredTrial stored = ReadTrialHdf5(dir / "c.h5", "");  // the only trial
@@ -111,7 +111,7 @@ print('ok')
 
 TEST(CampaignHdf5, H5pyFindsTheDocumentedNamesShapesAndUnits) {
   ROCKFIT_REQUIRE_H5PY();
-  const TempDir dir("campaign_hdf5");
+  const ScratchDir dir("campaign_hdf5");
   const Trial trial = MakeTrial();
   WriteCampaign(dir / "c.h5", trial);
   const std::size_t n = trial.recording.size();
@@ -123,7 +123,7 @@ TEST(CampaignHdf5, H5pyFindsTheDocumentedNamesShapesAndUnits) {
 }
 
 TEST(CampaignHdf5, SummaryTablesRoundTripWithMissingValuesAsNaN) {
-  const TempDir dir("campaign_hdf5");
+  const ScratchDir dir("campaign_hdf5");
   CampaignSummary summary;
   TrialRow a;
   a.trial_id = "T1", a.block_id = "B1", a.position = "A", a.status = "ok", a.b2_m = 0.03;
@@ -161,7 +161,7 @@ print('ok')
 }
 
 TEST(CampaignHdf5, ReadingNamesTheTrialsThatExist) {
-  const TempDir dir("campaign_hdf5");
+  const ScratchDir dir("campaign_hdf5");
   const Trial trial = MakeTrial();
   WriteCampaign(dir / "c.h5", trial);
   try {
@@ -174,7 +174,7 @@ TEST(CampaignHdf5, ReadingNamesTheTrialsThatExist) {
 }
 
 TEST(CampaignHdf5, FilesWithoutOrWithANewerSchemaAreBadInput) {
-  const TempDir dir("campaign_hdf5");
+  const ScratchDir dir("campaign_hdf5");
   {
     hdf5::File f = hdf5::File::Create(dir / "plain.h5");
     f.Root().CreateGroup("trials/T1");
@@ -195,7 +195,7 @@ TEST(CampaignHdf5, FilesWithoutOrWithANewerSchemaAreBadInput) {
 }
 
 TEST(CampaignHdf5, DamagedTrialDataIsBadInputNotACrash) {
-  const TempDir dir("campaign_hdf5");
+  const ScratchDir dir("campaign_hdf5");
   const Trial trial = MakeTrial();
   WriteCampaign(dir / "c.h5", trial);
   {
@@ -218,6 +218,29 @@ TEST(CampaignHdf5, DamagedTrialDataIsBadInputNotACrash) {
     tx.Commit();
   }
   EXPECT_THROW(ReadRecordingHdf5(dir / "c.h5", "B3-A-1"), BadInput);
+}
+
+}  // namespace
+}  // namespace rockfit::io
+
+#include "rockfit/io/load_recording.hpp"
+
+namespace rockfit::io {
+namespace {
+
+TEST(CampaignHdf5, LoadRecordingReadsTheTrialOfAOneTrialFile) {
+  const testing::ScratchDir dir("campaign_hdf5");
+  const Trial trial = MakeTrial();
+  WriteCampaign(dir / "c.h5", trial);
+  const Recording r = LoadRecording(dir / "c.h5");
+  EXPECT_EQ(r.format, "rockfit-hdf5");
+  EXPECT_EQ(r.w_B, trial.recording.w_B);
+  LoadOptions mounted;
+  mounted.mounting = Mounting::Parse("x,-y,-z");
+  EXPECT_THROW(LoadRecording(dir / "c.h5", mounted), InvalidArgument);
+  LoadOptions wrong_rate;
+  wrong_rate.rate_hz = 100.0;
+  EXPECT_THROW(LoadRecording(dir / "c.h5", wrong_rate), BadInput);
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "rocking_signals.hpp"
-#include "temp_dir.hpp"
+#include "scratch_dir.hpp"
 
 namespace rockfit::io {
 namespace {
@@ -27,7 +27,7 @@ std::vector<std::vector<std::string>> ReadCsv(const std::filesystem::path& path)
 }
 
 TEST(CsvExport, CorrectedCsvHasOneRowPerSampleWithExactValuesAndImpactFlags) {
-  const testing::TempDir dir("csv");
+  const testing::ScratchDir dir("csv");
   const core::Block block = testing::PaperLikeBlock();
   testing::PlanarRockingSpec spec;
   const auto motion = testing::SimulatePlanarRocking(block, spec);
@@ -55,7 +55,7 @@ TEST(CsvExport, CorrectedCsvHasOneRowPerSampleWithExactValuesAndImpactFlags) {
 }
 
 TEST(CsvExport, SummaryCsvLeavesMissingValuesEmptyAndQuotesText) {
-  const testing::TempDir dir("csv");
+  const testing::ScratchDir dir("csv");
   CampaignSummary s;
   TrialRow t;
   t.trial_id = "T1", t.block_id = "B1", t.position = "A", t.status = "too_few_peaks";

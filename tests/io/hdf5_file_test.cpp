@@ -7,15 +7,15 @@
 
 #include "python_h5py.hpp"
 #include "rockfit/core/errors.hpp"
-#include "temp_dir.hpp"
+#include "scratch_dir.hpp"
 
 namespace rockfit::io::hdf5 {
 namespace {
 
-using testing::TempDir;
+using testing::ScratchDir;
 
 TEST(Hdf5File, DatasetsAndAttributesRoundTrip) {
-  const TempDir dir("hdf5_file");
+  const ScratchDir dir("hdf5_file");
   const auto path = dir / "a.h5";
   {
     File file = File::Create(path);
@@ -56,7 +56,7 @@ TEST(Hdf5File, DatasetsAndAttributesRoundTrip) {
 }
 
 TEST(Hdf5File, ReadingMissingOrMisshapedDataIsBadInputNamingFileAndObject) {
-  const TempDir dir("hdf5_file");
+  const ScratchDir dir("hdf5_file");
   const auto path = dir / "b.h5";
   {
     File file = File::Create(path);
@@ -80,7 +80,7 @@ TEST(Hdf5File, ReadingMissingOrMisshapedDataIsBadInputNamingFileAndObject) {
 }
 
 TEST(Hdf5File, OpeningSomethingElseIsBadInput) {
-  const TempDir dir("hdf5_file");
+  const ScratchDir dir("hdf5_file");
   std::ofstream(dir / "text.h5") << "not hdf5\n";
   EXPECT_THROW(File::Open(dir / "text.h5"), BadInput);
   EXPECT_THROW(File::Open(dir / "missing.h5"), BadInput);
@@ -88,7 +88,7 @@ TEST(Hdf5File, OpeningSomethingElseIsBadInput) {
 }
 
 TEST(Hdf5File, WritingOverAnExistingObjectIsAnOutputError) {
-  const TempDir dir("hdf5_file");
+  const ScratchDir dir("hdf5_file");
   File file = File::Create(dir / "c.h5");
   file.Root().WriteDoubles("x", {1}, "1");
   EXPECT_THROW(file.Root().WriteDoubles("x", {2}, "1"), OutputError);
@@ -98,7 +98,7 @@ TEST(Hdf5File, WritingOverAnExistingObjectIsAnOutputError) {
 }
 
 TEST(Hdf5File, AttributesAndObjectsCopyBetweenFiles) {
-  const TempDir dir("hdf5_file");
+  const ScratchDir dir("hdf5_file");
   File a = File::Create(dir / "a.h5");
   const Group g = a.Root().CreateGroup("fits/T1");
   g.SetString("note", "kept");
@@ -115,7 +115,7 @@ TEST(Hdf5File, AttributesAndObjectsCopyBetweenFiles) {
 
 TEST(Hdf5File, H5pyReadsNamesShapesUnitsAndStrings) {
   ROCKFIT_REQUIRE_H5PY();
-  const TempDir dir("hdf5_file");
+  const ScratchDir dir("hdf5_file");
   const auto path = dir / "d.h5";
   {
     File file = File::Create(path);

@@ -10,12 +10,12 @@
 #include <gtest/gtest.h>
 
 #include "rockfit/core/errors.hpp"
-#include "temp_dir.hpp"
+#include "scratch_dir.hpp"
 
 namespace rockfit::io::hdf5 {
 namespace {
 
-using testing::TempDir;
+using testing::ScratchDir;
 
 std::string Bytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -46,14 +46,14 @@ std::vector<std::filesystem::path> Temporaries(const std::filesystem::path& dir)
 }
 
 TEST(Hdf5Transaction, CommitCreatesTheFileAndLeavesNoTemporary) {
-  const TempDir dir("hdf5_tx");
+  const ScratchDir dir("hdf5_tx");
   WriteInitial(dir / "out.h5");
   EXPECT_TRUE(File::IsHdf5(dir / "out.h5"));
   EXPECT_TRUE(Temporaries(dir.path()).empty());
 }
 
 TEST(Hdf5Transaction, RewritingKeepsEverythingThatIsNotReplaced) {
-  const TempDir dir("hdf5_tx");
+  const ScratchDir dir("hdf5_tx");
   const auto path = dir / "out.h5";
   WriteInitial(path);
   {
@@ -76,7 +76,7 @@ TEST(Hdf5Transaction, RewritingKeepsEverythingThatIsNotReplaced) {
 }
 
 TEST(Hdf5Transaction, WithoutCommitTheTargetIsUntouchedAndTheTemporaryRemoved) {
-  const TempDir dir("hdf5_tx");
+  const ScratchDir dir("hdf5_tx");
   const auto path = dir / "out.h5";
   WriteInitial(path);
   const std::string before = Bytes(path);
@@ -91,7 +91,7 @@ TEST(Hdf5Transaction, WithoutCommitTheTargetIsUntouchedAndTheTemporaryRemoved) {
 }
 
 TEST(Hdf5Transaction, RefusesToReplaceAFileThatIsNotHdf5) {
-  const TempDir dir("hdf5_tx");
+  const ScratchDir dir("hdf5_tx");
   const auto path = dir / "notes.h5";
   std::ofstream(path) << "my notes\n";
   try {
@@ -108,7 +108,7 @@ TEST(Hdf5Transaction, UnwritableDirectoryIsAnOutputError) {
 }
 
 TEST(Hdf5Transaction, KillingTheWriterMidWriteLeavesThePreviousFileIntact) {
-  const TempDir dir("hdf5_tx");
+  const ScratchDir dir("hdf5_tx");
   const auto path = dir / "campaign.h5";
   WriteInitial(path);
   const std::string before = Bytes(path);

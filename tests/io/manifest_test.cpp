@@ -151,6 +151,20 @@ TEST(Manifest, UnknownFormatAndBadIdsAreRejected) {
   EXPECT_NE(ErrorOf(slash).find("trial id 'B3/A/1' may only contain"), std::string::npos);
 }
 
+TEST(Manifest, BadMountingIsReportedAtItsPosition) {
+  std::string text = kGood;
+  text.replace(text.find("mounting = \"x,-y,-z\""), 20, "mounting = \"x,y,-z\"");
+  const std::string message = ErrorOf(text);
+  EXPECT_NE(message.find("m.toml:22:12: [[trials]] 'B3-A-1': "), std::string::npos) << message;
+  EXPECT_NE(message.find("x,y,-z"), std::string::npos) << message;
+}
+
+TEST(Manifest, CsvIsAcceptedAsTheGenericCsvFormat) {
+  std::string text = kGood;
+  text.replace(text.find("format = \"ximu3\""), 16, "format = \"csv\"");
+  EXPECT_EQ(ParseManifest(text, "/campaign/m.toml").FindTrial("B8-A-1").format, "csv");
+}
+
 TEST(Manifest, EmptyManifestAndMissingFileAreBadInput) {
   EXPECT_NE(ErrorOf("# nothing\n").find("defines no [[blocks]] and no [[trials]]"), std::string::npos);
   EXPECT_THROW(ReadManifest("/nonexistent/campaign.toml"), BadInput);

@@ -7,7 +7,7 @@
 #include "python_h5py.hpp"
 #include "rockfit/io/campaign_hdf5.hpp"
 #include "synthetic_campaign.hpp"
-#include "temp_dir.hpp"
+#include "scratch_dir.hpp"
 
 namespace rockfit::testing {
 namespace {
@@ -20,7 +20,7 @@ std::string FirstLine(const std::filesystem::path& path) {
 }
 
 TEST(CliCorrect, WritesHdf5ThatH5pyReadsAndKeepsOtherTrials) {
-  const TempDir dir("cli_correct");
+  const ScratchDir dir("cli_correct");
   const auto trials = WriteSyntheticCampaign(dir.path(), {0.05}, 1);
   const auto out = dir / "corrected.h5";
   for (const auto& t : trials) {
@@ -53,7 +53,7 @@ print('ok')
 }
 
 TEST(CliCorrect, WritesCsvWithImpactsBeside) {
-  const TempDir dir("cli_correct");
+  const ScratchDir dir("cli_correct");
   const auto trials = WriteSyntheticCampaign(dir.path(), {0.05}, 1);
   const CommandResult r = RunRockfit({"correct", trials[0].file.string(), "-o", (dir / "c.csv").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -65,7 +65,7 @@ TEST(CliCorrect, WritesCsvWithImpactsBeside) {
 }
 
 TEST(CliCorrect, UnknownOutputTypeIsAUsageErrorAndNothingIsWritten) {
-  const TempDir dir("cli_correct");
+  const ScratchDir dir("cli_correct");
   const auto trials = WriteSyntheticCampaign(dir.path(), {0.05}, 1);
   const CommandResult r = RunRockfit({"correct", trials[0].file.string(), "-o", (dir / "c.txt").string()});
   EXPECT_EQ(r.exit_code, 1);
@@ -74,7 +74,7 @@ TEST(CliCorrect, UnknownOutputTypeIsAUsageErrorAndNothingIsWritten) {
 }
 
 TEST(CliCorrect, RefusesToOverwriteAFileThatIsNotHdf5) {
-  const TempDir dir("cli_correct");
+  const ScratchDir dir("cli_correct");
   const auto trials = WriteSyntheticCampaign(dir.path(), {0.05}, 1);
   std::ofstream(dir / "notes.h5") << "precious\n";
   const CommandResult r = RunRockfit({"correct", trials[0].file.string(), "-o", (dir / "notes.h5").string()});
@@ -84,7 +84,7 @@ TEST(CliCorrect, RefusesToOverwriteAFileThatIsNotHdf5) {
 }
 
 TEST(CliCorrect, NoImpactIsExitCodeThreeAndWritesNothing) {
-  const TempDir dir("cli_correct");
+  const ScratchDir dir("cli_correct");
   PlanarRockingSpec spec;
   spec.release_s = 100.0;
   const auto motion = SimulatePlanarRocking(PaperLikeBlock(), spec);

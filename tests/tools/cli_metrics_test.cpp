@@ -4,7 +4,7 @@
 #include "cli_runner.hpp"
 #include "rocking_signals.hpp"
 #include "synthetic_campaign.hpp"
-#include "temp_dir.hpp"
+#include "scratch_dir.hpp"
 
 namespace rockfit::testing {
 namespace {
@@ -12,17 +12,17 @@ namespace {
 class CliMetrics : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new TempDir("cli_metrics");
+    dir_ = new ScratchDir("cli_metrics");
     trials_ = new std::vector<SyntheticTrial>(WriteSyntheticCampaign(dir_->path(), {0.03, 0.08}, 1));
   }
   static void TearDownTestSuite() {
     delete trials_;
     delete dir_;
   }
-  static TempDir* dir_;
+  static ScratchDir* dir_;
   static std::vector<SyntheticTrial>* trials_;
 };
-TempDir* CliMetrics::dir_ = nullptr;
+ScratchDir* CliMetrics::dir_ = nullptr;
 std::vector<SyntheticTrial>* CliMetrics::trials_ = nullptr;
 
 TEST_F(CliMetrics, JsonHasTheDocumentedKeysAndRecoversTheAvrf) {

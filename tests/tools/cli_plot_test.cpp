@@ -6,7 +6,7 @@
 
 #include "cli_runner.hpp"
 #include "synthetic_campaign.hpp"
-#include "temp_dir.hpp"
+#include "scratch_dir.hpp"
 
 namespace rockfit::testing {
 namespace {
@@ -35,7 +35,7 @@ PngSize ReadPngHeader(const std::filesystem::path& path) {
 class CliPlot : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new TempDir("cli_plot");
+    dir_ = new ScratchDir("cli_plot");
     trials_ = new std::vector<SyntheticTrial>(WriteSyntheticCampaign(dir_->path(), {0.03, 0.05, 0.08}, 2));
   }
   static void TearDownTestSuite() {
@@ -43,10 +43,10 @@ class CliPlot : public ::testing::Test {
     delete dir_;
   }
   static std::string Manifest() { return (dir_->path() / "campaign.toml").string(); }
-  static TempDir* dir_;
+  static ScratchDir* dir_;
   static std::vector<SyntheticTrial>* trials_;
 };
-TempDir* CliPlot::dir_ = nullptr;
+ScratchDir* CliPlot::dir_ = nullptr;
 std::vector<SyntheticTrial>* CliPlot::trials_ = nullptr;
 
 TEST_F(CliPlot, EulerFigureIsARealPngOfTheRequestedSize) {

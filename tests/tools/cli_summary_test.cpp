@@ -9,7 +9,7 @@
 #include "rockfit/io/campaign_hdf5.hpp"
 #include "rockfit/io/hdf5_transaction.hpp"
 #include "synthetic_campaign.hpp"
-#include "temp_dir.hpp"
+#include "scratch_dir.hpp"
 
 namespace rockfit::testing {
 namespace {
@@ -17,7 +17,7 @@ namespace {
 class CliSummary : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new TempDir("cli_summary");
+    dir_ = new ScratchDir("cli_summary");
     trials_ = new std::vector<SyntheticTrial>(WriteSyntheticCampaign(dir_->path()));
   }
   static void TearDownTestSuite() {
@@ -25,10 +25,10 @@ class CliSummary : public ::testing::Test {
     delete dir_;
   }
   static std::string Manifest() { return (dir_->path() / "campaign.toml").string(); }
-  static TempDir* dir_;
+  static ScratchDir* dir_;
   static std::vector<SyntheticTrial>* trials_;
 };
-TempDir* CliSummary::dir_ = nullptr;
+ScratchDir* CliSummary::dir_ = nullptr;
 std::vector<SyntheticTrial>* CliSummary::trials_ = nullptr;
 
 TEST_F(CliSummary, GroupsHaveTheMeanAndSampleStdOfTheirTrials) {
@@ -71,7 +71,7 @@ TEST_F(CliSummary, PrintsBothTables) {
 }
 
 TEST_F(CliSummary, Hdf5OutputHasTheDocumentedTablesAndARerunKeepsFits) {
-  const TempDir out_dir("cli_summary_out");
+  const ScratchDir out_dir("cli_summary_out");
   const auto out = out_dir / "campaign.h5";
   ASSERT_EQ(RunRockfit({"summary", Manifest(), "-o", out.string()}).exit_code, 0);
   {  // the fitting engineer's later step
@@ -107,7 +107,7 @@ print('ok')
 }
 
 TEST_F(CliSummary, CsvOutputWritesGroupsAndTrials) {
-  const TempDir out_dir("cli_summary_out");
+  const ScratchDir out_dir("cli_summary_out");
   const CommandResult r = RunRockfit({"summary", Manifest(), "-o", (out_dir / "s.csv").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::ifstream groups(out_dir / "s.csv"), trials(out_dir / "s_trials.csv");
@@ -140,7 +140,7 @@ TEST_F(CliSummary, UnreadableTrialIsReportedAndTheRestSummarised) {
 }
 
 TEST_F(CliSummary, BadManifestIsExitTwoWithPosition) {
-  const TempDir out_dir("cli_summary_out");
+  const ScratchDir out_dir("cli_summary_out");
   std::ofstream(out_dir / "bad.toml") << "[[blocks]]\nid = \"B1\"\nb1 = 0.05\nb2 = 0.03\nh = 0.2\ndensty = 2692\n";
   const CommandResult r = RunRockfit({"summary", (out_dir / "bad.toml").string()});
   EXPECT_EQ(r.exit_code, 2);

@@ -20,8 +20,10 @@ struct RecordingArgs {
   std::string format = "auto";
   std::optional<double> rate_hz;
   std::string mounting;
+  std::string columns;              // generic CSV column map (io/column_map.hpp)
+  std::string orientation = "auto";  // attitude files: auto, euler, quaternion, matrix
 };
-// PATH (positional, required) and --trial, --format, --rate, --mounting.
+// PATH (positional, required) and --trial, --format, --rate, --mounting, --columns, --orientation.
 void AddRecordingOptions(CLI::App& app, RecordingArgs& args);
 
 struct TrialInput {

@@ -1,12 +1,10 @@
-// Kinematics of the ZYX Euler angles of DESIGN §2 (R_WB = Rz(φz)·Ry(φy)·Rx(φx)), stored as (φz, φy, φx).
+// Kinematics of the ZYX Euler angles of DESIGN §2 (R_WB = Rz(φz)·Ry(φy)·Rx(φx), stored as (φz, φy, φx);
+// conversions between angles and rotations are in attitude.hpp): body rates from angle rates and back.
 #pragma once
 
 #include <Eigen/Core>
 
 namespace rockfit::io {
-
-// R_WB from (φz, φy, φx) [rad].
-Eigen::Matrix3d RotationFromEulerZyx(const Eigen::Vector3d& euler_zyx);
 
 // Body angular velocity w_B [rad/s] from the angles (φz, φy, φx) and their rates (φ̇z, φ̇y, φ̇x):
 //   ω_x = φ̇x − sin φy·φ̇z,  ω_y = cos φx·φ̇y + sin φx cos φy·φ̇z,  ω_z = −sin φx·φ̇y + cos φx cos φy·φ̇z.

@@ -12,9 +12,9 @@
 //   block = "B3"         # id of a block above
 //   position = "A"       # the block's position (the paper's A/B: upside down or not)
 //   files = "raw/B3-A-1" # a file, a file prefix or a directory, relative to the manifest
-//   format = "auto"      # optional: auto, ximu-gui, ximu3, generic-csv, rockfit-hdf5
+//   format = "auto"      # optional: auto, ximu-gui, ximu3, generic-csv (or csv), rockfit-hdf5
 //   rate = 256           # optional: sample rate [Hz] when the files do not say
-//   mounting = "x,-y,-z" # optional: sensor axes in the block frame (see the readers)
+//   mounting = "x,-y,-z" # optional: sensor axes on the block (mounting.hpp), identity by default
 //   notes = "…"          # optional
 //
 // Every mistake is a BadInput naming the manifest, line and column: syntax errors, unknown or misspelt keys
@@ -71,7 +71,7 @@ struct Manifest {
   const TrialSpec& FindTrial(const std::string& id) const;
 };
 
-// The formats a trial may name.
+// The format names listed in messages (load_options.hpp's ParseFormatName also takes "csv").
 const std::vector<std::string>& ManifestFormats();
 
 // Reads and checks a manifest file. Throws BadInput (unreadable file, syntax, schema).
