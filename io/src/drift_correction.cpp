@@ -5,6 +5,8 @@
 #include <optional>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/euler_kinematics.hpp"
 
@@ -127,9 +129,9 @@ DriftCorrection CorrectDrift(const Recording& recording, const DriftCorrectionOp
   std::stable_sort(result.impacts_y.begin(), result.impacts_y.end(),
                    [](const Anchor& a, const Anchor& b) { return a.t_s < b.t_s; });
   if (result.impacts_y.empty()) {
-    result.warnings.push_back("no impact found: no peak of |ω_y| with prominence ≥ " +
-                              std::to_string(options.impacts.min_prominence_rad_s) +
-                              " rad/s; the angles are left uncorrected");
+    result.warnings.push_back(fmt::format(
+        "no impact found: no peak of |ω_y| with prominence ≥ {:g} rad/s; the angles are left uncorrected",
+        options.impacts.min_prominence_rad_s));
     return result;
   }
 

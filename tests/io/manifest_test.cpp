@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "rockfit/core/errors.hpp"
+#include "scratch_dir.hpp"
 
 namespace rockfit::io {
 namespace {
@@ -181,12 +182,9 @@ TEST(Manifest, FindReportsKnownIds) {
 }
 
 TEST(Manifest, ReadsFromAFile) {
-  const auto dir = std::filesystem::temp_directory_path() / ("rockfit_manifest_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  std::ofstream(dir / "m.toml") << kGood;
-  const Manifest m = ReadManifest(dir / "m.toml");
+  const testing::ScratchDir dir("manifest");
+  const Manifest m = ReadManifest(dir.Write("m.toml", kGood));
   EXPECT_EQ(m.FindTrial("B3-A-1").files, dir / "raw/B3-A-1");
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -59,10 +59,10 @@ int RunCorrect(const CorrectCommand& cmd) {
 
   if (c.impacts_y.empty()) {
     if (cmd.json) PrintJson({{"trial", trial_id}, {"status", "no_impact"}, {"output", nullptr}, {"impacts", 0}});
-    std::cerr << "rockfit: no impact found in " << input.recording.source << " (no peak of |ω_y| with prominence ≥ "
-              << options.correction.impacts.min_prominence_rad_s
-              << " rad/s), so there is nothing to anchor the correction; nothing was written. Check the recording "
-                 "with `rockfit inspect`, or lower --min-prominence.\n";
+    std::cerr << fmt::format("rockfit: no impact found in {} (no peak of |ω_y| with prominence ≥ {:g} rad/s), so there "
+                             "is nothing to anchor the correction; nothing was written. Check the recording with "
+                             "`rockfit inspect`, or lower --min-prominence.\n",
+                             input.recording.source, options.correction.impacts.min_prominence_rad_s);
     return kExitNumerical;
   }
 
