@@ -1,7 +1,12 @@
 // The hybrid simulator of free 3D rocking (paper Sect. 4.1, Fig. 7; DESIGN §4).
 //
 // Modes: Edge(i,j) (1 DOF about a base edge), Vertex(k) (3 DOF about a base vertex), Rest, and the
-// terminal states Overturned and Failed. Impacts go through the maps of impact_maps.hpp.
+// terminal states Overturned and Failed. Impacts go through the maps of impact_maps.hpp. The decisions the
+// specification leaves open (events, Zeno, rest, phase 4, failures, output) are in core/README.md, "Simulator".
+//
+//   rockfit::core::SimulationOptions options;               // stop at phase 4, 256 Hz output
+//   const rockfit::core::Trajectory tr = rockfit::core::Simulate(block, params, options);
+//   if (tr.end_reason == rockfit::core::EndReason::kFailed) { /* tr.message says why */ }
 #pragma once
 
 #include <cstddef>
@@ -24,6 +29,8 @@ struct Mode {
   Contact contact;  // the edge or vertex in contact (empty for Rest, Overturned, Failed)
   // "V1V2", "V3", "rest", "overturned", "failed".
   std::string ToString() const;
+  bool operator==(const Mode& other) const { return kind == other.kind && contact == other.contact; }
+  bool operator!=(const Mode& other) const { return !(*this == other); }
 };
 
 enum class StopCondition { kPhase4, kRest, kOverturned, kTMax };
@@ -33,15 +40,18 @@ const char* ToString(EndReason reason);    // "phase4", "rest", "overturned", "t
 
 // Initial conditions and impact parameters of one run (constant during the run).
 struct ModelParameters {
-  double alpha_rad = 0.2;    // release tilt
+  double alpha_rad = 0.2;    // release tilt (> 0; beyond the critical angle the block overturns at t = 0)
   double lambda = 1.0;       // edge impacts (19)
   double tau_edge = 0.0;     // edge impacts [N·m·s]
   double lambda_lat = 0.0;   // facet impacts (21)
   double lambda_lon = 1.0;   // facet impacts (21)
   FacetTauRule facet_tau_rule = FacetTauRule::kNoSpin;  // kFixed means τ = 0 (the paper's Sect. 5)
+  // Throws InvalidArgument for a non-finite value or a tilt α ≤ 0 (α is checked only for a release run).
+  void Validate(bool check_alpha = true) const;
 };
 
-// Start from a given state instead of the release from rest.
+// Start from a given state instead of the release from rest. The contact is on the ground; for an edge,
+// w_B must be along the edge and the attitude must have the edge on the ground (Simulate throws otherwise).
 struct InitialState {
   Contact contact;                                      // vertex or edge in contact
   Eigen::Quaterniond q_WB = Eigen::Quaterniond::Identity();
@@ -50,18 +60,25 @@ struct InitialState {
 
 struct SimulationOptions {
   double rate_hz = 256.0;               // output samples at t_k = k / rate_hz after the release
-  std::vector<double> sample_times_s;   // if non-empty (ascending): sample at these times instead
+  // If non-empty (ascending): sample at these times instead. Times before 0 get the initial state (the block
+  // held before the release); times after the end of the run are not sampled (the trajectory is shorter).
+  std::vector<double> sample_times_s;
   StopCondition stop = StopCondition::kPhase4;
   double t_max_s = 20.0;
   int release_edge_first = 1;           // release edge V_iV_j (default V1V2, +x side lifted)
   int release_edge_second = 2;
-  double zeno_dt_s = 1e-4;              // edge-impact interval below which a Zeno switch happens
-  double rest_energy_height_m = 1e-9;   // kinetic energy below m·g·this ends in Rest
+  // Edge impacts on one edge whose interval shrinks below this switch to edge rocking; facet impacts
+  // whose interval shrinks below this end in Rest.
+  double zeno_dt_s = 1e-4;
+  double rest_energy_height_m = 1e-9;   // kinetic energy after a facet impact below m·g·this ends in Rest
   double gravity_m_s2 = kStandardGravity;
   double rel_tol = 1e-12;               // integrator relative tolerance
   double abs_tol = 1e-14;               // integrator absolute tolerance
   double event_time_tol_s = 1e-12;      // event location tolerance
-  double max_step_s = 2e-3;             // largest integrator step (bounds missed lift-off-and-land events)
+  // Largest integrator step. Events inside a step are found from the guards' slopes at both ends (a dip
+  // below zero and back is an interior minimum), which assumes at most one extremum of a vertex height per
+  // step: the bound keeps that true for rotation rates up to a few hundred rad/s.
+  double max_step_s = 1e-2;
   std::size_t max_impacts = 100000;     // a run with more impacts ends as Failed
   bool sample_attitude = true;          // false: fill only t, w_B and mode (faster, for fitting)
   std::optional<InitialState> initial_state;
@@ -71,15 +88,17 @@ struct SimulationOptions {
 
 struct ImpactRecord {
   double t_s = 0.0;
-  std::string kind;  // "facet", "edge", "zeno", "rest"
+  // "facet", "edge" (impact maps), "zeno" (switch to edge rocking after accumulating edge impacts) or "rest"
+  // (the block stops on its base; contact_after is empty, ΔE = −the kinetic energy left).
+  std::string kind;
   Contact contact_before;
   Contact contact_after;
   Eigen::Vector3d w_minus_B = Eigen::Vector3d::Zero();
   Eigen::Vector3d w_plus_B = Eigen::Vector3d::Zero();
   Eigen::Vector3d w_minus_W = Eigen::Vector3d::Zero();
   Eigen::Vector3d w_plus_W = Eigen::Vector3d::Zero();
-  double tau = 0.0;
-  double delta_energy_J = 0.0;
+  double tau = 0.0;             // [N·m·s], the τ the map used
+  double delta_energy_J = 0.0;  // (26): kinetic energy after minus before
   ImpactStatus status = ImpactStatus::kOk;
 };
 
@@ -89,9 +108,11 @@ struct SegmentDiagnostics {
   Mode mode;
   double min_normal_force_N = 0.0;   // negative: the no-lift-off assumption failed
   double max_friction_ratio = 0.0;   // largest |F_t| / F_n needed for no slip
-  double energy_drift_rel = 0.0;     // |E_end − E_begin| / E_begin
+  double energy_drift_rel = 0.0;     // |E_end − E_begin| / E_begin, E = kinetic + m g z_C (z_C above ground)
 };
 
+// Samples (t_s, w_B, q_WB, euler_zyx, mode: one entry per sample time up to t_end_s), the impact log, one
+// SegmentDiagnostics per continuous segment, and how the run ended.
 struct Trajectory {
   std::vector<double> t_s;
   std::vector<Eigen::Vector3d> w_B;
@@ -103,9 +124,13 @@ struct Trajectory {
   double t_end_s = 0.0;
   EndReason end_reason = EndReason::kFailed;
   std::string message;  // why a Failed run failed
-  double wall_time_s = 0.0;
+  double wall_time_s = 0.0;  // of Simulate() itself
+  long num_steps = 0;        // accepted integrator steps over all segments
+  long num_evaluations = 0;  // right-hand-side evaluations over all segments
 };
 
+// Throws InvalidArgument for invalid options, parameters or initial state; numerical trouble during the run
+// is EndReason::kFailed with a message, never an exception or a NaN.
 Trajectory Simulate(const Block& block, const ModelParameters& params, const SimulationOptions& options);
 
 }  // namespace rockfit::core

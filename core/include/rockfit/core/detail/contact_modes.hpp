@@ -1,0 +1,93 @@
+// The continuous modes of the hybrid simulator with their event guards (DESIGN §4). Internal to the
+// simulator; exposed for its tests.
+//
+// Every guard is a scalar that is positive while the mode is valid and crosses zero downwards at its event:
+//   Vertex(k): heights of V_{k+1} and V_{k−1} (touch-down: edge impact on V_kV_{k±1}), and the signed
+//              horizontal distances of the COM from the vertical planes through V_k along the two base edges
+//              at V_k (the COM leaves the base's footprint at the pivot: overturning).
+//   Edge(i,j): the tilt ψ (the base lands flat: facet impact) and the distance of the COM from the vertical
+//              plane of the edge (overturning).
+// The opposite vertex V_{k+2} needs no guard: its height is the sum of those of V_{k±1}.
+#pragma once
+
+#include <array>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "rockfit/core/block.hpp"
+#include "rockfit/core/edge_dynamics.hpp"
+#include "rockfit/core/event_location.hpp"
+#include "rockfit/core/simulator.hpp"
+#include "rockfit/core/vertex_dynamics.hpp"
+
+namespace rockfit::core::detail {
+
+class VertexMode {
+ public:
+  static constexpr int kStateSize = VertexDynamics::kStateSize;
+  static constexpr int kNumGuards = 4;
+  using State = VertexDynamics::State;
+  enum GuardIndex { kTouchNext = 0, kTouchPrevious = 1, kOverNext = 2, kOverPrevious = 3 };
+
+  VertexMode(const Block& block, int vertex, double gravity_m_s2);
+
+  void operator()(double t, const State& y, State& dydt) const { dynamics_(t, y, dydt); }
+  GuardValue Guard(int index, const State& y) const;
+  static bool IsTouchdown(int guard) { return guard == kTouchNext || guard == kTouchPrevious; }
+  // The vertex that lands when `guard` fires (a neighbour of the pivot).
+  int GuardVertex(int guard) const;
+
+  Eigen::Quaterniond Attitude(const State& y) const { return VertexDynamics::Attitude(y); }
+  Eigen::Vector3d AngularVelocity_B(const State& y) const { return VertexDynamics::AngularVelocity(y); }
+  double Energy(const State& y) const { return dynamics_.Energy(y); }
+  double KineticEnergy(const State& y) const { return dynamics_.KineticEnergy(y); }
+  ContactForce Force(const State& y, const State& dydt) const { return dynamics_.Force(y, dydt); }
+  // Renormalises the quaternion between steps.
+  static void Project(State* y);
+  Mode mode() const;
+  int vertex() const { return vertex_; }
+  const VertexDynamics& dynamics() const { return dynamics_; }
+
+ private:
+  int vertex_;
+  VertexDynamics dynamics_;
+  std::array<int, 2> neighbours_;            // V_{k+1}, V_{k−1}
+  std::array<Eigen::Vector3d, 2> p_KN_B_;    // from the pivot to each neighbour
+  std::array<Eigen::Vector3d, 2> edge_x_c_;  // σ·(p_KN × p_KC): overturn guard = up_B · this
+};
+
+class EdgeMode {
+ public:
+  static constexpr int kStateSize = EdgeDynamics::kStateSize;
+  static constexpr int kNumGuards = 2;
+  using State = EdgeDynamics::State;
+  enum GuardIndex { kFlat = 0, kOver = 1 };
+
+  // Rotation about the base edge V_iV_j (neighbours) with the given yaw of the flat attitude.
+  EdgeMode(const Block& block, int i, int j, const Eigen::Quaterniond& q_yaw, double gravity_m_s2);
+
+  void operator()(double t, const State& y, State& dydt) const { dynamics_(t, y, dydt); }
+  GuardValue Guard(int index, const State& y) const;
+  static bool IsTouchdown(int guard) { return guard == kFlat; }
+
+  Eigen::Quaterniond Attitude(const State& y) const { return q_yaw_ * dynamics_.Tilt(y[0]); }
+  Eigen::Vector3d AngularVelocity_B(const State& y) const { return dynamics_.AngularVelocity_B(y); }
+  double Energy(const State& y) const { return dynamics_.Energy(y); }
+  double KineticEnergy(const State& y) const { return dynamics_.KineticEnergy(y); }
+  ContactForce Force(const State& y, const State& dydt) const { return dynamics_.Force(y, dydt, q_yaw_); }
+  static void Project(State* /*y*/) {}
+  Mode mode() const;
+  int first() const { return first_; }
+  int second() const { return second_; }
+  const Eigen::Quaterniond& q_yaw() const { return q_yaw_; }
+  const EdgeDynamics& dynamics() const { return dynamics_; }
+
+ private:
+  int first_;
+  int second_;
+  Eigen::Quaterniond q_yaw_;
+  EdgeDynamics dynamics_;
+};
+
+}  // namespace rockfit::core::detail

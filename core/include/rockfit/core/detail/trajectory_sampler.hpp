@@ -1,0 +1,53 @@
+// Output sampling of the simulator: samples at t_k = k / rate (or at given times), each taken from the
+// integrator's dense output of the segment that contains it; a sample at an impact instant belongs to the
+// segment after the impact (the post-impact value). Internal to the simulator.
+#pragma once
+
+#include <cstddef>
+#include <limits>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "rockfit/core/attitude.hpp"
+#include "rockfit/core/simulator.hpp"
+
+namespace rockfit::core::detail {
+
+class TrajectorySampler {
+ public:
+  // Samples up to and including t_last_s. Reserves the output vectors.
+  TrajectorySampler(const SimulationOptions& options, double t_last_s, Trajectory* out);
+
+  bool pending() const { return pending_; }
+  double next_time() const { return next_time_; }
+
+  // Appends the sample at next_time() and moves on. `attitude()` returns q_WB; it is only called when the
+  // options ask for attitudes.
+  template <class AttitudeFn>
+  void Emit(const Mode& mode, const Eigen::Vector3d& w_B, const AttitudeFn& attitude) {
+    out_->t_s.push_back(next_time_);
+    out_->w_B.push_back(w_B);
+    out_->mode.push_back(mode);
+    if (with_attitude_) {
+      const Eigen::Quaterniond q_WB = CanonicalQuaternion(attitude());
+      out_->q_WB.push_back(q_WB);
+      out_->euler_zyx.push_back(EulerZyxFromQuaternion(q_WB));
+    }
+    Advance();
+  }
+
+ private:
+  void Advance();
+
+  Trajectory* out_;
+  const std::vector<double>* times_;  // explicit sample times, or null for k / rate
+  double rate_hz_;
+  double t_last_s_;
+  bool with_attitude_;
+  std::size_t index_ = 0;
+  double next_time_ = 0.0;
+  bool pending_ = false;
+};
+
+}  // namespace rockfit::core::detail

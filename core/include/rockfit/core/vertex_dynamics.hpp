@@ -1,0 +1,89 @@
+// Rotation of the block about a fixed point of its body (3 DOF): the Vertex(k) mode of DESIGN §4, and,
+// for tests and comparisons, rotation about any other body point P (e.g. the midpoint of a base edge).
+//
+// Newton–Euler about the fixed point P, in the body frame B:
+//   J_P ẇ_B + w_B × J_P w_B = p_PC_B × R_WBᵀ(−m g e_z),   J_P = Θ + m(|c|²I − c cᵀ), c = p_PC_B,
+//   q̇_WB = ½ q_WB ⊗ (0, w_B).
+// P stays on the ground plane z = 0 of W; heights below are measured from it.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "rockfit/core/block.hpp"
+
+namespace rockfit::core {
+
+// The force the ground exerts on the block at its contact, and its split into normal and tangential parts.
+struct ContactForce {
+  Eigen::Vector3d F_W = Eigen::Vector3d::Zero();  // world frame [N]
+  double normal_N = 0.0;                          // F·e_z (negative: the contact would have to pull)
+  double tangential_N = 0.0;                      // |F − (F·e_z) e_z|
+};
+
+class VertexDynamics {
+ public:
+  static constexpr int kStateSize = 7;
+  // (q_w, q_x, q_y, q_z, w_x, w_y, w_z): q_WB (scalar first, unit up to integration error) and w_B [rad/s].
+  using State = Eigen::Matrix<double, kStateSize, 1>;
+
+  // Rotation about base vertex V_k.
+  VertexDynamics(const Block& block, int vertex, double gravity_m_s2);
+  // Rotation about an arbitrary body point p_BP_B.
+  VertexDynamics(const Block& block, const Eigen::Vector3d& p_BP_B, double gravity_m_s2);
+
+  static State MakeState(const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B);
+  static Eigen::Quaterniond Attitude(const State& y);  // normalised q_WB
+  static Eigen::Vector3d AngularVelocity(const State& y) { return y.tail<3>(); }
+  // R_WBᵀ e_z: the world vertical in B, from a possibly non-unit quaternion (the third row of R(q) for
+  // q = (w, x, y, z), scaled by 2/|q|² so that a non-unit q still gives a rotation).
+  static Eigen::Vector3d UpInBody(const State& y) {
+    const double qw = y[0], qx = y[1], qy = y[2], qz = y[3];
+    const double s = 2.0 / (qw * qw + qx * qx + qy * qy + qz * qz);
+    return {s * (qx * qz - qw * qy), s * (qy * qz + qw * qx), 1.0 - s * (qx * qx + qy * qy)};
+  }
+
+  // The right-hand side of the equations above (time-invariant; t is ignored).
+  void operator()(double /*t*/, const State& y, State& dydt) const {
+    const Eigen::Vector3d up_B = UpInBody(y);
+    const Eigen::Vector3d w_B = y.tail<3>();
+    const Eigen::Vector3d torque_B = -weight_N_ * p_PC_B_.cross(up_B);
+    const Eigen::Vector3d w_dot_B = inertia_P_B_inverse_ * (torque_B - w_B.cross(inertia_P_B_ * w_B));
+    const double qw = y[0], qx = y[1], qy = y[2], qz = y[3];
+    dydt[0] = -0.5 * (qx * w_B.x() + qy * w_B.y() + qz * w_B.z());
+    dydt[1] = 0.5 * (qw * w_B.x() + qy * w_B.z() - qz * w_B.y());
+    dydt[2] = 0.5 * (qw * w_B.y() + qz * w_B.x() - qx * w_B.z());
+    dydt[3] = 0.5 * (qw * w_B.z() + qx * w_B.y() - qy * w_B.x());
+    dydt.tail<3>() = w_dot_B;
+  }
+
+  const Eigen::Vector3d& p_BP_B() const { return p_BP_B_; }
+  const Eigen::Vector3d& p_PC_B() const { return p_PC_B_; }
+  const Eigen::Matrix3d& inertia_P_B() const { return inertia_P_B_; }  // J_P
+
+  // Height of the COM above the ground plane through P.
+  double ComHeight(const State& y) const;
+  // Height of body point p_BX_B above the ground plane through P, and its rate of change.
+  double PointHeight(const State& y, const Eigen::Vector3d& p_BX_B) const;
+  double PointHeightRate(const State& y, const Eigen::Vector3d& p_BX_B) const;
+  // ½ w_Bᵀ J_P w_B + m g z_C [J].
+  double KineticEnergy(const State& y) const;
+  double Energy(const State& y) const;
+  // Angular momentum about P in W: R_WB J_P w_B.
+  Eigen::Vector3d AngularMomentum_W(const State& y) const;
+  // F = m a_C + m g e_z with a_C = ẇ × c + w × (w × c); `dydt` is the right-hand side at y.
+  ContactForce Force(const State& y, const State& dydt) const;
+
+ private:
+  double mass_kg_;
+  double weight_N_;
+  Eigen::Vector3d p_BP_B_;
+  Eigen::Vector3d p_PC_B_;
+  Eigen::Matrix3d inertia_P_B_;
+  Eigen::Matrix3d inertia_P_B_inverse_;
+};
+
+// J_P = Θ + m(|c|²I − c cᵀ): inertia of the block about body point p_BP_B, in B (parallel-axis theorem).
+Eigen::Matrix3d InertiaAboutPoint(const Block& block, const Eigen::Vector3d& p_BP_B);
+
+}  // namespace rockfit::core

@@ -1,0 +1,123 @@
+// Names, options and parameter validation of the simulator (simulator.hpp).
+#include <cmath>
+#include <string>
+
+#include "rockfit/core/errors.hpp"
+#include "rockfit/core/simulator.hpp"
+
+namespace rockfit::core {
+namespace {
+
+void RequireFinite(double value, const char* name) {
+  if (!std::isfinite(value)) throw InvalidArgument(std::string(name) + " must be a finite number, got " + std::to_string(value));
+}
+
+void RequirePositive(double value, const char* name, const char* unit) {
+  if (!std::isfinite(value) || value <= 0.0) {
+    throw InvalidArgument(std::string(name) + " must be a positive finite number" + unit + ", got " + std::to_string(value));
+  }
+}
+
+}  // namespace
+
+std::string Mode::ToString() const {
+  switch (kind) {
+    case ModeKind::kEdge:
+      return "V" + std::to_string(contact.first) + "V" + std::to_string(contact.second);
+    case ModeKind::kVertex:
+      return "V" + std::to_string(contact.first);
+    case ModeKind::kRest:
+      return "rest";
+    case ModeKind::kOverturned:
+      return "overturned";
+    case ModeKind::kFailed:
+      return "failed";
+  }
+  return "failed";
+}
+
+const char* ToString(StopCondition stop) {
+  switch (stop) {
+    case StopCondition::kPhase4: return "phase4";
+    case StopCondition::kRest: return "rest";
+    case StopCondition::kOverturned: return "overturned";
+    case StopCondition::kTMax: return "t_max";
+  }
+  return "phase4";
+}
+
+const char* ToString(EndReason reason) {
+  switch (reason) {
+    case EndReason::kPhase4: return "phase4";
+    case EndReason::kRest: return "rest";
+    case EndReason::kOverturned: return "overturned";
+    case EndReason::kTMax: return "t_max";
+    case EndReason::kFailed: return "failed";
+  }
+  return "failed";
+}
+
+void ModelParameters::Validate(bool check_alpha) const {
+  if (check_alpha) RequirePositive(alpha_rad, "the release tilt alpha", " of radians");
+  RequireFinite(lambda, "the edge-impact parameter lambda");
+  RequireFinite(tau_edge, "the edge-impact parameter tau_edge");
+  RequireFinite(lambda_lat, "the facet-impact parameter lambda_lat");
+  RequireFinite(lambda_lon, "the facet-impact parameter lambda_lon");
+}
+
+void SimulationOptions::Validate() const {
+  // More samples than this would exhaust memory long before the simulation finishes.
+  constexpr double kMaxSamples = 1e8;
+  if (sample_times_s.empty()) {
+    RequirePositive(rate_hz, "the sample rate", " of Hz");
+  } else {
+    for (std::size_t k = 0; k < sample_times_s.size(); ++k) {
+      RequireFinite(sample_times_s[k], "every sample time");
+      if (k > 0 && sample_times_s[k] < sample_times_s[k - 1]) {
+        throw InvalidArgument("sample times must be in ascending order; time " + std::to_string(k) + " (" +
+                              std::to_string(sample_times_s[k]) + " s) comes before the previous one");
+      }
+    }
+  }
+  RequirePositive(t_max_s, "t_max", " of seconds");
+  if (sample_times_s.empty() && t_max_s * rate_hz > kMaxSamples) {
+    throw InvalidArgument("t_max × rate asks for more than 1e8 samples; lower --t-max or --rate");
+  }
+  if (!Block::AreNeighbours(release_edge_first, release_edge_second) || release_edge_first < 1 ||
+      release_edge_first > 4 || release_edge_second < 1 || release_edge_second > 4) {
+    throw InvalidArgument("the release edge must be two neighbouring base vertices such as 1,2 or 3,4, got " +
+                          std::to_string(release_edge_first) + "," + std::to_string(release_edge_second));
+  }
+  if (!std::isfinite(zeno_dt_s) || zeno_dt_s < 0.0) {
+    throw InvalidArgument("zeno_dt must be a non-negative number of seconds, got " + std::to_string(zeno_dt_s));
+  }
+  if (!std::isfinite(rest_energy_height_m) || rest_energy_height_m < 0.0) {
+    throw InvalidArgument("rest_energy_height must be a non-negative number of metres, got " +
+                          std::to_string(rest_energy_height_m));
+  }
+  RequirePositive(gravity_m_s2, "gravity", " of m/s²");
+  // Tolerances: below 1e-15 the requested accuracy is beyond double precision.
+  if (!std::isfinite(rel_tol) || rel_tol < 1e-15 || rel_tol >= 1.0) {
+    throw InvalidArgument("rel_tol must lie in [1e-15, 1), got " + std::to_string(rel_tol));
+  }
+  RequirePositive(abs_tol, "abs_tol", "");
+  if (!std::isfinite(event_time_tol_s) || event_time_tol_s < 1e-15 || event_time_tol_s > 1e-3) {
+    throw InvalidArgument("event_time_tol must lie in [1e-15, 1e-3] s, got " + std::to_string(event_time_tol_s));
+  }
+  RequirePositive(max_step_s, "max_step", " of seconds");
+  if (max_impacts == 0) throw InvalidArgument("max_impacts must be at least 1");
+  if (initial_state) {
+    const InitialState& s = *initial_state;
+    if (!(s.contact.is_vertex() || s.contact.is_edge()) || s.contact.first < 1 || s.contact.first > 4 ||
+        s.contact.second < 0 || s.contact.second > 4 ||
+        (s.contact.is_edge() && !Block::AreNeighbours(s.contact.first, s.contact.second))) {
+      throw InvalidArgument("the initial contact must be a base vertex V1..V4 or a base edge such as V1V2");
+    }
+    if (!s.q_WB.coeffs().allFinite() || std::abs(s.q_WB.norm() - 1.0) > 1e-6) {
+      throw InvalidArgument("the initial attitude q_WB must be a finite unit quaternion");
+    }
+    if (!s.w_B.allFinite()) throw InvalidArgument("the initial angular velocity w_B must be finite");
+  }
+}
+
+}  // namespace rockfit::core

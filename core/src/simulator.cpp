@@ -1,0 +1,515 @@
+// The hybrid simulator of free 3D rocking (DESIGN §4, paper Sect. 4.1 and Fig. 7): continuous segments in
+// the Edge and Vertex modes (detail/contact_modes.hpp, detail/hybrid_segment.hpp) joined by the impact maps
+// of impact_maps.hpp, with Zeno handling, rest and overturning, and the stop conditions of Sect. 5.1.
+#include "rockfit/core/simulator.hpp"
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <utility>
+
+#include "rockfit/core/detail/contact_modes.hpp"
+#include "rockfit/core/detail/hybrid_segment.hpp"
+#include "rockfit/core/detail/trajectory_sampler.hpp"
+#include "rockfit/core/errors.hpp"
+
+namespace rockfit::core {
+namespace {
+
+using detail::EdgeMode;
+using detail::RunSegment;
+using detail::SegmentEnd;
+using detail::SegmentSettings;
+using detail::VertexMode;
+
+// Impacts closer in time than this many event tolerances happen at one instant.
+constexpr double kSameInstantFactor = 10.0;
+// More impacts than this at one instant: the contact sequence does not resolve (the run fails).
+constexpr int kMaxImpactsAtOneInstant = 16;
+// Edge impacts on one edge closer than this many event tolerances switch to edge rocking even when their
+// intervals are not (yet) shrinking: the event locator cannot separate them any further.
+constexpr double kZenoFloorFactor = 100.0;
+// Kinetic energy after an impact above this multiple of m·g·|p_VC| (the work to lift the COM by its whole
+// distance from a base vertex) means impacts keep adding energy (e.g. λ < 0): the motion blows up.
+constexpr double kBlowUpEnergyFactor = 1e3;
+// A given initial state may have its base vertices below the ground by at most this [m].
+constexpr double kInitialPenetrationTol_m = 1e-9;
+// A given edge-contact state may have an angular velocity off the edge axis of at most this [rad/s].
+constexpr double kInitialOffAxisTol_rad_s = 1e-9;
+
+std::string FormatTime(double t_s) {
+  std::ostringstream out;
+  out.precision(12);
+  out << t_s << " s";
+  return out.str();
+}
+
+// The state a run ends in, for the samples at its end time.
+struct EndState {
+  Mode mode;
+  Eigen::Quaterniond q_WB = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d w_B = Eigen::Vector3d::Zero();
+};
+
+struct VertexStart {
+  int vertex = 1;
+  VertexDynamics::State y = VertexDynamics::State::Zero();
+  std::array<bool, VertexMode::kNumGuards> on_surface{};
+};
+
+struct EdgeStart {
+  Contact edge;
+  Eigen::Quaterniond q_yaw = Eigen::Quaterniond::Identity();
+  EdgeDynamics::State y = EdgeDynamics::State::Zero();
+};
+
+// The last few impact times of one kind, to recognise geometrically shrinking intervals.
+class ImpactSequence {
+ public:
+  void Clear() { count_ = 0; }
+  // Adds an impact on `contact`; a different contact starts a new sequence.
+  void Add(double t_s, const Contact& contact) {
+    if (count_ > 0 && contact != contact_) count_ = 0;
+    contact_ = contact;
+    times_[2] = times_[1];
+    times_[1] = times_[0];
+    times_[0] = t_s;
+    ++count_;
+  }
+  // The last interval is shorter than `dt` and shorter than the one before.
+  bool Shrinking(double dt) const {
+    if (count_ < 3) return false;
+    const double last = times_[0] - times_[1];
+    const double before = times_[1] - times_[2];
+    return last < dt && last < before;
+  }
+  bool LastIntervalBelow(double dt) const { return count_ >= 2 && times_[0] - times_[1] < dt; }
+
+ private:
+  std::array<double, 3> times_{};
+  Contact contact_;
+  int count_ = 0;
+};
+
+class HybridRun {
+ public:
+  HybridRun(const Block& block, const ModelParameters& params, const SimulationOptions& options, Trajectory* out)
+      : block_(block),
+        params_(params),
+        options_(options),
+        gravity_(options.gravity_m_s2),
+        out_(out),
+        sampler_(options, options.t_max_s, out) {
+    settings_.integrator.rel_tol = options.rel_tol;
+    settings_.integrator.abs_tol = options.abs_tol;
+    settings_.integrator.max_step = options.max_step_s;
+    settings_.event_time_tol_s = options.event_time_tol_s;
+    settings_.t_limit_s = options.t_max_s;
+    release_ = {Block::WrapVertex(options.release_edge_first), Block::WrapVertex(options.release_edge_second)};
+  }
+
+  void Run();
+
+ private:
+  enum class Next { kVertex, kEdge, kStopped };
+
+  Next RunVertex();
+  Next RunEdge();
+  Next AfterEdgeImpact(const VertexMode& mode, double t, const VertexDynamics::State& y, int landing);
+  Next AfterFacetImpact(const EdgeMode& mode, double t, const EdgeDynamics::State& y);
+  // Continues in `contact` (from an impact map) with attitude q_WB and w_B, a rotation about vertex `pivot`
+  // (V_a of the map; for edge contact ω is projected onto the edge as a rotation about it). Vertices that were
+  // on the ground before the impact (−1: all) start their guards at zero.
+  Next Continue(const Contact& contact, double t, const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B,
+                int pivot, int vertex_off_ground_first, int vertex_off_ground_second);
+  Next Rest(double t, const Eigen::Quaterniond& q_flat, const ImpactRecord& trigger);
+  Next Stop(EndReason reason, double t, const EndState& state, std::string message = {});
+  // Books an impact; false (and the run has failed) when impacts no longer advance time or the kinetic
+  // energy after it, `kinetic_after_J`, shows that impacts keep adding energy without bound.
+  bool BookImpact(const ImpactRecord& record, const EndState& state, double kinetic_after_J);
+  bool IsReleaseVertex(int k) const { return k == release_.first || k == release_.second; }
+  EdgeStart MakeEdgeStart(const Contact& edge, const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B,
+                          const Eigen::Vector3d& p_BQ_B) const;
+  template <class Outcome>
+  void AddCounts(const Outcome& outcome) {
+    out_->num_steps += outcome.num_steps;
+    out_->num_evaluations += outcome.num_evaluations;
+    step_hint_s_ = outcome.next_step_hint_s;
+  }
+
+  const Block& block_;
+  const ModelParameters& params_;
+  const SimulationOptions& options_;
+  double gravity_;
+  Trajectory* out_;
+  detail::TrajectorySampler sampler_;
+  SegmentSettings settings_;
+  RootPolisher polisher_;
+  std::pair<int, int> release_;
+  double step_hint_s_ = 0.0;
+  bool facet_seen_ = false;
+  ImpactSequence edge_impacts_;
+  ImpactSequence facet_impacts_;
+  double last_impact_t_ = -1.0;
+  int impacts_at_instant_ = 0;
+  VertexStart vertex_start_;
+  EdgeStart edge_start_;
+  double t_start_ = 0.0;
+};
+
+EdgeStart HybridRun::MakeEdgeStart(const Contact& edge, const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B,
+                                   const Eigen::Vector3d& p_BQ_B) const {
+  EdgeStart start;
+  start.edge = edge;
+  const EdgeDynamics dynamics(block_, edge.first, edge.second, gravity_);
+  double psi = 0.0;
+  dynamics.Decompose(q_WB, &start.q_yaw, &psi);
+  // An edge on the ground with the base above it: ψ ≥ 0 up to the round-off of the event location.
+  start.y = EdgeDynamics::State(std::max(psi, 0.0), dynamics.ProjectAngularVelocity(w_B, p_BQ_B));
+  return start;
+}
+
+void HybridRun::Run() {
+  Next next = Next::kEdge;
+  if (options_.initial_state) {
+    const InitialState& s = *options_.initial_state;
+    if (s.contact.is_vertex()) {
+      vertex_start_.vertex = s.contact.first;
+      vertex_start_.y = VertexDynamics::MakeState(s.q_WB.normalized(), s.w_B);
+      const VertexDynamics dynamics(block_, s.contact.first, gravity_);
+      for (int k = 1; k <= 4; ++k) {
+        if (dynamics.PointHeight(vertex_start_.y, block_.p_BV_B(k)) < -kInitialPenetrationTol_m) {
+          throw InvalidArgument("the initial state pivots on V" + std::to_string(s.contact.first) + " but V" +
+                                std::to_string(k) + " is below the ground");
+        }
+      }
+      next = Next::kVertex;
+    } else {
+      const Contact edge = Contact::Edge(s.contact.first, s.contact.second);
+      const EdgeDynamics dynamics(block_, edge.first, edge.second, gravity_);
+      const Eigen::Vector3d off_axis = s.w_B - s.w_B.dot(dynamics.axis_B()) * dynamics.axis_B();
+      if (off_axis.norm() > kInitialOffAxisTol_rad_s) {
+        throw InvalidArgument("with edge contact " + edge.ToString() + " the initial w_B must be along the edge axis");
+      }
+      edge_start_ = MakeEdgeStart(edge, s.q_WB.normalized(), s.w_B, dynamics.p_BP_B());
+      const Eigen::Quaterniond back = edge_start_.q_yaw * dynamics.Tilt(edge_start_.y[0]);
+      if (back.angularDistance(s.q_WB.normalized()) > kInitialPenetrationTol_m) {
+        throw InvalidArgument("the initial attitude does not have edge " + edge.ToString() + " on the ground");
+      }
+      next = Next::kEdge;
+    }
+  } else {
+    // Release from rest on the release edge, tilted by α (DESIGN §2).
+    edge_start_.edge = Contact::Edge(release_.first, release_.second);
+    edge_start_.q_yaw = Eigen::Quaterniond::Identity();
+    edge_start_.y = EdgeDynamics::State(params_.alpha_rad, 0.0);
+  }
+  while (next != Next::kStopped) {
+    next = next == Next::kVertex ? RunVertex() : RunEdge();
+  }
+}
+
+HybridRun::Next HybridRun::RunVertex() {
+  const VertexMode mode(block_, vertex_start_.vertex, gravity_);
+  out_->segments.emplace_back();
+  const auto outcome = RunSegment(mode, t_start_, vertex_start_.y, vertex_start_.on_surface, settings_, step_hint_s_,
+                                  polisher_, sampler_, &out_->segments.back());
+  AddCounts(outcome);
+  const EndState end{mode.mode(), mode.Attitude(outcome.y), mode.AngularVelocity_B(outcome.y)};
+  switch (outcome.end) {
+    case SegmentEnd::kTimeLimit:
+      return Stop(EndReason::kTMax, outcome.t_s, end);
+    case SegmentEnd::kStepFailure:
+      return Stop(EndReason::kFailed, outcome.t_s, end,
+                  "the integrator could not continue rocking about V" + std::to_string(mode.vertex()) + " at t = " +
+                      FormatTime(outcome.t_s) + " (step size below round-off)");
+    case SegmentEnd::kEvent:
+      break;
+  }
+  if (!VertexMode::IsTouchdown(outcome.guard)) return Stop(EndReason::kOverturned, outcome.t_s, end);
+  return AfterEdgeImpact(mode, outcome.t_s, outcome.y, mode.GuardVertex(outcome.guard));
+}
+
+HybridRun::Next HybridRun::RunEdge() {
+  const EdgeMode mode(block_, edge_start_.edge.first, edge_start_.edge.second, edge_start_.q_yaw, gravity_);
+  out_->segments.emplace_back();
+  const std::array<bool, EdgeMode::kNumGuards> on_surface{};
+  const auto outcome = RunSegment(mode, t_start_, edge_start_.y, on_surface, settings_, step_hint_s_, polisher_,
+                                  sampler_, &out_->segments.back());
+  AddCounts(outcome);
+  const EndState end{mode.mode(), mode.Attitude(outcome.y), mode.AngularVelocity_B(outcome.y)};
+  switch (outcome.end) {
+    case SegmentEnd::kTimeLimit:
+      return Stop(EndReason::kTMax, outcome.t_s, end);
+    case SegmentEnd::kStepFailure:
+      return Stop(EndReason::kFailed, outcome.t_s, end,
+                  "the integrator could not continue rocking about edge " + mode.mode().ToString() + " at t = " +
+                      FormatTime(outcome.t_s) + " (step size below round-off)");
+    case SegmentEnd::kEvent:
+      break;
+  }
+  if (!EdgeMode::IsTouchdown(outcome.guard)) return Stop(EndReason::kOverturned, outcome.t_s, end);
+  return AfterFacetImpact(mode, outcome.t_s, outcome.y);
+}
+
+bool HybridRun::BookImpact(const ImpactRecord& record, const EndState& state, double kinetic_after_J) {
+  out_->impacts.push_back(record);
+  const double blow_up_J =
+      kBlowUpEnergyFactor * block_.mass() * gravity_ * (block_.p_BC_B() - block_.p_BV_B(1)).norm();
+  if (!(kinetic_after_J < blow_up_J)) {
+    Stop(EndReason::kFailed, record.t_s, state,
+         "the kinetic energy grows without bound (" + std::to_string(kinetic_after_J) + " J after the " + record.kind +
+             " impact at t = " + FormatTime(record.t_s) +
+             "): the impact parameters add energy at impacts (see delta_energy in the impact log)");
+    return false;
+  }
+  const double same_instant = kSameInstantFactor * options_.event_time_tol_s;
+  impacts_at_instant_ = (record.t_s - last_impact_t_ <= same_instant) ? impacts_at_instant_ + 1 : 1;
+  last_impact_t_ = record.t_s;
+  if (impacts_at_instant_ > kMaxImpactsAtOneInstant) {
+    Stop(EndReason::kFailed, record.t_s, state,
+         "more than " + std::to_string(kMaxImpactsAtOneInstant) + " impacts at t = " + FormatTime(record.t_s) +
+             " without the contact resolving (last " + record.kind + " impact " + record.contact_before.ToString() +
+             " → " + record.contact_after.ToString() + ")");
+    return false;
+  }
+  if (out_->impacts.size() >= options_.max_impacts) {
+    Stop(EndReason::kFailed, record.t_s, state,
+         "more than max_impacts = " + std::to_string(options_.max_impacts) + " impacts by t = " + FormatTime(record.t_s));
+    return false;
+  }
+  return true;
+}
+
+HybridRun::Next HybridRun::AfterEdgeImpact(const VertexMode& mode, double t, const VertexDynamics::State& y,
+                                           int landing) {
+  const int pivot = mode.vertex();
+  const Eigen::Quaterniond q_WB = mode.Attitude(y);
+  const Eigen::Matrix3d R_WB = q_WB.toRotationMatrix();
+  const Eigen::Vector3d w_minus_B = mode.AngularVelocity_B(y);
+  const Eigen::Vector3d w_minus_W = R_WB * w_minus_B;
+  const ImpactOutcome map = EdgeImpact(block_, R_WB, pivot, landing, w_minus_W, {params_.lambda, params_.tau_edge});
+
+  ImpactRecord record;
+  record.t_s = t;
+  record.kind = "edge";
+  record.contact_before = Contact::Vertex(pivot);
+  record.contact_after = map.contact_after;
+  record.w_minus_B = w_minus_B;
+  record.w_minus_W = w_minus_W;
+  record.w_plus_W = map.w_plus_W;
+  record.w_plus_B = R_WB.transpose() * map.w_plus_W;
+  record.tau = map.tau;
+  record.delta_energy_J = map.delta_energy_J;
+  record.status = map.status;
+  const EndState before{mode.mode(), q_WB, w_minus_B};
+  if (map.status != ImpactStatus::kOk || !map.w_plus_W.allFinite()) {
+    out_->impacts.push_back(record);
+    return Stop(EndReason::kFailed, t, before,
+                std::string("the edge impact on V") + std::to_string(pivot) + "V" + std::to_string(landing) +
+                    " at t = " + FormatTime(t) + " has no solution (map status " + ToString(map.status) + ")");
+  }
+  if (map.contact_after.is_edge()) {
+    // Edge contact V_aV_b after the impact: the block turns about the edge, with the angular momentum about the
+    // edge line of the map's ω⁺ (a rotation about V_a). The log shows that motion and its energy change.
+    const EdgeStart start = MakeEdgeStart(map.contact_after, q_WB, record.w_plus_B, block_.p_BV_B(landing));
+    const EdgeDynamics about_edge(block_, map.contact_after.first, map.contact_after.second, gravity_);
+    record.w_plus_B = about_edge.AngularVelocity_B(start.y);
+    record.w_plus_W = R_WB * record.w_plus_B;
+    record.delta_energy_J = about_edge.KineticEnergy(start.y) - map.energy_before_J;
+  }
+  Mode after_mode;
+  after_mode.kind = map.contact_after.is_edge() ? ModeKind::kEdge : ModeKind::kVertex;
+  after_mode.contact = map.contact_after;
+  const EndState after{after_mode, q_WB, record.w_plus_B};
+  const VertexDynamics about_landing(block_, landing, gravity_);
+  const double kinetic_after = about_landing.KineticEnergy(VertexDynamics::MakeState(q_WB, record.w_plus_B));
+  if (!BookImpact(record, after, kinetic_after)) return Next::kStopped;
+  facet_impacts_.Clear();
+  edge_impacts_.Add(t, Contact::Edge(pivot, landing));
+
+  if (facet_seen_ && IsReleaseVertex(landing) && options_.stop == StopCondition::kPhase4) {
+    return Stop(EndReason::kPhase4, t, after);
+  }
+  const bool zeno = map.contact_after.is_vertex() &&
+                    (edge_impacts_.Shrinking(options_.zeno_dt_s) ||
+                     edge_impacts_.LastIntervalBelow(kZenoFloorFactor * options_.event_time_tol_s));
+  if (zeno) {
+    // Accumulating edge impacts on one edge: continue as rocking about that edge with the angular momentum
+    // about the edge line of the post-impact rotation about V_a (DESIGN §4).
+    const Contact edge = Contact::Edge(pivot, landing);
+    const int a = map.contact_after.first;
+    edge_start_ = MakeEdgeStart(edge, q_WB, record.w_plus_B, block_.p_BV_B(a));
+    const EdgeMode next_mode(block_, edge.first, edge.second, edge_start_.q_yaw, gravity_);
+    ImpactRecord switch_record;
+    switch_record.t_s = t;
+    switch_record.kind = "zeno";
+    switch_record.contact_before = map.contact_after;
+    switch_record.contact_after = edge;
+    switch_record.w_minus_B = record.w_plus_B;
+    switch_record.w_minus_W = record.w_plus_W;
+    switch_record.w_plus_B = next_mode.AngularVelocity_B(edge_start_.y);
+    switch_record.w_plus_W = R_WB * switch_record.w_plus_B;
+    const VertexDynamics about_a(block_, a, gravity_);
+    switch_record.delta_energy_J = next_mode.KineticEnergy(edge_start_.y) -
+                                   about_a.KineticEnergy(VertexDynamics::MakeState(q_WB, record.w_plus_B));
+    out_->impacts.push_back(switch_record);
+    edge_impacts_.Clear();
+    t_start_ = t;
+    return Next::kEdge;
+  }
+  return Continue(map.contact_after, t, q_WB, record.w_plus_B, landing, pivot, 0);
+}
+
+HybridRun::Next HybridRun::AfterFacetImpact(const EdgeMode& mode, double t, const EdgeDynamics::State& y) {
+  // The base is flat at the impact: the attitude is the yaw alone.
+  const Eigen::Quaterniond q_flat = mode.q_yaw();
+  const Eigen::Matrix3d R_WB = q_flat.toRotationMatrix();
+  const Eigen::Vector3d w_minus_B = mode.AngularVelocity_B(y);
+  FacetImpactParameters facet;
+  facet.lambda_lat = params_.lambda_lat;
+  facet.lambda_lon = params_.lambda_lon;
+  facet.tau_rule = params_.facet_tau_rule;
+  facet.tau = 0.0;
+  // The pre-impact edge is V_{b−1}V_b in the cyclic order of Contact::Edge.
+  const int pivot_b = mode.second();
+  const ImpactOutcome map = FacetImpact(block_, pivot_b, w_minus_B, facet);
+
+  ImpactRecord record;
+  record.t_s = t;
+  record.kind = "facet";
+  record.contact_before = mode.mode().contact;
+  record.contact_after = map.contact_after;
+  record.w_minus_B = w_minus_B;
+  record.w_minus_W = R_WB * w_minus_B;
+  record.w_plus_B = map.w_plus_B;
+  record.w_plus_W = R_WB * map.w_plus_B;
+  record.tau = map.tau;
+  record.delta_energy_J = map.delta_energy_J;
+  record.status = map.status;
+  const EndState before{mode.mode(), q_flat, w_minus_B};
+  if (map.status != ImpactStatus::kOk || !map.w_plus_B.allFinite()) {
+    out_->impacts.push_back(record);
+    return Stop(EndReason::kFailed, t, before,
+                "the facet impact after rocking about " + mode.mode().ToString() + " at t = " + FormatTime(t) +
+                    " has no solution (map status " + ToString(map.status) + ")");
+  }
+  Mode after_mode;
+  after_mode.kind = map.contact_after.is_edge()     ? ModeKind::kEdge
+                    : map.contact_after.is_vertex() ? ModeKind::kVertex
+                                                    : ModeKind::kRest;  // ω⁺ = 0: the base stays down
+  after_mode.contact = map.contact_after;
+  const EndState after{after_mode, q_flat, map.w_plus_B};
+  // Kinetic energy after the impact (zero when the base stays down).
+  double kinetic_after = 0.0;
+  if (map.contact_after.is_vertex()) {
+    const VertexDynamics about_a(block_, map.contact_after.first, gravity_);
+    kinetic_after = about_a.KineticEnergy(VertexDynamics::MakeState(q_flat, map.w_plus_B));
+  } else if (map.contact_after.is_edge()) {
+    const EdgeDynamics about_edge(block_, map.contact_after.first, map.contact_after.second, gravity_);
+    const double rate = about_edge.ProjectAngularVelocity(map.w_plus_B, about_edge.p_BP_B());
+    kinetic_after = about_edge.KineticEnergy(EdgeDynamics::State(0.0, rate));
+  }
+  if (!BookImpact(record, after, kinetic_after)) return Next::kStopped;
+  edge_impacts_.Clear();
+  facet_impacts_.Add(t, Contact{});
+
+  // The vertices that land are those off the pre-impact edge.
+  bool release_side_lands = false;
+  for (int k = 1; k <= 4; ++k) {
+    if (k != mode.first() && k != mode.second() && IsReleaseVertex(k)) release_side_lands = true;
+  }
+  if (facet_seen_ && release_side_lands && options_.stop == StopCondition::kPhase4) {
+    return Stop(EndReason::kPhase4, t, after);
+  }
+  facet_seen_ = true;
+
+  // Rest: too little kinetic energy to lift the COM by rest_energy_height, or facet impacts accumulating.
+  const double rest_energy = block_.mass() * gravity_ * options_.rest_energy_height_m;
+  const bool stays_down = !map.contact_after.is_vertex() && !map.contact_after.is_edge();
+  if (stays_down || kinetic_after < rest_energy || facet_impacts_.Shrinking(options_.zeno_dt_s)) {
+    return Rest(t, q_flat, record);
+  }
+  // All base vertices are on the ground at a facet impact.
+  return Continue(map.contact_after, t, q_flat, map.w_plus_B, map.contact_after.first, -1, -1);
+}
+
+HybridRun::Next HybridRun::Continue(const Contact& contact, double t, const Eigen::Quaterniond& q_WB,
+                                    const Eigen::Vector3d& w_B, int pivot, int vertex_off_ground_first,
+                                    int vertex_off_ground_second) {
+  t_start_ = t;
+  if (contact.is_vertex()) {
+    vertex_start_.vertex = contact.first;
+    vertex_start_.y = VertexDynamics::MakeState(q_WB, w_B);
+    // Guards of vertices that were on the ground just before start at zero (−1: all of them).
+    const VertexMode next_mode(block_, contact.first, gravity_);
+    for (int g = 0; g < VertexMode::kNumGuards; ++g) {
+      bool on_ground = false;
+      if (VertexMode::IsTouchdown(g)) {
+        const int k = next_mode.GuardVertex(g);
+        on_ground = vertex_off_ground_first == -1 || k == vertex_off_ground_first || k == vertex_off_ground_second;
+      }
+      vertex_start_.on_surface[g] = on_ground;
+    }
+    return Next::kVertex;
+  }
+  // Edge contact after the impact: rotation about the edge, as the map's rotation about V_a projected onto it.
+  edge_start_ = MakeEdgeStart(contact, q_WB, w_B, block_.p_BV_B(pivot));
+  return Next::kEdge;
+}
+
+HybridRun::Next HybridRun::Rest(double t, const Eigen::Quaterniond& q_flat, const ImpactRecord& trigger) {
+  ImpactRecord rest;
+  rest.t_s = t;
+  rest.kind = "rest";
+  rest.contact_before = trigger.contact_after;
+  rest.contact_after = Contact{};
+  rest.w_minus_B = trigger.w_plus_B;
+  rest.w_minus_W = trigger.w_plus_W;
+  double kinetic = 0.0;
+  if (trigger.contact_after.is_vertex()) {
+    const VertexDynamics about_a(block_, trigger.contact_after.first, gravity_);
+    kinetic = about_a.KineticEnergy(VertexDynamics::MakeState(q_flat, trigger.w_plus_B));
+  } else if (trigger.contact_after.is_edge()) {
+    const EdgeDynamics about_edge(block_, trigger.contact_after.first, trigger.contact_after.second, gravity_);
+    const double rate = about_edge.ProjectAngularVelocity(trigger.w_plus_B, about_edge.p_BP_B());
+    kinetic = about_edge.KineticEnergy(EdgeDynamics::State(0.0, rate));
+  }
+  rest.delta_energy_J = -kinetic;
+  out_->impacts.push_back(rest);
+  Mode rest_mode;
+  rest_mode.kind = ModeKind::kRest;
+  const EndState at_rest{rest_mode, q_flat, Eigen::Vector3d::Zero()};
+  if (options_.stop == StopCondition::kTMax) {
+    // The block stays at rest: fill the samples up to t_max.
+    return Stop(EndReason::kTMax, options_.t_max_s, at_rest);
+  }
+  return Stop(EndReason::kRest, t, at_rest);
+}
+
+HybridRun::Next HybridRun::Stop(EndReason reason, double t, const EndState& state, std::string message) {
+  while (sampler_.pending() && sampler_.next_time() <= t) {
+    sampler_.Emit(state.mode, state.w_B, [&state] { return state.q_WB; });
+  }
+  out_->t_end_s = t;
+  out_->end_reason = reason;
+  out_->message = std::move(message);
+  return Next::kStopped;
+}
+
+}  // namespace
+
+Trajectory Simulate(const Block& block, const ModelParameters& params, const SimulationOptions& options) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  options.Validate();
+  params.Validate(!options.initial_state.has_value());
+  Trajectory trajectory;
+  HybridRun run(block, params, options, &trajectory);
+  run.Run();
+  trajectory.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return trajectory;
+}
+
+}  // namespace rockfit::core

@@ -1,0 +1,49 @@
+#include "rockfit/core/detail/trajectory_sampler.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rockfit::core::detail {
+
+TrajectorySampler::TrajectorySampler(const SimulationOptions& options, double t_last_s, Trajectory* out)
+    : out_(out),
+      times_(options.sample_times_s.empty() ? nullptr : &options.sample_times_s),
+      rate_hz_(options.rate_hz),
+      t_last_s_(t_last_s),
+      with_attitude_(options.sample_attitude) {
+  std::size_t expected = 0;
+  if (times_ != nullptr) {
+    expected = times_->size();
+  } else {
+    expected = static_cast<std::size_t>(std::floor(t_last_s_ * rate_hz_)) + 1;
+  }
+  out_->t_s.reserve(expected);
+  out_->w_B.reserve(expected);
+  out_->mode.reserve(expected);
+  if (with_attitude_) {
+    out_->q_WB.reserve(expected);
+    out_->euler_zyx.reserve(expected);
+  }
+  index_ = 0;
+  if (times_ != nullptr) {
+    pending_ = !times_->empty() && (*times_)[0] <= t_last_s_;
+    next_time_ = pending_ ? (*times_)[0] : 0.0;
+  } else {
+    pending_ = true;
+    next_time_ = 0.0;
+  }
+}
+
+void TrajectorySampler::Advance() {
+  ++index_;
+  if (times_ != nullptr) {
+    pending_ = index_ < times_->size() && (*times_)[index_] <= t_last_s_;
+    if (pending_) next_time_ = (*times_)[index_];
+  } else {
+    // t_k = k / rate, computed from k (no accumulated round-off).
+    next_time_ = static_cast<double>(index_) / rate_hz_;
+    pending_ = next_time_ <= t_last_s_;
+  }
+}
+
+}  // namespace rockfit::core::detail

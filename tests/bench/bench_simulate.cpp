@@ -1,0 +1,76 @@
+// Speed of the hybrid simulator (DESIGN §11: the paper's Fig. 14 window — about 1 s of motion, 25 impacts,
+// 256 Hz output — in at most 0.5 ms on one core). Simulations per second are reported as items/s; run with
+// --benchmark_repetitions=N --benchmark_report_aggregates_only=true for the median.
+#include <cmath>
+
+#include <benchmark/benchmark.h>
+
+#include "rockfit/core/simulator.hpp"
+
+namespace {
+
+using rockfit::core::Block;
+using rockfit::core::ModelParameters;
+using rockfit::core::SimulationOptions;
+using rockfit::core::Trajectory;
+
+// Granite 2692 kg/m³, h = 0.20 m, b1 = h·tan 0.245, b2 = 0.04 m (the paper's block 4).
+const Block& Fig14Block() {
+  static const Block block = Block::FromDensity(0.2 * std::tan(0.245), 0.04, 0.2, 2692.0);
+  return block;
+}
+
+ModelParameters Fig14Parameters() {
+  ModelParameters p;
+  p.alpha_rad = 0.197;
+  p.lambda = 2.185;
+  p.lambda_lat = -2.032;
+  p.lambda_lon = 0.197;
+  return p;
+}
+
+// Within the bounds (25), (27); about 180 edge impacts end in a Zeno switch before phase 4.
+ModelParameters WithinBoundsParameters() {
+  ModelParameters p;
+  p.alpha_rad = 0.2;
+  p.lambda = 0.6;
+  p.lambda_lat = 0.3;
+  p.lambda_lon = 0.7;
+  return p;
+}
+
+void Run(benchmark::State& state, const ModelParameters& params, bool sample_attitude) {
+  SimulationOptions options;  // stop at phase 4, 256 Hz
+  options.sample_attitude = sample_attitude;
+  std::size_t impacts = 0;
+  std::size_t samples = 0;
+  double t_end = 0.0;
+  for (auto _ : state) {
+    const Trajectory tr = rockfit::core::Simulate(Fig14Block(), params, options);
+    benchmark::DoNotOptimize(tr.w_B.data());
+    if (tr.end_reason != rockfit::core::EndReason::kPhase4) state.SkipWithError("the run did not reach phase 4");
+    impacts = tr.impacts.size();
+    samples = tr.t_s.size();
+    t_end = tr.t_end_s;
+  }
+  state.SetItemsProcessed(state.iterations());  // simulations
+  state.counters["impacts"] = static_cast<double>(impacts);
+  state.counters["samples"] = static_cast<double>(samples);
+  state.counters["t_end_s"] = t_end;
+}
+
+void BM_SimulateFig14(benchmark::State& state) { Run(state, Fig14Parameters(), true); }
+BENCHMARK(BM_SimulateFig14)->Unit(benchmark::kMicrosecond);
+
+void BM_SimulateFig14_NoAttitude(benchmark::State& state) { Run(state, Fig14Parameters(), false); }
+BENCHMARK(BM_SimulateFig14_NoAttitude)->Unit(benchmark::kMicrosecond);
+
+void BM_SimulateWithinBoundsZeno(benchmark::State& state) { Run(state, WithinBoundsParameters(), true); }
+BENCHMARK(BM_SimulateWithinBoundsZeno)->Unit(benchmark::kMicrosecond);
+
+void BM_SimulateWithinBoundsZeno_NoAttitude(benchmark::State& state) { Run(state, WithinBoundsParameters(), false); }
+BENCHMARK(BM_SimulateWithinBoundsZeno_NoAttitude)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

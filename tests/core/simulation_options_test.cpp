@@ -1,0 +1,98 @@
+// Names, option validation and parameter validation of the simulator.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "rockfit/core/errors.hpp"
+#include "rockfit/core/simulator.hpp"
+
+namespace rockfit::core {
+namespace {
+
+TEST(SimulationNames, ModesStopConditionsAndEndReasonsHaveTheirDocumentedNames) {
+  Mode m;
+  m.kind = ModeKind::kEdge;
+  m.contact = Contact::Edge(3, 4);
+  EXPECT_EQ(m.ToString(), "V3V4");
+  m.kind = ModeKind::kVertex;
+  m.contact = Contact::Vertex(2);
+  EXPECT_EQ(m.ToString(), "V2");
+  m.kind = ModeKind::kRest;
+  EXPECT_EQ(m.ToString(), "rest");
+  EXPECT_STREQ(ToString(StopCondition::kPhase4), "phase4");
+  EXPECT_STREQ(ToString(StopCondition::kTMax), "t_max");
+  EXPECT_STREQ(ToString(EndReason::kOverturned), "overturned");
+  EXPECT_STREQ(ToString(EndReason::kFailed), "failed");
+}
+
+// Expects Validate() to throw InvalidArgument whose message contains `word`.
+void ExpectRejected(const SimulationOptions& options, const std::string& word) {
+  try {
+    options.Validate();
+    ADD_FAILURE() << "accepted, expected a complaint about " << word;
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+  }
+}
+
+TEST(SimulationOptions, RejectsEachBadFieldNamingIt) {
+  EXPECT_NO_THROW(SimulationOptions{}.Validate());
+  SimulationOptions o;
+  o.rate_hz = -1.0;
+  ExpectRejected(o, "rate");
+  o = {};
+  o.t_max_s = std::nan("");
+  ExpectRejected(o, "t_max");
+  o = {};
+  o.t_max_s = 1e6;
+  o.rate_hz = 1e6;
+  ExpectRejected(o, "samples");
+  o = {};
+  o.release_edge_first = 1;
+  o.release_edge_second = 3;
+  ExpectRejected(o, "release edge");
+  o = {};
+  o.zeno_dt_s = -1.0;
+  ExpectRejected(o, "zeno_dt");
+  o = {};
+  o.rest_energy_height_m = -1.0;
+  ExpectRejected(o, "rest_energy_height");
+  o = {};
+  o.rel_tol = 1e-20;
+  ExpectRejected(o, "rel_tol");
+  o = {};
+  o.event_time_tol_s = 0.0;
+  ExpectRejected(o, "event_time_tol");
+  o = {};
+  o.max_step_s = 0.0;
+  ExpectRejected(o, "max_step");
+  o = {};
+  o.max_impacts = 0;
+  ExpectRejected(o, "max_impacts");
+  o = {};
+  o.sample_times_s = {0.0, std::nan("")};
+  ExpectRejected(o, "sample time");
+  o = {};
+  InitialState s;
+  s.contact = Contact{};
+  o.initial_state = s;
+  ExpectRejected(o, "initial contact");
+  s.contact = Contact::Vertex(1);
+  s.q_WB = Eigen::Quaterniond(2.0, 0.0, 0.0, 0.0);
+  o.initial_state = s;
+  ExpectRejected(o, "unit quaternion");
+}
+
+TEST(ModelParameters, RejectsNonFiniteValuesAndANonPositiveTilt) {
+  EXPECT_NO_THROW(ModelParameters{}.Validate());
+  ModelParameters p;
+  p.alpha_rad = 0.0;
+  EXPECT_THROW(p.Validate(), InvalidArgument);
+  EXPECT_NO_THROW(p.Validate(false));  // a run from a given state has no release tilt
+  p = {};
+  p.lambda_lon = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(p.Validate(), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace rockfit::core
