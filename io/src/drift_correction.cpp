@@ -7,8 +7,11 @@
 
 #include <fmt/format.h>
 
+#include <fmt/format.h>
+
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/euler_kinematics.hpp"
+#include "rockfit/io/impact_consistency.hpp"
 
 namespace rockfit::io {
 
@@ -30,6 +33,7 @@ const char* ToString(AnchorSource source) {
 
 void DriftCorrectionOptions::Validate() const {
   impacts.Validate();
+  consistency.Validate();
   if (!std::isfinite(anchor_fit_half_window_s) || anchor_fit_half_window_s <= 0.0) {
     throw InvalidArgument("anchor_fit_half_window_s must be a positive number of seconds");
   }
@@ -89,6 +93,25 @@ Anchor MakeAnchor(const Recording& recording, const AngleAndRate& signal, const 
   return anchor;
 }
 
+// The candidates at which the angle is zero (impact_consistency.hpp); all of them when the check is off.
+std::vector<Anchor> KeepZeroInstants(const Recording& recording, const AngleAndRate& signal,
+                                     const std::vector<Anchor>& candidates, const DriftCorrectionOptions& options,
+                                     std::size_t* rejected) {
+  *rejected = 0;
+  if (!options.check_zero_instants) return candidates;
+  std::vector<double> times, strength;
+  for (const Anchor& a : candidates) {
+    times.push_back(a.t_s);
+    strength.push_back(a.peak_rad_s);
+  }
+  std::vector<Anchor> kept;
+  for (std::size_t j : ConsistentZeroInstants(recording.t_s, signal.rate_rad_s, times, strength, options.consistency)) {
+    kept.push_back(candidates[j]);
+  }
+  *rejected = candidates.size() - kept.size();
+  return kept;
+}
+
 void RequireUsable(const Recording& recording) {
   if (!recording.has_euler()) {
     throw BadInput("recording '" + recording.source +
@@ -123,11 +146,20 @@ DriftCorrection CorrectDrift(const Recording& recording, const DriftCorrectionOp
   const AngleAndRate phi_y = ExtractAngle(recording, 1);
   const AngleAndRate phi_x = ExtractAngle(recording, 2);
 
+  // φ_y: the peaks of |ω_y|, located inside their sample interval, then only those where φ_y is zero.
+  std::vector<Anchor> candidates_y;
   for (const Peak& peak : DetectRatePeaks(recording, 1, options.impacts)) {
-    result.impacts_y.push_back(MakeAnchor(recording, phi_y, peak, AnchorSource::kOmegaY, options, fit_options));
+    candidates_y.push_back(MakeAnchor(recording, phi_y, peak, AnchorSource::kOmegaY, options, fit_options));
   }
-  std::stable_sort(result.impacts_y.begin(), result.impacts_y.end(),
+  std::stable_sort(candidates_y.begin(), candidates_y.end(),
                    [](const Anchor& a, const Anchor& b) { return a.t_s < b.t_s; });
+  result.impacts_y = KeepZeroInstants(recording, phi_y, candidates_y, options, &result.rejected_y);
+  if (result.rejected_y > 0) {
+    result.warnings.push_back(fmt::format(
+        "{} peak(s) of |ω_y| were not taken as impacts: the pitch integrated from the gyro does not come back to "
+        "zero there (a tilted block rolling onto a neighbouring vertex)",
+        result.rejected_y));
+  }
   if (result.impacts_y.empty()) {
     result.warnings.push_back(fmt::format(
         "no impact found: no peak of |ω_y| with prominence ≥ {:g} rad/s; the angles are left uncorrected",
@@ -135,43 +167,38 @@ DriftCorrection CorrectDrift(const Recording& recording, const DriftCorrectionOp
     return result;
   }
 
-  // φ_x: at the |ω_x| peaks and at the |ω_y| impacts. An |ω_x| peak within the minimum separation of an |ω_y|
-  // impact is the same impact seen on both axes: it takes the impact time found from φ_y, which the larger
-  // in-plane rate jump locates better. The other |ω_x| peaks (edge impacts) are located on φ_x itself.
+  // φ_x: at the peaks of |ω_x| (landings on a base edge along y or on the whole base: φ_x = 0). A peak within a
+  // sample of an impact of φ_y is a landing on the whole base seen on both axes: it takes that impact's time,
+  // which the larger in-plane rate jump locates better. Where ω_x has no significant peak between two impacts
+  // of φ_y (planar rocking), those impacts anchor φ_x too.
   const std::vector<Peak> x_peaks = DetectRatePeaks(recording, 0, options.impacts);
-  const std::size_t separation_samples =
-      std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(options.impacts.min_separation_s * recording.rate_hz)));
-  const auto near = [&](std::size_t a, std::size_t b) { return (a > b ? a - b : b - a) < separation_samples; };
   const bool subsample = options.anchor_method == AnchorMethod::kSubsample;
-  std::vector<bool> impact_used(result.impacts_y.size(), false);
+  const auto distance = [](std::size_t a, std::size_t b) { return a > b ? a - b : b - a; };
+  std::vector<Anchor> candidates_x;
   for (const Peak& peak : x_peaks) {
-    std::optional<std::size_t> same;
-    for (std::size_t i = 0; i < result.impacts_y.size(); ++i) {
-      if (near(peak.index, result.impacts_y[i].index) && !impact_used[i]) {
-        same = i;
-        break;
-      }
-    }
     std::optional<double> known_t;
-    if (same) {
-      impact_used[*same] = true;
-      if (subsample) known_t = result.impacts_y[*same].t_s;
+    for (const Anchor& impact : result.impacts_y) {
+      if (distance(peak.index, impact.index) <= 1 && subsample) known_t = impact.t_s;
     }
-    result.anchors_x.push_back(
-        MakeAnchor(recording, phi_x, peak, AnchorSource::kOmegaX, options, fit_options, known_t));
+    candidates_x.push_back(MakeAnchor(recording, phi_x, peak, AnchorSource::kOmegaX, options, fit_options, known_t));
   }
-  result.omega_x_peaks = result.anchors_x.size();
   for (std::size_t i = 0; i < result.impacts_y.size(); ++i) {
-    if (impact_used[i]) continue;
     const Anchor& impact = result.impacts_y[i];
-    const bool covered = std::any_of(x_peaks.begin(), x_peaks.end(), [&](const Peak& p) { return near(p.index, impact.index); });
-    if (covered) continue;
+    const std::size_t from = i > 0 ? result.impacts_y[i - 1].index : 0;
+    const std::size_t to = i + 1 < result.impacts_y.size() ? result.impacts_y[i + 1].index : recording.size();
+    const bool planar = std::none_of(x_peaks.begin(), x_peaks.end(), [&](const Peak& p) {
+      return p.index > from && p.index < to;
+    });
+    if (!planar) continue;
     Peak at_impact{impact.index, impact.peak_rad_s, 0.0};
-    result.anchors_x.push_back(MakeAnchor(recording, phi_x, at_impact, AnchorSource::kOmegaY, options, fit_options,
-                                          subsample ? std::optional<double>(impact.t_s) : std::nullopt));
+    candidates_x.push_back(MakeAnchor(recording, phi_x, at_impact, AnchorSource::kOmegaY, options, fit_options,
+                                      subsample ? std::optional<double>(impact.t_s) : std::nullopt));
   }
-  std::sort(result.anchors_x.begin(), result.anchors_x.end(),
-            [](const Anchor& a, const Anchor& b) { return a.t_s < b.t_s; });
+  std::stable_sort(candidates_x.begin(), candidates_x.end(),
+                   [](const Anchor& a, const Anchor& b) { return a.t_s < b.t_s; });
+  result.anchors_x = KeepZeroInstants(recording, phi_x, candidates_x, options, &result.rejected_x);
+  result.omega_x_peaks = static_cast<std::size_t>(std::count_if(
+      result.anchors_x.begin(), result.anchors_x.end(), [](const Anchor& a) { return a.source == AnchorSource::kOmegaX; }));
 
   for (std::size_t i = 0; i < recording.size(); ++i) {
     const double t = recording.t_s[i];

@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include "rockfit/core/block.hpp"
+#include "rockfit/core/simulator.hpp"
 #include "rockfit/io/euler_kinematics.hpp"
 #include "rockfit/io/recording.hpp"
 
@@ -213,6 +214,32 @@ inline MeasuredRecording Measure3d(const PlanarRocking& motion, double rate_hz, 
     w.push_back(io::BodyRatesFromEulerZyx(angles, rates));
   }
   return MakeRecording(motion.t_s, euler, w, rate_hz, motion.impact_times_s, motion.omega_minus_rad_s, model);
+}
+
+// A run of the hybrid simulator (core/simulator.hpp) as the IMU would record it: released at `release_s` of the
+// recording, sampled at k/rate_hz for `duration_s`, with the IMU errors of `model` (ringing after every impact,
+// scaled by its |ω⁻_y|). `trajectory` receives the simulator's output with its own time (0 at the release).
+inline MeasuredRecording MeasureSimulated(const core::Block& block, const core::ModelParameters& params,
+                                          double release_s, double duration_s, double rate_hz,
+                                          const MeasurementModel& model, core::Trajectory* trajectory = nullptr) {
+  core::SimulationOptions options;
+  options.stop = core::StopCondition::kTMax;
+  options.t_max_s = duration_s - release_s;
+  const auto samples = static_cast<std::size_t>(std::floor(duration_s * rate_hz)) + 1;
+  std::vector<double> t;
+  for (std::size_t k = 0; k < samples; ++k) {
+    t.push_back(static_cast<double>(k) / rate_hz);
+    options.sample_times_s.push_back(t.back() - release_s);  // before 0: held at the release attitude
+  }
+  const core::Trajectory run = core::Simulate(block, params, options);
+  t.resize(run.t_s.size());
+  std::vector<double> impact_times, omega_minus;
+  for (const core::ImpactRecord& impact : run.impacts) {
+    impact_times.push_back(impact.t_s + release_s);
+    omega_minus.push_back(impact.w_minus_B.y());
+  }
+  if (trajectory) *trajectory = run;
+  return MakeRecording(t, run.euler_zyx, run.w_B, rate_hz, impact_times, omega_minus, model);
 }
 
 // Realistic IMU errors: 1 °/s linear drift of φy (the "large drift" of the paper's Fig. 5e), 0.3 °/s of φx,

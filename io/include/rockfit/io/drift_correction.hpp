@@ -1,10 +1,12 @@
 // Drift correction of the Euler angles as in the paper's Sect. 3.1 (DESIGN §6).
 //
-// At every impact of the base detected as a peak of |ω_y| the block stands on a full b1-edge or facet, so the
-// true φ_y is zero there; the measured φ_y at those instants is the drift. The correction subtracts the
-// piecewise-linear interpolant through these values (constant before the first and after the last impact).
-// φ_x is corrected the same way at the peaks of |ω_x| (edge impacts, where the base edge along y lies flat),
-// and at the |ω_y| impacts that have no |ω_x| peak nearby (where φ_x = 0 as well). φ_z is left as measured.
+// At every impact of the base detected as a peak of |ω_y| the block lands on a base edge along x or on the
+// whole base, so the true φ_y is zero there; the measured φ_y at those instants is the drift. The correction
+// subtracts the piecewise-linear interpolant through these values (constant before the first and after the last
+// impact). Peaks of |ω_y| where the gyro shows that φ_y is not zero (impact_consistency.hpp) are left out.
+// φ_x is corrected the same way at the peaks of |ω_x| (landings on a base edge along y or on the whole base),
+// and, where ω_x has no significant peak between two impacts (planar rocking), at the |ω_y| impacts.
+// φ_z is left as measured.
 #pragma once
 
 #include <cstddef>
@@ -14,6 +16,7 @@
 #include <Eigen/Core>
 
 #include "rockfit/io/impact_anchor.hpp"
+#include "rockfit/io/impact_consistency.hpp"
 #include "rockfit/io/impact_detection.hpp"
 #include "rockfit/io/recording.hpp"
 
@@ -35,6 +38,9 @@ struct DriftCorrectionOptions {
   double anchor_fit_half_window_s = 0.02;
   // A rate jump smaller than this does not locate an impact inside its sample interval.
   double min_rate_jump_rad_s = 0.01;
+  // Keep only the peaks where the angle integrated from the gyro is back at zero (impact_consistency.hpp).
+  bool check_zero_instants = true;
+  ImpactConsistencyOptions consistency;
   void Validate() const;
 };
 
@@ -57,6 +63,8 @@ struct DriftCorrection {
   std::vector<Anchor> impacts_y;  // anchors of φ_y: the detected impacts, in time order
   std::vector<Anchor> anchors_x;  // anchors of φ_x, in time order (source says which gyro axis)
   std::size_t omega_x_peaks = 0;  // how many anchors of φ_x came from |ω_x| peaks
+  std::size_t rejected_y = 0;     // peaks of |ω_y| where φ_y is not zero (not impacts)
+  std::size_t rejected_x = 0;     // candidate anchors of φ_x where φ_x is not zero
   std::vector<std::string> warnings;
   double first_impact_s() const { return impacts_y.empty() ? 0.0 : impacts_y.front().t_s; }
   double last_impact_s() const { return impacts_y.empty() ? 0.0 : impacts_y.back().t_s; }
