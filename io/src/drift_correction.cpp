@@ -40,6 +40,9 @@ void DriftCorrectionOptions::Validate() const {
   if (!std::isfinite(min_rate_jump_rad_s) || min_rate_jump_rad_s < 0.0) {
     throw InvalidArgument("min_rate_jump_rad_s must be a finite number ≥ 0 [rad/s]");
   }
+  if (!std::isfinite(same_impact_s) || same_impact_s < 0.0 || same_impact_s >= impacts.min_separation_s) {
+    throw InvalidArgument("same_impact_s must be ≥ 0 and shorter than the impacts' min_separation_s [s]");
+  }
 }
 
 double DriftAt(const std::vector<Anchor>& anchors, double t_s) {
@@ -167,18 +170,20 @@ DriftCorrection CorrectDrift(const Recording& recording, const DriftCorrectionOp
     return result;
   }
 
-  // φ_x: at the peaks of |ω_x| (landings on a base edge along y or on the whole base: φ_x = 0). A peak within a
-  // sample of an impact of φ_y is a landing on the whole base seen on both axes: it takes that impact's time,
-  // which the larger in-plane rate jump locates better. Where ω_x has no significant peak between two impacts
+  // φ_x: at the peaks of |ω_x| (landings on a base edge along y or on the whole base: φ_x = 0). A peak within
+  // `same_impact_s` of an impact of φ_y is a landing on the whole base seen on both axes (ringing can delay the
+  // peak of the smaller rate by a sample or two): it takes that impact's time, which the larger in-plane rate
+  // jump locates better. Where ω_x has no significant peak between two impacts
   // of φ_y (planar rocking), those impacts anchor φ_x too.
   const std::vector<Peak> x_peaks = DetectRatePeaks(recording, 0, options.impacts);
   const bool subsample = options.anchor_method == AnchorMethod::kSubsample;
   const auto distance = [](std::size_t a, std::size_t b) { return a > b ? a - b : b - a; };
+  const auto same_impact_samples = static_cast<std::size_t>(std::lround(options.same_impact_s * recording.rate_hz));
   std::vector<Anchor> candidates_x;
   for (const Peak& peak : x_peaks) {
     std::optional<double> known_t;
     for (const Anchor& impact : result.impacts_y) {
-      if (distance(peak.index, impact.index) <= 1 && subsample) known_t = impact.t_s;
+      if (distance(peak.index, impact.index) <= same_impact_samples && subsample) known_t = impact.t_s;
     }
     candidates_x.push_back(MakeAnchor(recording, phi_x, peak, AnchorSource::kOmegaX, options, fit_options, known_t));
   }

@@ -150,3 +150,35 @@ TEST_F(CliSummary, BadManifestIsExitTwoWithPosition) {
 
 }  // namespace
 }  // namespace rockfit::testing
+
+namespace rockfit::testing {
+namespace {
+
+// The bundled sample campaign (data-samples/, made by `rockfit synth` with an independent measurement model:
+// strong gyro ringing, gyro bias, drift and random walk of the attitude) against the truth files written with it.
+TEST(CliSummaryOfTheSampleCampaign, OpmfMatchesTheSimulatedAnglesOfEveryTrial) {
+  const auto samples = SourceDir() / "data-samples";
+  if (!std::filesystem::exists(samples / "manifest.toml")) GTEST_SKIP() << "no data-samples/manifest.toml";
+  const CommandResult r = RunRockfit({"summary", (samples / "manifest.toml").string(), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  ASSERT_EQ(json["trials"].size(), 16u);
+  EXPECT_EQ(json["groups"].size(), 8u);
+  for (const auto& t : json["trials"]) {
+    const std::string id = t["trial_id"];
+    ASSERT_EQ(t["status"], "ok") << id << ": " << t["message"];
+    const auto truth = nlohmann::json::parse(ReadWholeFile(samples / "recordings" / (id + "_truth.json")));
+    const double expected = truth["summary"]["opmf"].get<double>();
+    const double measured = t["opmf"].get<double>();
+    // 5 % where the lateral motion stands out of the noise (Φ ≥ 0.015: max|φx| ≥ 3e-3 rad), else 0.005 absolute
+    // (the angle random walk between anchors, opmf_test).
+    if (expected >= 0.015) {
+      EXPECT_NEAR(measured / expected, 1.0, 0.05) << id;
+    } else {
+      EXPECT_NEAR(measured, expected, 0.005) << id;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rockfit::testing

@@ -38,6 +38,10 @@ struct DriftCorrectionOptions {
   double anchor_fit_half_window_s = 0.02;
   // A rate jump smaller than this does not locate an impact inside its sample interval.
   double min_rate_jump_rad_s = 0.01;
+  // An |ω_x| peak this close to an impact of φ_y is the same landing on the whole base. 0.008 s = 2 samples at
+  // 256 Hz: ringing after an impact can delay the peak of the smaller rate that much; two distinct landings that
+  // close (a vertex wobbling between two others) cannot be told apart at that rate anyway.
+  double same_impact_s = 0.008;
   // Keep only the peaks where the angle integrated from the gyro is back at zero (impact_consistency.hpp).
   bool check_zero_instants = true;
   ImpactConsistencyOptions consistency;
