@@ -275,9 +275,10 @@ int RunPlotSummary(const SummaryPlotCommand& cmd) {
   body += fmt::format("set grid lc rgb '#dddddd'\nset xlabel 'b_2 [cm]'\nset xrange [{}:{}]\nset key top right font ',10' "
                       "box opaque\nset offsets 0, 0, graph 0.05, graph 0.05\n",
                       100.0 * b2_min - 0.08 * b2_span_cm, 100.0 * b2_max + 0.08 * b2_span_cm);
-  body += "set title '(a) out-of-plane motion factor'\nset ylabel 'OPMF Φ = max|φ_x| / max|φ_y|'\n";
+  // Φ ≥ 0 by definition: its axis starts at 0.
+  body += "set title '(a) out-of-plane motion factor'\nset ylabel 'OPMF Φ = max|φ_x| / max|φ_y|'\nset yrange [0:*]\n";
   body += "plot " + join(opmf_plots) + "\n";
-  body += "set title '(b) angular velocity reduction factor'\nset ylabel 'AVRF r'\n";
+  body += "set title '(b) angular velocity reduction factor'\nset ylabel 'AVRF r'\nset yrange [*:*]\n";
   body += "plot " + join(avrf_plots) + "\n";
   body += "unset multiplot\n";
   figure.Render(body, cmd.picture.output, cmd.picture.width_px, cmd.picture.height_px);
