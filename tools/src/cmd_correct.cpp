@@ -124,9 +124,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   auto cmd = std::make_shared<CorrectCommand>();
   CLI::App* app = root.add_subcommand(
       "correct",
-      "Drift correction of the Euler angles as in the paper (Sect. 3.1): the impacts are the peaks of |ω_y|; φ_y "
-      "(φ_x at the peaks of |ω_x| and the remaining impacts) minus the piecewise-linear line through its values at "
-      "the impacts. Writes raw and corrected angles and the impacts as rockfit HDF5 or CSV.");
+      "Drift correction of the Euler angles as in the paper (Sect. 3.1): the impacts are the peaks of |ω_y| where the "
+      "gyro shows φ_y = 0; φ_y minus the piecewise-linear line through its values at the impacts; φ_x likewise at the "
+      "peaks of |ω_x|, and at the impacts where ω_x has none (planar rocking). Writes raw and corrected angles and "
+      "the impacts as rockfit HDF5 or CSV.");
   AddRecordingOptions(*app, cmd->input);
   app->add_option("-o,--output", cmd->output,
                   "OUT.h5 (adds or replaces /trials/<id>, keeps everything else in the file) or OUT.csv (one row per "
