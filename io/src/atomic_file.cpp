@@ -40,8 +40,9 @@ void WriteFileAtomically(const std::filesystem::path& path, const std::function<
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) {
-      throw OutputError(fmt::format("cannot create a file in {}: {}; check that the directory exists and is writable",
-                                    dir.string(), std::strerror(errno)));
+      throw OutputError(fmt::format("cannot write {}: cannot create a file in {}: {}; check that the directory exists "
+                                    "and is writable",
+                                    path.string(), dir.string(), std::strerror(errno)));
     }
     try {
       write(out);

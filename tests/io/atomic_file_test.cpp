@@ -2,6 +2,7 @@
 
 #include <fstream>
 #include <sstream>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -48,6 +49,12 @@ TEST(AtomicFile, AFailureWhileWritingLeavesThePreviousFileAndNoTemporary) {
 TEST(AtomicFile, MissingDirectoryOrDirectoryTargetIsAnOutputError) {
   const testing::ScratchDir dir("atomic");
   EXPECT_THROW(WriteFileAtomically(dir / "no/such/dir/a.csv", [](std::ostream&) {}), OutputError);
+  try {
+    WriteFileAtomically(dir / "no/such/dir/a.csv", [](std::ostream&) {});
+  } catch (const OutputError& e) {
+    // The message names the file the user asked for, not only the directory of the temporary file.
+    EXPECT_NE(std::string(e.what()).find((dir / "no/such/dir/a.csv").string()), std::string::npos) << e.what();
+  }
   EXPECT_THROW(WriteFileAtomically(dir.path(), [](std::ostream&) {}), OutputError);
 }
 

@@ -9,6 +9,7 @@
 #include "cli_common.hpp"
 #include "command_registry.hpp"
 #include "metrics_options.hpp"
+#include "output_kind.hpp"
 #include "recording_input.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/campaign_hdf5.hpp"
@@ -26,16 +27,6 @@ struct CorrectCommand {
   std::string trial_name;
   bool json = false;
 };
-
-enum class OutputKind { kHdf5, kCsv };
-
-OutputKind OutputKindFor(const std::string& output) {
-  std::string ext = std::filesystem::path(output).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".h5" || ext == ".hdf5") return OutputKind::kHdf5;
-  if (ext == ".csv") return OutputKind::kCsv;
-  throw InvalidArgument(fmt::format("-o {}: the output must end in .h5/.hdf5 (rockfit HDF5) or .csv", output));
-}
 
 // OUT.csv → OUT_impacts.csv
 std::filesystem::path ImpactsPathFor(const std::filesystem::path& output) {

@@ -13,6 +13,7 @@
 #include "command_registry.hpp"
 #include "gnuplot.hpp"
 #include "metrics_options.hpp"
+#include "output_kind.hpp"
 #include "plot_command.hpp"
 #include "recording_input.hpp"
 #include "rockfit/core/errors.hpp"
@@ -198,9 +199,7 @@ struct SummaryPlotCommand {
 };
 
 io::CampaignSummary SummaryFor(const SummaryPlotCommand& cmd) {
-  std::string ext = std::filesystem::path(cmd.path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".toml") {
+  if (LowerCaseExtension(cmd.path) == ".toml") {
     const CampaignRun run = RunCampaign(io::ReadManifest(cmd.path), MakeMetricsOptions(cmd.metrics));
     for (const io::TrialRow& t : run.summary.trials) {
       if (t.status == "load_error") std::cerr << "rockfit: warning: trial " << t.trial_id << " left out: " << t.message << "\n";

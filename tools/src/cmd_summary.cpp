@@ -1,7 +1,6 @@
 // `rockfit summary MANIFEST`: OPMF and AVRF of every trial of a campaign and their statistics per block and
 // position (paper Sect. 3.2, Fig. 6; DESIGN §6).
 #include <algorithm>
-#include <cctype>
 #include <iostream>
 
 #include <fmt/format.h>
@@ -10,6 +9,7 @@
 #include "cli_common.hpp"
 #include "command_registry.hpp"
 #include "metrics_options.hpp"
+#include "output_kind.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/campaign_hdf5.hpp"
 #include "rockfit/io/csv_export.hpp"
@@ -36,11 +36,6 @@ std::string MeanStd(const std::optional<double>& mean, const std::optional<doubl
   return fmt::format("{:.4f} ± {} ({})", *mean, stdev ? fmt::format("{:.4f}", *stdev) : std::string("—"), n);
 }
 
-std::string Lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
 void PrintTables(const io::CampaignSummary& s) {
   std::cout << fmt::format("{:<16} {:<8} {:<4} {:<15} {:>7} {:>7} {:>7} {:>5}\n", "trial", "block", "pos", "status",
                            "OPMF", "AVRF", "λ (6)", "peaks");
@@ -63,17 +58,12 @@ int RunSummary(const SummaryCommand& cmd) {
   const io::Manifest manifest = io::ReadManifest(cmd.manifest);
   if (manifest.trials.empty()) throw BadInput(fmt::format("{}: the manifest has no [[trials]]", cmd.manifest));
 
-  std::string kind;
-  if (!cmd.output.empty()) {
-    const std::string ext = Lower(std::filesystem::path(cmd.output).extension().string());
-    if (ext == ".h5" || ext == ".hdf5") kind = "hdf5";
-    else if (ext == ".csv") kind = "csv";
-    else throw InvalidArgument(fmt::format("-o {}: the output must end in .h5/.hdf5 or .csv", cmd.output));
-  }
+  std::optional<OutputKind> kind;
+  if (!cmd.output.empty()) kind = OutputKindFor(cmd.output);
 
   CampaignRun run;
   std::vector<std::string> written;
-  if (kind == "hdf5") {
+  if (kind == OutputKind::kHdf5) {
     std::vector<std::string> replaced{"/summary"};
     for (const auto& b : manifest.blocks) replaced.push_back("/blocks/" + b.id);
     for (const auto& t : manifest.trials) replaced.push_back("/trials/" + t.id);
@@ -91,7 +81,7 @@ int RunSummary(const SummaryCommand& cmd) {
     written.push_back(cmd.output);
   } else {
     run = RunCampaign(manifest, options);
-    if (kind == "csv") {
+    if (kind == OutputKind::kCsv) {
       const std::filesystem::path groups = cmd.output;
       const std::filesystem::path trials = groups.parent_path() / (groups.stem().string() + "_trials.csv");
       io::WriteSummaryCsv(groups, trials, run.summary);

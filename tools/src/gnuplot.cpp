@@ -15,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include "output_kind.hpp"
 #include "rockfit/core/errors.hpp"
 
 namespace rockfit::tools {
@@ -41,9 +42,7 @@ const char* kInstallHint =
 }  // namespace
 
 ImageFormat ImageFormatFor(const std::filesystem::path& output) {
-  std::string extension = output.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string extension = LowerCaseExtension(output);
   if (extension == ".png") return ImageFormat::kPng;
   if (extension == ".svg") return ImageFormat::kSvg;
   throw InvalidArgument(fmt::format("-o {}: the picture must end in .png or .svg", output.string()));

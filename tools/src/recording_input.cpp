@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "output_kind.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/hdf5_file.hpp"
 #include "rockfit/io/load_recording.hpp"
@@ -15,8 +16,7 @@ namespace rockfit::tools {
 namespace {
 
 bool HasExtension(const std::string& path, std::initializer_list<const char*> extensions) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = LowerCaseExtension(path);
   return std::any_of(extensions.begin(), extensions.end(), [&](const char* e) { return ext == e; });
 }
 
