@@ -33,6 +33,10 @@ Eigen::Quaterniond QuaternionFromEulerZyx(const Eigen::Vector3d& euler_zyx_rad) 
   return CanonicalQuaternion(q);
 }
 
+Eigen::Matrix3d RotationFromEulerZyx(const Eigen::Vector3d& euler_zyx_rad) {
+  return QuaternionFromEulerZyx(euler_zyx_rad).toRotationMatrix();
+}
+
 Eigen::Quaterniond YawQuaternion(double angle_rad) {
   return Eigen::Quaterniond(std::cos(0.5 * angle_rad), 0.0, 0.0, std::sin(0.5 * angle_rad));
 }

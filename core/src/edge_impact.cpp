@@ -9,6 +9,7 @@
 #include <gsl/gsl_poly.h>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/core/gsl_setup.hpp"
 
 namespace rockfit::core {
 namespace {
@@ -136,6 +137,7 @@ std::vector<double> EdgeImpactSingularLambdas(const Block& block, const Eigen::M
   std::vector<double> roots;
   double x[3] = {0.0, 0.0, 0.0};
   int n = 0;
+  EnsureGslErrorHandlerOff();  // every GSL user turns the aborting handler off through the one helper
   if (degree == 3) {
     n = gsl_poly_solve_cubic(c[2] / c[3], c[1] / c[3], c[0] / c[3], &x[0], &x[1], &x[2]);
   } else if (degree == 2) {

@@ -93,6 +93,22 @@ class ImpactSequence {
   int count_ = 0;
 };
 
+// Kinetic energy of the flat block (attitude q_flat) right after an impact that leaves it on `contact` with
+// body rate w_B: about the vertex, about the edge (the rate about it), or zero when the base stays down.
+double KineticEnergyAfterLanding(const Block& block, double gravity, const Contact& contact,
+                                 const Eigen::Quaterniond& q_flat, const Eigen::Vector3d& w_B) {
+  if (contact.is_vertex()) {
+    const VertexDynamics about_a(block, contact.first, gravity);
+    return about_a.KineticEnergy(VertexDynamics::MakeState(q_flat, w_B));
+  }
+  if (contact.is_edge()) {
+    const EdgeDynamics about_edge(block, contact.first, contact.second, gravity);
+    const double rate = about_edge.ProjectAngularVelocity(w_B, about_edge.p_BP_B());
+    return about_edge.KineticEnergy(EdgeDynamics::State(0.0, rate));
+  }
+  return 0.0;
+}
+
 class HybridRun {
  public:
   HybridRun(const Block& block, const ModelParameters& params, const SimulationOptions& options, Trajectory* out)
@@ -403,15 +419,7 @@ HybridRun::Next HybridRun::AfterFacetImpact(const EdgeMode& mode, double t, cons
   after_mode.contact = map.contact_after;
   const EndState after{after_mode, q_flat, map.w_plus_B};
   // Kinetic energy after the impact (zero when the base stays down).
-  double kinetic_after = 0.0;
-  if (map.contact_after.is_vertex()) {
-    const VertexDynamics about_a(block_, map.contact_after.first, gravity_);
-    kinetic_after = about_a.KineticEnergy(VertexDynamics::MakeState(q_flat, map.w_plus_B));
-  } else if (map.contact_after.is_edge()) {
-    const EdgeDynamics about_edge(block_, map.contact_after.first, map.contact_after.second, gravity_);
-    const double rate = about_edge.ProjectAngularVelocity(map.w_plus_B, about_edge.p_BP_B());
-    kinetic_after = about_edge.KineticEnergy(EdgeDynamics::State(0.0, rate));
-  }
+  const double kinetic_after = KineticEnergyAfterLanding(block_, gravity_, map.contact_after, q_flat, map.w_plus_B);
   if (!BookImpact(record, after, kinetic_after)) return Next::kStopped;
   edge_impacts_.Clear();
   facet_impacts_.Add(t, Contact{});
@@ -468,15 +476,7 @@ HybridRun::Next HybridRun::Rest(double t, const Eigen::Quaterniond& q_flat, cons
   rest.contact_after = Contact{};
   rest.w_minus_B = trigger.w_plus_B;
   rest.w_minus_W = trigger.w_plus_W;
-  double kinetic = 0.0;
-  if (trigger.contact_after.is_vertex()) {
-    const VertexDynamics about_a(block_, trigger.contact_after.first, gravity_);
-    kinetic = about_a.KineticEnergy(VertexDynamics::MakeState(q_flat, trigger.w_plus_B));
-  } else if (trigger.contact_after.is_edge()) {
-    const EdgeDynamics about_edge(block_, trigger.contact_after.first, trigger.contact_after.second, gravity_);
-    const double rate = about_edge.ProjectAngularVelocity(trigger.w_plus_B, about_edge.p_BP_B());
-    kinetic = about_edge.KineticEnergy(EdgeDynamics::State(0.0, rate));
-  }
+  const double kinetic = KineticEnergyAfterLanding(block_, gravity_, trigger.contact_after, q_flat, trigger.w_plus_B);
   rest.delta_energy_J = -kinetic;
   out_->impacts.push_back(rest);
   Mode rest_mode;

@@ -1,18 +1,16 @@
 #include "rockfit/io/synth_recording.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <limits>
+#include <ostream>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/io/atomic_file.hpp"
 #include "rockfit/io/attitude.hpp"
 #include "rockfit/io/units.hpp"
 #include "rockfit/io/ximu_register_map.hpp"
@@ -191,28 +189,6 @@ std::string TruthText(const json& truth, const core::Trajectory& trajectory, dou
   return text;
 }
 
-void WriteTextAtomically(const std::string& path, const std::string& text) {
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) {
-      throw OutputError("cannot create " + temporary + ": " + std::strerror(errno) +
-                        "; check that the directory exists and is writable");
-    }
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    out.close();
-    if (!out) {
-      std::remove(temporary.c_str());
-      throw OutputError("cannot write " + temporary + " (disk full?); nothing was replaced");
-    }
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::remove(temporary.c_str());
-    throw OutputError("cannot rename " + temporary + " to " + path + ": " + reason);
-  }
-}
-
 }  // namespace
 
 void SynthRecordingOptions::Validate() const {
@@ -272,7 +248,8 @@ std::vector<std::string> WriteSynthRecording(const std::string& prefix, const co
   const std::string truth_path = prefix + "_truth.json";
   std::vector<std::string> names;
   for (const auto& f : files) names.push_back(std::filesystem::path(f).filename().string());
-  WriteTextAtomically(truth_path, TruthText(TruthJson(block, params, options, recording, names), recording.trajectory, options.t0_s));
+  const std::string truth = TruthText(TruthJson(block, params, options, recording, names), recording.trajectory, options.t0_s);
+  WriteFileAtomically(truth_path, [&truth](std::ostream& out) { out << truth; });
   files.push_back(truth_path);
   return files;
 }

@@ -12,6 +12,7 @@
 #include "rockfit/io/recording_assembly.hpp"
 #include "rockfit/io/time_base.hpp"
 #include "rockfit/io/units.hpp"
+#include "rockfit/io/ximu_inertial_columns.hpp"
 #include "rockfit/io/ximu_registers.hpp"
 #include "rockfit/io/ximu_rtc_rate.hpp"
 
@@ -213,13 +214,9 @@ Recording ReadXimuGuiRecording(const XimuGuiFileSet& files, const LoadOptions& o
   // Inertial rows: packet numbers, gyroscope, accelerometer.
   const CsvTable inertial = CsvTable::ReadFile(*files.cal_inertial, warnings);
   const std::string inertial_name = FileName(*files.cal_inertial);
-  const auto c = ResolveColumns(inertial, {{{"Packet number"}, "the shared packet counter", false},
-                                           {{"Gyroscope X"}, "the gyroscope's x axis in deg/s", true, true, "Gyroscope X (deg/s)"},
-                                           {{"Gyroscope Y"}, "the gyroscope's y axis in deg/s", true, true, "Gyroscope Y (deg/s)"},
-                                           {{"Gyroscope Z"}, "the gyroscope's z axis in deg/s", true, true, "Gyroscope Z (deg/s)"},
-                                           {{"Accelerometer X"}, "the accelerometer's x axis in g", true, true, "Accelerometer X (g)"},
-                                           {{"Accelerometer Y"}, "the accelerometer's y axis in g", true, true, "Accelerometer Y (g)"},
-                                           {{"Accelerometer Z"}, "the accelerometer's z axis in g", true, true, "Accelerometer Z (g)"}});
+  std::vector<ColumnSpec> specs = {{{"Packet number"}, "the shared packet counter", false}};
+  for (ColumnSpec& spec : XimuInertialColumnSpecs()) specs.push_back(std::move(spec));
+  const auto c = ResolveColumns(inertial, specs);
   const std::vector<double> packets = PacketNumbers(inertial, c[0]);
   const std::size_t n = inertial.row_count();
 
@@ -294,20 +291,7 @@ Recording ReadXimuGuiRecording(const XimuGuiFileSet& files, const LoadOptions& o
   // Gyroscope and accelerometer in SI, sensor axes.
   SensorSamples samples;
   samples.t_s = UniformTimes(n, rate_hz);
-  samples.w_S.resize(n);
-  samples.accel_S.resize(n);
-  std::array<double, 3> gyro_scale{};
-  std::array<double, 3> accel_scale{};
-  for (std::size_t k = 0; k < 3; ++k) {
-    gyro_scale[k] = ToSi(HeaderUnit(inertial, *c[1 + k], &ParseAngularRateUnit, "deg/s, rad/s"));
-    accel_scale[k] = ToSi(HeaderUnit(inertial, *c[4 + k], &ParseAccelerationUnit, "g, m/s^2"));
-  }
-  for (std::size_t row = 0; row < n; ++row) {
-    for (std::size_t k = 0; k < 3; ++k) {
-      samples.w_S[row][static_cast<Eigen::Index>(k)] = inertial.Real(row, *c[1 + k]) * gyro_scale[k];
-      samples.accel_S[row][static_cast<Eigen::Index>(k)] = inertial.Real(row, *c[4 + k]) * accel_scale[k];
-    }
-  }
+  ReadXimuInertialColumns(inertial, c, 1, samples);
   for (std::size_t k = 1; k < c.size(); ++k) {
     if (c[k]) recording.columns.push_back(inertial_name + ": " + inertial.header()[*c[k]]);
   }

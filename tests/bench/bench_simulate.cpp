@@ -1,11 +1,10 @@
 // Speed of the hybrid simulator (DESIGN §11: the paper's Fig. 14 window — about 1 s of motion, 25 impacts,
 // 256 Hz output — in at most 0.5 ms on one core). Simulations per second are reported as items/s; run with
 // --benchmark_repetitions=N --benchmark_report_aggregates_only=true for the median.
-#include <cmath>
-
 #include <benchmark/benchmark.h>
 
 #include "rockfit/core/simulator.hpp"
+#include "simulation_cases.hpp"
 
 namespace {
 
@@ -14,30 +13,8 @@ using rockfit::core::ModelParameters;
 using rockfit::core::SimulationOptions;
 using rockfit::core::Trajectory;
 
-// Granite 2692 kg/m³, h = 0.20 m, b1 = h·tan 0.245, b2 = 0.04 m (the paper's block 4).
-const Block& Fig14Block() {
-  static const Block block = Block::FromDensity(0.2 * std::tan(0.245), 0.04, 0.2, 2692.0);
-  return block;
-}
-
-ModelParameters Fig14Parameters() {
-  ModelParameters p;
-  p.alpha_rad = 0.197;
-  p.lambda = 2.185;
-  p.lambda_lat = -2.032;
-  p.lambda_lon = 0.197;
-  return p;
-}
-
-// Within the bounds (25), (27); about 180 edge impacts end in a Zeno switch before phase 4.
-ModelParameters WithinBoundsParameters() {
-  ModelParameters p;
-  p.alpha_rad = 0.2;
-  p.lambda = 0.6;
-  p.lambda_lat = 0.3;
-  p.lambda_lon = 0.7;
-  return p;
-}
+using rockfit::testing::Fig14Parameters;
+using rockfit::testing::WithinBoundsParameters;
 
 void Run(benchmark::State& state, const ModelParameters& params, bool sample_attitude) {
   SimulationOptions options;  // stop at phase 4, 256 Hz
@@ -45,8 +22,9 @@ void Run(benchmark::State& state, const ModelParameters& params, bool sample_att
   std::size_t impacts = 0;
   std::size_t samples = 0;
   double t_end = 0.0;
+  const Block block = rockfit::testing::Fig14Block();  // built once, outside the timed loop
   for (auto _ : state) {
-    const Trajectory tr = rockfit::core::Simulate(Fig14Block(), params, options);
+    const Trajectory tr = rockfit::core::Simulate(block, params, options);
     benchmark::DoNotOptimize(tr.w_B.data());
     if (tr.end_reason != rockfit::core::EndReason::kPhase4) state.SkipWithError("the run did not reach phase 4");
     impacts = tr.impacts.size();

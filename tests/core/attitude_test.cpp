@@ -23,6 +23,8 @@ TEST(Attitude, EulerZyxRecoversTheAnglesOfRzRyRx) {
     const Eigen::Matrix3d R = Rz(angles[0]) * Ry(angles[1]) * Rx(angles[2]);
     EXPECT_NEAR((EulerZyxFromRotation(R) - angles).norm(), 0.0, kAngleTol);
     EXPECT_NEAR((QuaternionFromEulerZyx(angles).toRotationMatrix() - R).norm(), 0.0, kAngleTol);
+    EXPECT_GE(QuaternionFromEulerZyx(angles).w(), 0.0);  // rockfit's quaternion convention
+    EXPECT_NEAR((RotationFromEulerZyx(angles) - R).norm(), 0.0, kAngleTol);
   }
 }
 

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "rockfit/core/errors.hpp"
+#include "simulation_cases.hpp"
 
 namespace rockfit::core {
 namespace {
@@ -35,7 +36,7 @@ double FallTimeBySubstitution(const PlanarRocker& r, double alpha) {
 }
 
 PlanarRocker TestRocker() {
-  return PlanarRockerAboutEdge(Block::FromDensity(0.2 * std::tan(0.245), 0.04, 0.2, 2692.0), 1, 2);
+  return PlanarRockerAboutEdge(testing::Fig14Block(), 1, 2);
 }
 
 TEST(PlanarRocking, FallTimeMatchesAnIndependentQuadrature) {

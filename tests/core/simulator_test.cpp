@@ -15,6 +15,7 @@
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/planar_rocking.hpp"
 #include "rockfit/core/vertex_dynamics.hpp"
+#include "simulation_cases.hpp"
 
 namespace rockfit::core {
 namespace {
@@ -27,27 +28,9 @@ constexpr double kEnergyDriftTol = 1e-9;
 // No vertex may end below the ground by more than this [m] (issue 3).
 constexpr double kGroundTol_m = 1e-9;
 
-// The block of the paper's Fig. 14: granite, h = 0.20 m, b1 = h·tan 0.245, b2 = 0.04 m.
-Block Fig14Block() { return Block::FromDensity(0.2 * std::tan(0.245), 0.04, 0.2, 2692.0); }
-
-ModelParameters Fig14Parameters() {
-  ModelParameters p;
-  p.alpha_rad = 0.197;
-  p.lambda = 2.185;
-  p.lambda_lat = -2.032;
-  p.lambda_lon = 0.197;
-  return p;
-}
-
-// A case within the bounds (25), (27) that runs into a Zeno sequence of edge impacts.
-ModelParameters WithinBoundsParameters() {
-  ModelParameters p;
-  p.alpha_rad = 0.2;
-  p.lambda = 0.6;
-  p.lambda_lat = 0.3;
-  p.lambda_lon = 0.7;
-  return p;
-}
+using testing::Fig14Block;
+using testing::Fig14Parameters;
+using testing::WithinBoundsParameters;
 
 // Heights of the four base vertices above the contact of `mode` (which is on the ground).
 std::array<double, 4> VertexHeights(const Block& block, const Eigen::Quaterniond& q_WB, const Mode& mode) {

@@ -1,3 +1,5 @@
+// io's attitude helpers: the x-IMU reading of core's Euler conversions, nearest rotation, unwrapping
+// (the conversions themselves are tested in tests/core/attitude_test.cpp).
 #include "rockfit/io/attitude.hpp"
 
 #include <cmath>
@@ -13,15 +15,6 @@ constexpr double kRoundoff = 1e-12;  // rad; a few ulps of the trigonometric rou
 
 Eigen::Matrix3d Rz(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()).toRotationMatrix(); }
 Eigen::Matrix3d Ry(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitY()).toRotationMatrix(); }
-Eigen::Matrix3d Rx(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitX()).toRotationMatrix(); }
-
-TEST(Attitude, EulerZyxIsTheProductRzRyRx) {
-  const Eigen::Vector3d euler(0.7, -0.4, 2.9);  // (φz, φy, φx)
-  const Eigen::Matrix3d R = Rz(0.7) * Ry(-0.4) * Rx(2.9);
-  EXPECT_TRUE(RotationFromEulerZyx(euler).isApprox(R, kRoundoff));
-  EXPECT_TRUE(EulerZyxFromRotation(R).isApprox(euler, kRoundoff));
-  EXPECT_TRUE(EulerZyxFromQuaternion(QuaternionFromEulerZyx(euler)).isApprox(euler, kRoundoff));
-}
 
 TEST(Attitude, MatchesTheXimuEulerFormulasOfItsQuaternion) {
   // ximu-formats.md §1.6: from the file quaternion q (Earth relative to sensor), φ = atan2(2(q2q3 − q0q1),
@@ -31,15 +24,6 @@ TEST(Attitude, MatchesTheXimuEulerFormulasOfItsQuaternion) {
   const double theta = -std::asin(2 * (q.x() * q.z() + q.w() * q.y()));
   const double psi = std::atan2(2 * (q.x() * q.y() - q.w() * q.z()), 2 * q.w() * q.w() - 1 + 2 * q.x() * q.x());
   EXPECT_TRUE(EulerZyxFromQuaternion(q.conjugate()).isApprox(Eigen::Vector3d(psi, theta, phi), kRoundoff));
-}
-
-TEST(Attitude, GimbalLockKeepsTheDefinedCombination) {
-  for (double pitch : {kPi / 2, -kPi / 2}) {
-    const Eigen::Matrix3d R = Rz(0.5) * Ry(pitch) * Rx(0.2);
-    const Eigen::Vector3d euler = EulerZyxFromRotation(R);
-    EXPECT_NEAR(euler[1], pitch, 1e-7);
-    EXPECT_TRUE(RotationFromEulerZyx(euler).isApprox(R, 1e-9));
-  }
 }
 
 TEST(Attitude, NearestRotationRepairsPrintedMatricesAndReportsReflections) {

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "rockfit/core/errors.hpp"
+#include "simulation_cases.hpp"
 
 namespace rockfit::io {
 namespace {
@@ -27,17 +28,11 @@ struct TempDir {
 };
 
 struct SimulatedRun {
-  core::Block block = core::Block::FromDensity(0.2 * std::tan(0.245), 0.04, 0.2, 2692.0);
-  core::ModelParameters params;
+  core::Block block = testing::Fig14Block();
+  core::ModelParameters params = testing::Fig14Parameters();
   core::SimulationOptions options;
   core::Trajectory trajectory;
-  SimulatedRun() {
-    params.alpha_rad = 0.197;
-    params.lambda = 2.185;
-    params.lambda_lat = -2.032;
-    params.lambda_lon = 0.197;
-    trajectory = core::Simulate(block, params, options);
-  }
+  SimulatedRun() { trajectory = core::Simulate(block, params, options); }
 };
 
 std::vector<double> ReadDoubles(hid_t file, const char* name, std::vector<hsize_t>* dims) {

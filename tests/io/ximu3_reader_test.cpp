@@ -8,6 +8,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "csv_numbers.hpp"
 #include "imu_test_files.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/attitude.hpp"
@@ -110,25 +111,9 @@ TEST(ReadXimu3Recording, NeedsAnInertialFileWithAtLeastTwoRows) {
 
 std::filesystem::path RealXimu3Dir() { return testing::RealImuDir() / "x-IMU3-CSV/Logged Data/x-IMU3 673B204B (UDP)"; }
 
-// Rows of a file, parsed here independently of the reader.
-std::vector<std::vector<double>> ReadNumbers(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::vector<double>> rows;
-  while (std::getline(in, line)) {
-    std::vector<double> row;
-    std::stringstream cells(line);
-    std::string cell;
-    while (std::getline(cells, cell, ',')) row.push_back(std::stod(cell));
-    rows.push_back(row);
-  }
-  return rows;
-}
-
 TEST(ReadXimu3Recording, RealLogHasTheTimestampRateAndItsFourDroppedMessagesAsGaps) {
   ROCKFIT_REQUIRE_REAL_IMU();
-  const auto inertial = ReadNumbers(RealXimu3Dir() / "Inertial.csv");
+  const auto inertial = testing::ReadCsvNumbers(RealXimu3Dir() / "Inertial.csv");
   std::vector<double> steps;
   for (std::size_t k = 1; k < inertial.size(); ++k) steps.push_back(inertial[k][0] - inertial[k - 1][0]);
   std::vector<double> sorted = steps;
@@ -158,8 +143,8 @@ TEST(ReadXimu3Recording, RealEulerAnglesAgreeWithTheQuaternionThatFollowsThem) {
   ROCKFIT_REQUIRE_REAL_IMU();
   // The device lies still and sends one AHRS output at a time: EulerAngles.csv ends one message
   // (20 ms) before LinearAcceleration.csv, whose rows carry the quaternion, begins.
-  const auto euler = ReadNumbers(RealXimu3Dir() / "EulerAngles.csv");
-  const auto linear = ReadNumbers(RealXimu3Dir() / "LinearAcceleration.csv");
+  const auto euler = testing::ReadCsvNumbers(RealXimu3Dir() / "EulerAngles.csv");
+  const auto linear = testing::ReadCsvNumbers(RealXimu3Dir() / "LinearAcceleration.csv");
   const auto& last = euler.back();
   const auto& next = linear.front();
   ASSERT_NEAR(next[0] - last[0], 19990.0, 20.0);
@@ -176,7 +161,7 @@ TEST(ReadXimu3Recording, RealEulerAnglesAgreeWithTheQuaternionThatFollowsThem) {
 
   // The reader gives both samples these values.
   const Recording r = ReadXimu3Recording(RealXimu3Dir(), {});
-  const auto inertial = ReadNumbers(RealXimu3Dir() / "Inertial.csv");
+  const auto inertial = testing::ReadCsvNumbers(RealXimu3Dir() / "Inertial.csv");
   std::size_t k = 0;
   while (inertial[k][0] != last[0]) ++k;
   EXPECT_NEAR(r.euler_zyx[k][2], last[1] * kRadPerDeg, 1e-12);

@@ -7,6 +7,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "csv_numbers.hpp"
 #include "imu_test_files.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/attitude.hpp"
@@ -243,29 +244,13 @@ struct QuaternionRow {
   double q[4] = {0, 0, 0, 0};
 };
 
-// The file's rows, parsed here independently of the reader (the files use '.' and ',' only).
-std::vector<std::vector<double>> ReadNumbers(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::string line;
-  std::getline(in, line);  // header
-  std::vector<std::vector<double>> rows;
-  while (std::getline(in, line)) {
-    std::vector<double> row;
-    std::stringstream cells(line);
-    std::string cell;
-    while (std::getline(cells, cell, ',')) row.push_back(std::stod(cell));
-    rows.push_back(row);
-  }
-  return rows;
-}
-
 TEST(ReadXimuGuiRecording, RealOscillatoryEulerAnglesAgreeWithItsQuaternions) {
   ROCKFIT_REQUIRE_REAL_IMU();
   const auto prefix = testing::RealImuDir() / "Oscillatory-Motion-Tracking-With-x-IMU/LoggedData/LoggedData";
   const Recording r = ReadXimuGuiRecording(XimuGuiFileSet::Find(prefix), WithRate(256.0));
   ASSERT_EQ(r.orientation_source, "LoggedData_EulerAngles.csv");
   // Quaternion rows pair one to one with inertial rows (both 256 Hz, packet numbers odd/even).
-  const auto quaternions = ReadNumbers(prefix.string() + "_Quaternion.csv");
+  const auto quaternions = testing::ReadCsvNumbers(prefix.string() + "_Quaternion.csv");
   ASSERT_EQ(quaternions.size(), r.size());
   double worst = 0.0;
   for (std::size_t k = 0; k < r.size(); ++k) {

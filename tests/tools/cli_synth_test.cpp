@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "csv_numbers.hpp"
 #include "rockfit/io/attitude.hpp"
 #include "rockfit/core/block.hpp"
 #include "rockfit/core/simulator.hpp"
@@ -49,22 +50,6 @@ class TempDir {
 std::vector<std::string> Args(std::vector<std::string> head, const std::vector<std::string>& tail) {
   head.insert(head.end(), tail.begin(), tail.end());
   return head;
-}
-
-// Numeric rows of an x-IMU CSV file (header skipped).
-std::vector<std::vector<double>> ReadNumbers(const fs::path& path) {
-  std::vector<std::vector<double>> rows;
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  while (std::getline(in, line)) {
-    std::vector<double> row;
-    std::stringstream cells(line);
-    std::string cell;
-    while (std::getline(cells, cell, ',')) row.push_back(std::strtod(cell.c_str(), nullptr));
-    rows.push_back(row);
-  }
-  return rows;
 }
 
 // Half a unit of the 7th significant digit of the printed value, plus its single-precision rounding.
@@ -140,8 +125,8 @@ TEST(CliSynth, WithoutNoiseTheFilesHoldTheSimulatedAngularVelocityAndAttitude) {
   ASSERT_EQ(truth.t_s.size(), sim.sample_times_s.size()) << core::ToString(truth.end_reason);
   ASSERT_GT(truth.impacts.size(), 10u);
 
-  const auto gyro = ReadNumbers(dir.path() / "t_CalInertialAndMag.csv");
-  const auto euler = ReadNumbers(dir.path() / "t_EulerAngles.csv");
+  const auto gyro = ReadCsvNumbers(dir.path() / "t_CalInertialAndMag.csv");
+  const auto euler = ReadCsvNumbers(dir.path() / "t_EulerAngles.csv");
   ASSERT_EQ(gyro.size(), samples);
   ASSERT_EQ(euler.size(), samples);
   for (std::size_t n = 0; n < samples; ++n) {
@@ -171,8 +156,8 @@ TEST(CliSynth, NoiseAndDriftInTheFilesMatchTheRequestWithinSamplingError) {
        "--drift-slope-dps", "0.05,-0.1,0.3", "--drift-walk-deg-per-rt-s", "0.01,0.01,0.02", "--seed", "17", "-o",
        (dir.path() / "t").string()}));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto gyro = ReadNumbers(dir.path() / "t_CalInertialAndMag.csv");
-  const auto euler = ReadNumbers(dir.path() / "t_EulerAngles.csv");
+  const auto gyro = ReadCsvNumbers(dir.path() / "t_CalInertialAndMag.csv");
+  const auto euler = ReadCsvNumbers(dir.path() / "t_EulerAngles.csv");
   const std::size_t rest_samples = static_cast<std::size_t>(t0 * 256.0);
   for (int i = 0; i < 3; ++i) {
     std::vector<double> x;

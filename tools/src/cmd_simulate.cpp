@@ -1,14 +1,10 @@
 // `rockfit simulate`: the hybrid simulator of DESIGN §4 — trajectory, impact log and diagnostics as JSON,
 // CSV or HDF5.
-#include <unistd.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <sstream>
 #include <string>
-#include <system_error>
 
 #include <fmt/format.h>
 
@@ -16,6 +12,7 @@
 #include "command_registry.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/simulator.hpp"
+#include "rockfit/io/atomic_file.hpp"
 #include "rockfit/io/trajectory_hdf5.hpp"
 
 namespace rockfit::tools {
@@ -148,28 +145,6 @@ std::string TrajectoryCsv(const core::Trajectory& trajectory) {
   return csv;
 }
 
-// Writes next to `path` and renames, so a failed write never leaves a partial file behind.
-void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
-  const std::filesystem::path directory = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  const std::filesystem::path temporary =
-      directory / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()));
-  std::error_code ec;
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) {
-      std::filesystem::remove(temporary, ec);
-      throw OutputError("cannot write " + path.string() + " (does the directory exist and is it writable?)");
-    }
-  }
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) {
-    std::filesystem::remove(temporary, ec);
-    throw OutputError("cannot move the finished file to " + path.string() + ": " + ec.message());
-  }
-}
-
 int RunSimulate(SimulateCommand& cmd) {
   const core::Block block = MakeBlock(cmd.block);
   if (cmd.json) cmd.format = "json";
@@ -191,7 +166,7 @@ int RunSimulate(SimulateCommand& cmd) {
     if (cmd.output.empty()) {
       std::cout << text << std::flush;
     } else {
-      WriteTextFile(cmd.output, text);
+      io::WriteFileAtomically(cmd.output, [&text](std::ostream& out) { out << text; });
     }
   }
   if (trajectory.end_reason == core::EndReason::kFailed) {

@@ -13,6 +13,8 @@ Eigen::Vector3d EulerZyxFromRotation(const Eigen::Matrix3d& R_WB);
 Eigen::Vector3d EulerZyxFromQuaternion(const Eigen::Quaterniond& q_WB);
 // Inverse of EulerZyxFromRotation: Rz(φz)·Ry(φy)·Rx(φx) as a unit quaternion.
 Eigen::Quaterniond QuaternionFromEulerZyx(const Eigen::Vector3d& euler_zyx_rad);
+// Rz(φz)·Ry(φy)·Rx(φx) for euler_zyx_rad = (φz, φy, φx).
+Eigen::Matrix3d RotationFromEulerZyx(const Eigen::Vector3d& euler_zyx_rad);
 
 // Rotation by `angle_rad` about the world vertical.
 Eigen::Quaterniond YawQuaternion(double angle_rad);

@@ -8,16 +8,19 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "rockfit/core/attitude.hpp"
+
 namespace rockfit::io {
 
-// (φz, φy, φx) of a rotation: φy = −asin(R20) ∈ [−π/2, π/2], φx = atan2(R21, R22),
-// φz = atan2(R10, R00), both in (−π, π]. At φy = ±π/2 only φz ∓ φx is defined; φx is then 0.
-Eigen::Vector3d EulerZyxFromRotation(const Eigen::Matrix3d& R);
-Eigen::Vector3d EulerZyxFromQuaternion(const Eigen::Quaterniond& q);
-
-// Rz(φz)·Ry(φy)·Rx(φx) for euler_zyx = (φz, φy, φx).
-Eigen::Matrix3d RotationFromEulerZyx(const Eigen::Vector3d& euler_zyx);
-Eigen::Quaterniond QuaternionFromEulerZyx(const Eigen::Vector3d& euler_zyx);
+// The Euler ZYX and quaternion conversions are core's (rockfit/core/attitude.hpp), one implementation for
+// the simulator and the readers; they are named here so that io code and its users can keep writing
+// io::EulerZyxFromRotation and so on. EulerZyxFromRotation returns φy = −asin(R20) ∈ [−π/2, π/2],
+// φx = atan2(R21, R22), φz = atan2(R10, R00), both in (−π, π]; at φy = ±π/2 φx is 0.
+// QuaternionFromEulerZyx returns the unit quaternion with a non-negative scalar part.
+using core::EulerZyxFromQuaternion;
+using core::EulerZyxFromRotation;
+using core::QuaternionFromEulerZyx;
+using core::RotationFromEulerZyx;
 
 // The rotation nearest to a 3×3 matrix that should be one (printed with few digits, e.g. the
 // x-IMU3's 1.000486 diagonal): polar decomposition by SVD. `orthogonality_error` receives

@@ -1,0 +1,36 @@
+// The block and parameter sets that several simulator tests and benchmarks run: the paper's Fig. 14 trial
+// and a case within the bounds (25), (27). One definition, so that the tests and the benchmark time and
+// check the same motion.
+#pragma once
+
+#include <cmath>
+
+#include "rockfit/core/block.hpp"
+#include "rockfit/core/simulator.hpp"
+
+namespace rockfit::testing {
+
+// The block of the paper's Fig. 14 (its block 4): granite 2692 kg/m³, h = 0.20 m, b1 = h·tan 0.245, b2 = 0.04 m.
+inline core::Block Fig14Block() { return core::Block::FromDensity(0.2 * std::tan(0.245), 0.04, 0.2, 2692.0); }
+
+// The model parameters of the Fig. 14 simulation.
+inline core::ModelParameters Fig14Parameters() {
+  core::ModelParameters p;
+  p.alpha_rad = 0.197;
+  p.lambda = 2.185;
+  p.lambda_lat = -2.032;
+  p.lambda_lon = 0.197;
+  return p;
+}
+
+// Within the bounds (25), (27): about 180 edge impacts end in a Zeno sequence before phase 4.
+inline core::ModelParameters WithinBoundsParameters() {
+  core::ModelParameters p;
+  p.alpha_rad = 0.2;
+  p.lambda = 0.6;
+  p.lambda_lat = 0.3;
+  p.lambda_lon = 0.7;
+  return p;
+}
+
+}  // namespace rockfit::testing
