@@ -48,10 +48,12 @@ class BatchTest : public ::testing::Test {
 
   static io::Recording Load(const io::TrialSpec& trial) { return io::LoadRecording(trial.files); }
 
-  // Quick fits: the batch machinery is under test here, not the fit (no global stage).
+  // Quick fits: the batch machinery is under test here, not the fit (no global stage, a small budget).
   static BatchOptions Quick() {
     BatchOptions o;
     o.trial.fit.global.enabled = false;
+    o.trial.fit.method = FitMethod::kNelderMead;
+    o.trial.fit.nelder_mead.max_evaluations = 40;
     o.jobs = 2;
     return o;
   }
@@ -94,7 +96,7 @@ TEST_F(BatchTest, ResumeSkipsTrialsFittedWithTheSameSettingsAndRefitsWhenTheyCha
   EXPECT_EQ(again.trials[0].status, "skipped");
 
   BatchOptions changed = resume;
-  changed.trial.fit.method = FitMethod::kCeres;
+  changed.trial.fit.nelder_mead.max_evaluations = 41;
   const BatchReport refit = RunBatch(manifest, out, changed, Load);
   EXPECT_EQ(refit.skipped, 0u);
   EXPECT_EQ(refit.ok, 2u);

@@ -20,12 +20,14 @@ std::filesystem::path TempFile(const std::string& name) {
   return dir / name;
 }
 
-// One quick fit (no global stage) of a synthetic trial.
+// One quick fit (no global stage, a small budget) of a synthetic trial.
 const TrialFit& QuickFit() {
   static const TrialFit fit = [] {
     const auto trial = testing::MakeSynthTrial(0.2, 0.8, -2.0, 0.6, 31);
-    TrialFitOptions options;
+    TrialFitOptions options;  // the store is under test, not the fit: a small budget
     options.fit.global.enabled = false;
+    options.fit.method = FitMethod::kNelderMead;
+    options.fit.nelder_mead.max_evaluations = 60;
     return FitTrial(trial.block, trial.signal, ParameterSet::Defaults(), options);
   }();
   return fit;

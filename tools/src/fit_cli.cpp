@@ -71,6 +71,9 @@ void AddFitOptions(CLI::App& app, FitArgs& args, bool with_t_end) {
       ->check(CLI::IsMember({"no-spin", "zero"}))
       ->group("Fit");
   app.add_flag("--no-global", args.no_global, "Skip the global stage: local search from the estimate only")->group("Fit");
+  app.add_option("--max-evaluations", args.max_evaluations,
+                 "Budget of the local Nelder–Mead stage in evaluations of (28) (default 1500)")
+      ->group("Fit");
   app.add_flag("--keep-bias", args.keep_bias, "Do not subtract the gyro bias measured at rest before the release")
       ->group("Fit");
   app.add_option("--seed", args.seed, "Seed of the global stage's Latin hypercube")->capture_default_str()->group("Fit");
@@ -130,6 +133,10 @@ fitting::TrialFitOptions MakeTrialFitOptions(const FitArgs& args) {
   o.fit.method = fitting::ParseFitMethod(args.method);
   o.fit.global.enabled = !args.no_global;
   o.fit.global.seed = args.seed;
+  if (args.max_evaluations) {
+    if (*args.max_evaluations < 1) throw InvalidArgument("--max-evaluations must be at least 1");
+    o.fit.nelder_mead.max_evaluations = *args.max_evaluations;
+  }
   if (args.threads < 0) throw InvalidArgument("--threads must be 0 (all cores) or positive");
   o.fit.num_threads = args.threads;
   o.t_end_s = args.t_end_s;

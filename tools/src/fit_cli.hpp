@@ -26,6 +26,7 @@ struct FitArgs {
   double impact_prominence_rad_s = io::ImpactDetectionOptions{}.min_prominence_rad_s;
   std::string facet_tau = "no-spin";
   bool no_global = false;
+  std::optional<int> max_evaluations;  // Nelder–Mead budget of the local stage
   bool keep_bias = false;
   int threads = 0;
   std::uint64_t seed = fitting::GlobalStageOptions{}.seed;
