@@ -92,6 +92,9 @@ int RunEvaluate(const FitCommand& cmd, const TrialInput& input, const core::Bloc
                                was_given ? "given" : (values[id].fixed ? "fixed" : "estimated from the data"));
     }
   }
+  if (!cmd.plot.empty() && !e.trace.ok) {
+    std::cerr << "rockfit: no picture: the model fails at these parameters (" << e.trace.failure << ")\n";
+  }
   if (!cmd.plot.empty() && e.trace.ok) {
     fitting::TrialFit as_fit;
     as_fit.signal = e.signal;
@@ -130,7 +133,13 @@ int RunFit(const FitCommand& cmd) {
     fitting::WriteFitTablesHdf5(tx.Root());
     tx.Commit();
   }
-  if (!cmd.plot.empty() && fit.trace.ok) RenderFitFigure(FitFigureFrom(fit, input.trial_id), cmd.plot, 1200, 900);
+  if (!cmd.plot.empty()) {
+    if (fit.trace.ok) {
+      RenderFitFigure(FitFigureFrom(fit, input.trial_id), cmd.plot, 1200, 900);
+    } else {
+      std::cerr << "rockfit: no picture: the model fails at the fitted parameters (" << fit.trace.failure << ")\n";
+    }
+  }
 
   if (cmd.json) {
     nlohmann::json j = nlohmann::json::parse(s.ToJson(input.trial_id));
@@ -144,7 +153,7 @@ int RunFit(const FitCommand& cmd) {
     for (const std::string& note : fit.estimate.notes) std::cout << "estimate    " << note << "\n";
     std::cout << s.FullReport();
     if (!cmd.output.empty()) std::cout << "written " << cmd.output << " (/fits/" << input.trial_id << ")\n";
-    if (!cmd.plot.empty()) std::cout << "written " << cmd.plot << "\n";
+    if (!cmd.plot.empty() && fit.trace.ok) std::cout << "written " << cmd.plot << "\n";
   }
   if (!s.feasible) {
     std::cerr << "rockfit: no feasible parameters for trial " << input.trial_id
