@@ -100,8 +100,8 @@ void SimulatorModel::Evaluate(const core::ModelParameters& params, const std::ve
 }
 
 std::string SimulatorModel::Describe() const {
-  return fmt::format("hybrid simulator (rel_tol {:g}, abs_tol {:g}, facet τ {})", options_.simulation.rel_tol,
-                     options_.simulation.abs_tol, "per parameters");
+  return fmt::format("hybrid simulator, rel_tol {:g}, abs_tol {:g}", options_.simulation.rel_tol,
+                     options_.simulation.abs_tol);
 }
 
 }  // namespace rockfit::fitting
