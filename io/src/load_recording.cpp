@@ -1,6 +1,10 @@
 #include "rockfit/io/load_recording.hpp"
 
+#include <cmath>
+#include <string>
+
 #include "rockfit/core/errors.hpp"
+#include "rockfit/io/campaign_hdf5.hpp"
 #include "rockfit/io/format_detection.hpp"
 #include "rockfit/io/generic_csv_reader.hpp"
 #include "rockfit/io/ximu3_reader.hpp"
@@ -22,11 +26,20 @@ Recording LoadRecording(const std::filesystem::path& path, const LoadOptions& op
       return ReadXimu3Recording(source.path, options);
     case RecordingFormat::kGenericCsv:
       return ReadGenericCsvRecording(source.path, options);
-    case RecordingFormat::kRockfitHdf5:
-      // Until the HDF5 store (issue 4 item 4) is connected here.
-      throw BadInput(source.path.string() +
-                     ": HDF5 recordings are read by rockfit's HDF5 store, which is not connected to LoadRecording in "
-                     "this build. Read the original IMU files instead (x-IMU prefix, x-IMU3 directory or CSV).");
+    case RecordingFormat::kRockfitHdf5: {
+      // rockfit's own store (campaign_hdf5.hpp): the file must hold one trial (use ReadRecordingHdf5 with an id
+      // for files with several). Its samples are already in block axes and SI units.
+      if (!options.mounting.is_identity()) {
+        throw InvalidArgument(source.path.string() + ": a mounting applies when reading IMU files; the trials of a "
+                              "rockfit HDF5 file are stored in block axes already");
+      }
+      Recording recording = ReadRecordingHdf5(source.path, "");
+      if (options.rate_hz && std::abs(*options.rate_hz - recording.rate_hz) > 1e-9 * recording.rate_hz) {
+        throw BadInput(source.path.string() + ": stored at " + std::to_string(recording.rate_hz) +
+                       " Hz, but the rate given is " + std::to_string(*options.rate_hz) + " Hz; leave the rate out");
+      }
+      return recording;
+    }
     case RecordingFormat::kAuto:
       break;
   }

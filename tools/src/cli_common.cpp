@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/io/manifest.hpp"
 
 namespace rockfit::tools {
 
@@ -24,7 +25,14 @@ void AddBlockOptions(CLI::App& app, BlockArgs& args) {
 
 core::Block MakeBlock(const BlockArgs& args) {
   if (!args.manifest_path.empty() || !args.block_id.empty()) {
-    throw InvalidArgument("--manifest/--block are not available in this command yet; give --b1 --b2 --h with --density or --mass");
+    if (args.manifest_path.empty() || args.block_id.empty()) {
+      throw InvalidArgument("--manifest FILE and --block ID go together: give both to take the block from a manifest");
+    }
+    if (args.b1_m || args.b2_m || args.h_m || args.density_kg_m3 || args.mass_kg) {
+      throw InvalidArgument("give the block either by --manifest/--block or by --b1 --b2 --h with --density or --mass, "
+                            "not both");
+    }
+    return io::ReadManifest(args.manifest_path).FindBlock(args.block_id).ToBlock();  // BadInput: file, line, column
   }
   if (!args.b1_m || !args.b2_m || !args.h_m) {
     throw InvalidArgument("the block needs --b1, --b2 and --h (half-sizes in metres), or --manifest FILE --block ID");
@@ -34,6 +42,16 @@ core::Block MakeBlock(const BlockArgs& args) {
   }
   if (args.density_kg_m3) return core::Block::FromDensity(*args.b1_m, *args.b2_m, *args.h_m, *args.density_kg_m3);
   return core::Block::FromMass(*args.b1_m, *args.b2_m, *args.h_m, *args.mass_kg);
+}
+
+bool HasBlockOptions(const BlockArgs& args) {
+  return args.b1_m || args.b2_m || args.h_m || args.density_kg_m3 || args.mass_kg || !args.manifest_path.empty() ||
+         !args.block_id.empty();
+}
+
+std::optional<core::Block> MakeOptionalBlock(const BlockArgs& args) {
+  if (!HasBlockOptions(args)) return std::nullopt;
+  return MakeBlock(args);
 }
 
 Eigen::Vector3d ParseVector3(const std::string& text, const std::string& option) {

@@ -33,8 +33,12 @@ struct BlockArgs {
 };
 
 void AddBlockOptions(CLI::App& app, BlockArgs& args);
-// Throws InvalidArgument naming the missing or conflicting option.
+// Throws InvalidArgument naming the missing or conflicting option, BadInput for a bad manifest or block id.
 core::Block MakeBlock(const BlockArgs& args);
+// True when any block option was given.
+bool HasBlockOptions(const BlockArgs& args);
+// The block when any block option was given (then as MakeBlock), else none.
+std::optional<core::Block> MakeOptionalBlock(const BlockArgs& args);
 
 // Parses "X,Y,Z" into a vector; throws InvalidArgument naming `option` on failure.
 Eigen::Vector3d ParseVector3(const std::string& text, const std::string& option);

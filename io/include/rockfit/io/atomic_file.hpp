@@ -1,0 +1,16 @@
+// Text files written atomically: to a temporary file in the same directory, flushed to disk and renamed over
+// the target, so that a crash never leaves a half-written file or damages an existing one (DESIGN §8).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <ostream>
+
+namespace rockfit::io {
+
+// Calls `write` with a stream to the temporary file, then renames it to `path`. OutputError when the file
+// cannot be written (the previous `path`, if any, is then unchanged); exceptions from `write` propagate after
+// the temporary file is removed.
+void WriteFileAtomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write);
+
+}  // namespace rockfit::io

@@ -1,0 +1,52 @@
+// Atomic (re)writing of an HDF5 file (DESIGN §8): everything is written to a temporary file in the same
+// directory, which Commit() renames over the target. A crash, a kill or an exception before Commit() leaves the
+// target exactly as it was.
+//
+// Re-writing keeps what the file held: the temporary file starts as a copy of the existing target minus the
+// objects the caller says it replaces (e.g. "/summary", "/trials/T1"), so a second `rockfit summary -o x.h5`
+// keeps the /fits that `rockfit fit` wrote into x.h5 in between. Any writer (summary, fit, batch, simulate)
+// uses it the same way:
+//
+//   hdf5::Transaction tx(path, {"/fits/T1"});
+//   hdf5::Group fit = tx.Root().CreateGroup("fits/T1");
+//   ... write ...
+//   tx.Commit();
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rockfit/io/hdf5_file.hpp"
+
+namespace rockfit::io::hdf5 {
+
+class Transaction {
+ public:
+  // OutputError when the directory is not writable, or when `target` exists and is not an HDF5 file (rockfit
+  // never overwrites a file it cannot carry over). Stale temporary files of this target left by processes that
+  // no longer run are removed.
+  Transaction(std::filesystem::path target, std::vector<std::string> replaced = {});
+  ~Transaction();
+  Transaction(const Transaction&) = delete;
+  Transaction& operator=(const Transaction&) = delete;
+
+  Group Root() const;
+  // The temporary file being written (for tests and messages).
+  const std::filesystem::path& temporary_path() const { return temporary_; }
+  const std::filesystem::path& target() const { return target_; }
+  // Closes, flushes to disk (fsync) and renames over the target. OutputError on failure (the target is untouched).
+  void Commit();
+
+ private:
+  std::filesystem::path target_;
+  std::filesystem::path temporary_;
+  std::optional<File> file_;
+  bool committed_ = false;
+};
+
+// The name of the temporary file that a Transaction of process `pid` uses for `target`.
+std::filesystem::path TemporaryPathFor(const std::filesystem::path& target, long pid, unsigned serial);
+
+}  // namespace rockfit::io::hdf5

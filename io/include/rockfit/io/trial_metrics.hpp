@@ -1,0 +1,38 @@
+// The metrics of one trial: drift correction, then OPMF and AVRF (DESIGN §6). This is what `rockfit metrics`,
+// `rockfit summary` and the HDF5 store report per trial.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "rockfit/core/block.hpp"
+#include "rockfit/io/avrf.hpp"
+#include "rockfit/io/drift_correction.hpp"
+#include "rockfit/io/opmf.hpp"
+#include "rockfit/io/recording.hpp"
+
+namespace rockfit::io {
+
+struct MetricsOptions {
+  DriftCorrectionOptions correction;
+  AvrfOptions avrf;
+  void Validate() const;
+};
+
+struct MetricsSummary {
+  DriftCorrection correction;
+  OpmfResult opmf;
+  AvrfResult avrf;
+  // "ok" when both metrics have values; otherwise the first status that is not ok ("no_impact",
+  // "too_few_peaks", …), and the message says why.
+  std::string status;
+  std::string message;
+  bool ok() const { return status == "ok"; }
+};
+
+// Without a block only the OPMF is computed, and the AVRF status says that the block geometry is missing
+// (status "no_block"). Throws BadInput for a recording without Euler angles.
+MetricsSummary ComputeTrialMetrics(const Recording& recording, const std::optional<core::Block>& block,
+                                   const MetricsOptions& options);
+
+}  // namespace rockfit::io

@@ -1,0 +1,68 @@
+#include "rockfit/io/atomic_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+
+#include <fmt/format.h>
+
+#include "rockfit/core/errors.hpp"
+
+namespace rockfit::io {
+
+namespace {
+
+std::atomic<unsigned> g_serial{0};
+
+void Fsync(const std::filesystem::path& path, int flags) {
+  const int fd = ::open(path.c_str(), flags);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
+}  // namespace
+
+void WriteFileAtomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write) {
+  if (path.filename().empty()) throw OutputError(fmt::format("'{}' is not a file name", path.string()));
+  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  const std::filesystem::path temporary =
+      dir / fmt::format(".{}.rockfit-tmp-{}-{}", path.filename().string(), ::getpid(), g_serial++);
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw OutputError(fmt::format("{} is a directory; give a file name", path.string()));
+  }
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) {
+      throw OutputError(fmt::format("cannot create a file in {}: {}; check that the directory exists and is writable",
+                                    dir.string(), std::strerror(errno)));
+    }
+    try {
+      write(out);
+    } catch (...) {
+      out.close();
+      std::filesystem::remove(temporary, ec);
+      throw;
+    }
+    out.flush();
+    if (!out) {
+      std::filesystem::remove(temporary, ec);
+      throw OutputError(fmt::format("cannot write {}: {}; check free space", path.string(), std::strerror(errno)));
+    }
+  }
+  Fsync(temporary, O_RDONLY);
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    std::filesystem::remove(temporary, ec);
+    throw OutputError(fmt::format("cannot rename {} to {}: {}", temporary.string(), path.string(), reason));
+  }
+  Fsync(dir, O_RDONLY | O_DIRECTORY);
+}
+
+}  // namespace rockfit::io

@@ -1,0 +1,116 @@
+// `rockfit plot euler|summary`: real PNG/SVG pictures of the requested size; a clear message without gnuplot.
+#include <cstdlib>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "cli_runner.hpp"
+#include "synthetic_campaign.hpp"
+#include "scratch_dir.hpp"
+
+namespace rockfit::testing {
+namespace {
+
+struct PngSize {
+  bool valid = false;
+  std::uint32_t width = 0, height = 0;
+};
+
+// The PNG signature and the IHDR chunk that must follow it (width and height, big-endian).
+PngSize ReadPngHeader(const std::filesystem::path& path) {
+  const std::string bytes = ReadWholeFile(path);
+  PngSize size;
+  const std::string signature("\x89PNG\r\n\x1a\n", 8);
+  if (bytes.size() < 33 || bytes.compare(0, 8, signature) != 0 || bytes.compare(12, 4, "IHDR") != 0) return size;
+  const auto u32 = [&](std::size_t at) {
+    return (std::uint32_t(std::uint8_t(bytes[at])) << 24) | (std::uint32_t(std::uint8_t(bytes[at + 1])) << 16) |
+           (std::uint32_t(std::uint8_t(bytes[at + 2])) << 8) | std::uint32_t(std::uint8_t(bytes[at + 3]));
+  };
+  size.valid = true;
+  size.width = u32(16);
+  size.height = u32(20);
+  return size;
+}
+
+class CliPlot : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new ScratchDir("cli_plot");
+    trials_ = new std::vector<SyntheticTrial>(WriteSyntheticCampaign(dir_->path(), {0.03, 0.05, 0.08}, 2));
+  }
+  static void TearDownTestSuite() {
+    delete trials_;
+    delete dir_;
+  }
+  static std::string Manifest() { return (dir_->path() / "campaign.toml").string(); }
+  static ScratchDir* dir_;
+  static std::vector<SyntheticTrial>* trials_;
+};
+ScratchDir* CliPlot::dir_ = nullptr;
+std::vector<SyntheticTrial>* CliPlot::trials_ = nullptr;
+
+TEST_F(CliPlot, EulerFigureIsARealPngOfTheRequestedSize) {
+  const auto out = dir_->path() / "euler.png";
+  const CommandResult r = RunRockfit({"plot", "euler", Manifest(), "--trial", "B1-A-1", "-o", out.string(), "--width",
+                                      "1000", "--height", "900", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const PngSize png = ReadPngHeader(out);
+  ASSERT_TRUE(png.valid);
+  EXPECT_EQ(png.width, 1000u);
+  EXPECT_EQ(png.height, 900u);
+  // Three panels of curves are far more than a blank canvas.
+  EXPECT_GT(std::filesystem::file_size(out), 30000u);
+  const auto json = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["kind"], "euler");
+  EXPECT_GT(json["impacts"].get<int>(), 15);
+}
+
+TEST_F(CliPlot, SummaryFigureFromTheManifestAndFromHdf5) {
+  const auto png = dir_->path() / "summary.png";
+  const CommandResult from_manifest = RunRockfit({"plot", "summary", Manifest(), "-o", png.string(), "--width", "1200",
+                                                  "--height", "520"});
+  ASSERT_EQ(from_manifest.exit_code, 0) << from_manifest.err;
+  const PngSize size = ReadPngHeader(png);
+  ASSERT_TRUE(size.valid);
+  EXPECT_EQ(size.width, 1200u);
+  EXPECT_EQ(size.height, 520u);
+  EXPECT_GT(std::filesystem::file_size(png), 20000u);
+
+  const auto h5 = dir_->path() / "summary.h5";
+  ASSERT_EQ(RunRockfit({"summary", Manifest(), "-o", h5.string()}).exit_code, 0);
+  const auto svg = dir_->path() / "summary.svg";
+  const CommandResult from_hdf5 = RunRockfit({"plot", "summary", h5.string(), "-o", svg.string()});
+  ASSERT_EQ(from_hdf5.exit_code, 0) << from_hdf5.err;
+  const std::string text = ReadWholeFile(svg);
+  EXPECT_NE(text.find("<svg"), std::string::npos);
+  EXPECT_NE(text.find("position A"), std::string::npos);
+  EXPECT_NE(text.find("position B"), std::string::npos);
+}
+
+TEST_F(CliPlot, EulerFigureFromAStoredTrial) {
+  const auto h5 = dir_->path() / "corrected.h5";
+  ASSERT_EQ(RunRockfit({"correct", Manifest(), "--trial", "B2-B-1", "-o", h5.string()}).exit_code, 0);
+  const auto out = dir_->path() / "stored.png";
+  const CommandResult r = RunRockfit({"plot", "euler", h5.string(), "-o", out.string(), "--from", "0", "--to", "4"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(ReadPngHeader(out).valid);
+}
+
+TEST_F(CliPlot, WithoutGnuplotTheMessageSaysHowToInstallIt) {
+  ::setenv("ROCKFIT_GNUPLOT", "/nonexistent/gnuplot", 1);
+  const auto out = dir_->path() / "none.png";
+  const CommandResult r = RunRockfit({"plot", "summary", Manifest(), "-o", out.string()});
+  ::unsetenv("ROCKFIT_GNUPLOT");
+  EXPECT_EQ(r.exit_code, 4);
+  EXPECT_NE(r.err.find("apt-get install gnuplot-nox"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST_F(CliPlot, WrongPictureExtensionIsAUsageError) {
+  const CommandResult r = RunRockfit({"plot", "summary", Manifest(), "-o", (dir_->path() / "x.jpg").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find(".png or .svg"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace rockfit::testing
