@@ -111,6 +111,12 @@ void InitialGuessOptions::Validate() const {
     throw InvalidArgument(fmt::format("later_impact_fraction must lie in (0, 1], got {}", later_impact_fraction));
   }
   if (!std::isfinite(default_lambda)) throw InvalidArgument("default_lambda must be finite");
+  if (!(min_jump_fraction >= 0.0 && min_jump_fraction < 1.0)) {
+    throw InvalidArgument(fmt::format("min_jump_fraction must lie in [0, 1), got {}", min_jump_fraction));
+  }
+  if (!(flat_tilt_fraction > 0.0 && flat_tilt_fraction < 1.0)) {
+    throw InvalidArgument(fmt::format("flat_tilt_fraction must lie in (0, 1), got {}", flat_tilt_fraction));
+  }
   if (post_impact_samples < 1) throw InvalidArgument("post_impact_samples must be at least 1");
 }
 
@@ -121,15 +127,33 @@ std::vector<double> DetectBaseImpactTimes(const MeasuredSignal& signal, const In
   double largest = 0.0;
   for (const io::Peak& p : peaks) largest = std::max(largest, p.value);
   std::vector<double> times;
-  double first_value = 0.0;
+  double first_value = 0.0, first_sign = 1.0;
+  std::vector<double> tilt_y(signal.size(), 0.0), max_tilt_y(signal.size(), 0.0);  // [rad]
   for (const io::Peak& p : peaks) {
     if (times.empty()) {
       if (p.value >= options.first_impact_fraction * largest) {
         times.push_back(signal.t_s[p.index]);
         first_value = p.value;
+        first_sign = signal.w_B[p.index][1] >= 0.0 ? 1.0 : -1.0;
+        for (std::size_t k = p.index + 1; k < signal.size(); ++k) {  // trapezoid rule from the first impact
+          tilt_y[k] = tilt_y[k - 1] + 0.5 * (signal.t_s[k] - signal.t_s[k - 1]) *
+                                          (signal.w_B[k][1] + signal.w_B[k - 1][1]);
+          max_tilt_y[k] = std::max(max_tilt_y[k - 1], std::abs(tilt_y[k]));
+        }
       }
-    } else if (p.value >= options.later_impact_fraction * first_value) {
-      times.push_back(signal.t_s[p.index]);
+    } else if (p.value >= options.later_impact_fraction * first_value && p.index + 1 < signal.size()) {
+      // A base impact on the release side: the block rocks back (ω_y has the opposite sign of the landing from
+      // the release) and |ω_y| drops abruptly after the peak. Smooth maxima of |ω_y| in 3D rocking on a
+      // vertex and the jumps of edge impacts while rocking on the far side fail one of these tests.
+      // It also happens with the base back near flat: the tilt about y accumulated since the first impact (the
+      // integral of ω_y, flat at the first impact) is small against its largest value in between; edge impacts
+      // between the far vertices V3, V4 happen at a large tilt.
+      const double w = signal.w_B[p.index][1];
+      const double drop = std::abs(w) - std::abs(signal.w_B[p.index + 1][1]);
+      const bool flat = std::abs(tilt_y[p.index]) <= options.flat_tilt_fraction * max_tilt_y[p.index];
+      if (w * first_sign < 0.0 && drop >= options.min_jump_fraction * std::abs(w) && flat) {
+        times.push_back(signal.t_s[p.index]);
+      }
     }
   }
   if (times.empty()) {

@@ -6,6 +6,7 @@
 
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/planar_rocking.hpp"
+#include "rockfit/core/simulator.hpp"
 #include "rockfit/fitting/simulator_model.hpp"
 #include "synthetic_signal.hpp"
 
@@ -57,17 +58,22 @@ TEST_P(InitialGuessOnSynthetic, RecoversReleaseTimeTiltAndSignOfLambdaLat) {
   EXPECT_NEAR(g.t_first_impact_s, t_impact, kWindowEndToleranceS);
 }
 
-TEST_P(InitialGuessOnSynthetic, WindowEndIsTheSecondBaseImpact) {
+TEST_P(InitialGuessOnSynthetic, WindowEndIsTheImpactEndingPhase4) {
   const Truth truth = GetParam();
   const core::Block block = PaperBlock(0.035);
   const testing::SyntheticSignal trial = MakeTrial(block, truth, 12);
-  // The second facet impact of the model (the first is the landing from the release).
-  std::vector<double> facets;
-  for (const ModelEvent& e : trial.events) {
-    if (e.kind == "facet") facets.push_back(truth.t0_s + e.t_s);
-  }
-  ASSERT_GE(facets.size(), 2u);
-  EXPECT_NEAR(DetectWindowEnd(trial.signal, {}), facets[1], kWindowEndToleranceS);
+  // The simulator's phase-4 stop: the first impact on the release side after the first facet impact (DESIGN §4).
+  core::ModelParameters p = ParameterSet::Defaults().ToModel();
+  p.alpha_rad = truth.alpha_rad;
+  p.lambda = truth.lambda;
+  p.lambda_lat = truth.lambda_lat;
+  p.lambda_lon = truth.lambda_lon;
+  core::SimulationOptions options;
+  options.stop = core::StopCondition::kPhase4;
+  const core::Trajectory phase4 = core::Simulate(block, p, options);
+  ASSERT_EQ(phase4.end_reason, core::EndReason::kPhase4);
+  const double t_phase4_end = truth.t0_s + phase4.t_end_s;
+  EXPECT_NEAR(DetectWindowEnd(trial.signal, {}), t_phase4_end, kWindowEndToleranceS);
 }
 
 INSTANTIATE_TEST_SUITE_P(Trials, InitialGuessOnSynthetic,

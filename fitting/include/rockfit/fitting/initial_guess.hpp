@@ -9,7 +9,8 @@
 //    far side), through the inverse of (6); then (λ_lat, λ_lon) refined so that the facet impact map (18)+(21)
 //    reproduces the measured (ω_x⁺, ω_y⁺). The sign of λ_lat is the sign of ω_x⁺ (for ω_y⁻ > 0).
 //  * λ: a default (the global stage scans it over its bounds; it acts only once edge impacts occur).
-//  * t_end: the impact that ends phase 4, by default the second base impact (second |ω_y| peak).
+//  * t_end: the impact that ends phase 4, by default the second base impact: the next |ω_y| peak on the release
+//    side (ω_y reversed, base near flat) where |ω_y| drops abruptly.
 #pragma once
 
 #include <string>
@@ -31,6 +32,13 @@ struct InitialGuessOptions {
   // first impact's peak (n = 2: the second base impact, DESIGN §7).
   int window_end_impact = 2;
   double later_impact_fraction = 0.2;
+  // A later base impact is on the release side (ω_y of the opposite sign to the first landing) and |ω_y| drops
+  // by at least this fraction from the peak sample to the next: an impact with a restitution of r < 0.97 does,
+  // a smooth maximum (a change of ½·ω̈·Δt², below 1 % at 256 Hz) does not.
+  double min_jump_fraction = 0.03;
+  // … and the base is back near flat: |∫ω_y dt| since the first impact is at most this fraction of its largest
+  // value in between (edge impacts between the far vertices V3, V4 happen at a large tilt about y).
+  double flat_tilt_fraction = 0.25;
   // λ when the data do not determine it before the fit (no edge impact seen yet).
   double default_lambda = 1.0;
   // Samples after an impact used for ω⁺ (the median damps the gyro's ringing).
