@@ -20,6 +20,8 @@ constexpr double kPhase1StepS = 1e-4;
 // The planar fit searches α within this distance of the landing-rate estimate [rad]: the landing rate read
 // from one sample before the impact is low by at most one sample of angular acceleration (≈ 5 % in α).
 constexpr double kAlphaSearchHalfWidthRad = 0.03;
+// Points of the α scan before the golden section: a step of 2 mrad over the ±0.03 rad interval.
+constexpr int kAlphaScanPoints = 30;
 // Golden-section iterations: (0.618)^40 of the interval, far below the resolution of the data.
 constexpr int kGoldenIterations = 40;
 // The phase-1 fit looks at the data from this multiple of T(α) before the impact (it sees the release).
@@ -214,12 +216,26 @@ InitialGuess EstimateInitialGuess(const MeasuredSignal& signal, const core::Bloc
     *cost = cost_at(rates, t0);
     return t0;
   };
-  const double alpha = GoldenMinimum(std::max(1e-3, alpha_coarse - kAlphaSearchHalfWidthRad),
-                                     std::min(alpha_max, alpha_coarse + kAlphaSearchHalfWidthRad), [&](double a) {
-                                       double c = 0.0;
-                                       best_t0_for(a, &c);
-                                       return c;
-                                     });
+  // A scan first: near the critical angle the fall is slow and the cost has several shallow minima in α.
+  auto cost_of_alpha = [&](double a) {
+    double c = 0.0;
+    best_t0_for(a, &c);
+    return c;
+  };
+  const double alpha_lo = std::max(1e-3, alpha_coarse - kAlphaSearchHalfWidthRad);
+  const double alpha_hi = std::min(alpha_max, alpha_coarse + kAlphaSearchHalfWidthRad);
+  const double alpha_step = (alpha_hi - alpha_lo) / kAlphaScanPoints;
+  double best_scan = alpha_lo, best_scan_cost = std::numeric_limits<double>::infinity();
+  for (int i = 0; i <= kAlphaScanPoints; ++i) {
+    const double a = alpha_lo + alpha_step * i;
+    const double c = cost_of_alpha(a);
+    if (c < best_scan_cost) {
+      best_scan_cost = c;
+      best_scan = a;
+    }
+  }
+  const double alpha = GoldenMinimum(std::max(alpha_lo, best_scan - alpha_step), std::min(alpha_hi, best_scan + alpha_step),
+                                     cost_of_alpha);
   double cost = 0.0;
   const double t0 = best_t0_for(alpha, &cost);
   const double t_impact = t0 + core::FallTime(rocker, alpha);

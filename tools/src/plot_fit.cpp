@@ -101,7 +101,7 @@ int RunPlotParameters(const PlotParametersCommand& cmd) {
   }
   std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.group < b.group; });
   const char* const panels[] = {"alpha", "lambda", "lambda_lat", "lambda_lon", "epsilon"};
-  const char* const labels[] = {"α [rad]", "λ", "λ_lat", "λ_lon", "ε (28) [rad/s]"};
+  const char* const labels[] = {"α [rad]", "λ", "λ_{lat}", "λ_{lon}", "ε (28) [rad/s]"};
   GnuplotFigure figure;
   std::vector<std::vector<double>> columns(6);
   std::string xtics;
