@@ -119,7 +119,7 @@ int RunPlotParameters(const PlotParametersCommand& cmd) {
   std::string body = fmt::format("set multiplot layout 5,1 title {} font ',13'\n",
                                  GnuplotString(fmt::format("Fitted parameters per trial ({} fits), lines join a block "
                                                            "and position", rows.size())));
-  body += fmt::format("set xrange [0.5:{}]\nset grid lc rgb '#dddddd'\nset lmargin 12\nset rmargin 3\nset key off\n",
+  body += fmt::format("set xrange [0.5:{}]\nset grid lc rgb '#dddddd'\nset lmargin 12\nset rmargin 3\nset key off\nset offsets 0, 0, graph 0.08, graph 0.08\n",
                       rows.size() + 0.5);
   for (int p = 0; p < 5; ++p) {
     body += fmt::format("set ylabel {}\n", GnuplotString(labels[p]));
