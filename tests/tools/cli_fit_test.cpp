@@ -103,5 +103,39 @@ print('ok')
   EXPECT_EQ(check.exit_code, 0) << check.out;
 }
 
+// The PNG signature and the image size from the IHDR chunk that follows it (big-endian).
+std::pair<unsigned, unsigned> PngSize(const std::filesystem::path& path) {
+  const std::string bytes = ReadWholeFile(path);
+  if (bytes.size() < 24 || bytes.compare(0, 8, std::string("\x89PNG\r\n\x1a\n", 8)) != 0) return {0, 0};
+  auto be32 = [&](std::size_t at) {
+    unsigned v = 0;
+    for (std::size_t i = 0; i < 4; ++i) v = (v << 8) | static_cast<unsigned char>(bytes[at + i]);
+    return v;
+  };
+  return {be32(16), be32(20)};
+}
+
+TEST(CliFit, PlotsOfTheFitAndOfTheParameters) {
+  const ScratchDir dir("cli_fit_plot");
+  const std::string out = (dir / "fits.h5").string();
+  const auto direct = dir / "direct.png";
+  const CommandResult fit = RunRockfit(QuickFit({"-o", out, "--plot", direct.string()}));
+  if (fit.exit_code == 4 && fit.err.find("gnuplot") != std::string::npos) GTEST_SKIP() << "gnuplot is missing";
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  EXPECT_EQ(PngSize(direct), std::make_pair(1200u, 900u));
+  const auto from_file = dir / "fit.png";
+  ASSERT_EQ(RunRockfit({"plot", "fit", out, "--trial", "block2-A-1", "-o", from_file.string()}).exit_code, 0);
+  EXPECT_EQ(PngSize(from_file), std::make_pair(1200u, 900u));
+  const auto params = dir / "params.png";
+  const CommandResult p = RunRockfit({"plot", "parameters", out, "-o", params.string(), "--json"});
+  ASSERT_EQ(p.exit_code, 0) << p.err;
+  EXPECT_EQ(nlohmann::json::parse(p.out)["fits"], 1);
+  EXPECT_EQ(PngSize(params), std::make_pair(1200u, 1200u));
+  // A trial that is not in the file: bad input with its name.
+  const CommandResult missing = RunRockfit({"plot", "fit", out, "--trial", "nope", "-o", (dir / "x.png").string()});
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("nope"), std::string::npos) << missing.err;
+}
+
 }  // namespace
 }  // namespace rockfit::testing
