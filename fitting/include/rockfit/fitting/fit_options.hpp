@@ -1,0 +1,102 @@
+// Every knob of the fitter, with its default and the criterion it controls. FitOptions::Validate() names the
+// first bad option. Per-parameter settings are arrays indexed by ParameterId (t0, α, λ, λ_lat, λ_lon, τ_edge).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "rockfit/fitting/parameters.hpp"
+
+namespace rockfit::fitting {
+
+using PerParameter = std::array<double, kNumParameters>;
+
+enum class FitMethod { kNelderMead, kCeres, kAuto };
+const char* ToString(FitMethod method);             // "nelder-mead", "ceres", "auto"
+FitMethod ParseFitMethod(const std::string& name);  // throws InvalidArgument
+
+// NLopt LN_NELDERMEAD (as MATLAB's fminsearch in the paper, Sect. 5.1).
+struct NelderMeadOptions {
+  int max_evaluations = 1500;
+  // Stops when one step changes ε by less than this [rad/s] …
+  double ftol_abs_rad_s = 1e-7;
+  // … or moves every parameter by less than its xtol_abs (units of the parameter).
+  PerParameter xtol_abs = {1e-5, 1e-5, 1e-4, 1e-4, 1e-5, 1e-7};
+  // Size of the initial simplex along each parameter.
+  PerParameter initial_step = {4e-3, 5e-3, 0.2, 0.3, 0.05, 1e-3};
+  // After convergence, restart from the best point with a fresh simplex up to this many times while that
+  // improves ε by more than ftol_abs_rad_s (within max_evaluations in total).
+  int restarts = 2;
+  void Validate() const;
+};
+
+// Ceres trust-region least squares on per-sample residuals (see fitting/README.md, "Ceres back end").
+struct CeresOptions {
+  int max_iterations = 40;
+  double function_tolerance = 1e-7;   // relative change of the Ceres cost
+  double parameter_tolerance = 1e-8;  // relative step size
+  double gradient_tolerance = 1e-10;
+  // Soft-L1 scale c [rad/s]: residuals well above c count linearly (the sum then approximates (28)), those
+  // below c quadratically, which keeps the cost smooth at a perfect fit. Gyro noise is ~0.01 rad/s.
+  double soft_l1_scale_rad_s = 0.02;
+  // Central-difference steps per parameter. Impacts make the simulated ω jump, so residuals are only
+  // piecewise smooth in the parameters; steps of a fraction of a sample period (t0) or of the typical
+  // resolution (others) average over that instead of differentiating it.
+  PerParameter difference_step = {5e-4, 5e-4, 5e-3, 1e-2, 2e-3, 1e-4};
+  void Validate() const;
+};
+
+// Global stage: multi-start on a short first window, continuation to the full window (global_stage.hpp).
+struct GlobalStageOptions {
+  bool enabled = true;
+  int num_samples = 32;          // Latin-hypercube starts in the first window (plus the data estimate)
+  int num_polished = 3;          // best distinct starts polished there (the best of each sign of λ_lat included)
+  int polish_evaluations = 120;  // Nelder–Mead evaluations per polished start
+  int num_continued = 2;         // polished starts carried to the full window
+  // The first window ends this long after the model's first impact [s]: long enough to see the jump and the
+  // start of the lateral motion, short enough that no lateral half-cycle completes.
+  double first_window_s = 0.03;
+  double continuation_growth = 2.0;   // each window is this factor longer (after the first impact)
+  int continuation_evaluations = 100; // Nelder–Mead evaluations per continuation window
+  double continuation_step_fraction = 0.25;  // their initial simplex, as a fraction of nelder_mead.initial_step
+  // A parameter that starts acting in a continuation window (λ at the first edge impact) is first scanned
+  // over its bounds at this many equally spaced values.
+  int scan_points = 24;
+  // On the full window, scan every parameter sampled over its whole bounds once more, then search locally.
+  bool final_scan = true;
+  std::uint64_t seed = 20211230;
+  // Half-widths of the sampling box around the data estimate for the parameters that phase 1 determines
+  // well; the other parameters are sampled over their whole bounds.
+  double t0_halfwidth_s = 0.015;
+  double alpha_halfwidth_rad = 0.015;
+  void Validate() const;
+};
+
+// "Not identifiable": ε does not change when the parameter is moved by ±probe_step (within its bounds).
+struct IdentifiabilityOptions {
+  PerParameter probe_step = {2e-3, 2e-3, 0.1, 0.2, 0.05, 1e-3};
+  // |Δε| ≤ relative_tolerance·ε counts as no change: changes of ε below round-off of its sum.
+  double relative_tolerance = 1e-9;
+  void Validate() const;
+};
+
+struct FitOptions {
+  FitMethod method = FitMethod::kAuto;
+  // true: free parameters start from the estimate from the recording (no starting point needed);
+  // false: from the values in the parameter set.
+  bool start_from_data = true;
+  GlobalStageOptions global;
+  NelderMeadOptions nelder_mead;
+  CeresOptions ceres;
+  IdentifiabilityOptions identifiability;
+  bool compute_std_errors = true;
+  // Worker threads for the global stage; 0 = all cores (TBB default). Batches set 1 per trial.
+  int num_threads = 0;
+  // A value closer than this fraction of its range to a bound is reported "at bound".
+  double at_bound_fraction = 1e-3;
+  // Throws InvalidArgument naming the first bad option.
+  void Validate() const;
+};
+
+}  // namespace rockfit::fitting

@@ -1,0 +1,70 @@
+// The outcome of fitting one trial: values, bounds, fixed flags, standard errors, ε of (28) at the start and
+// the end, effort, termination and warnings (DESIGN §7).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "rockfit/fitting/fit_options.hpp"
+#include "rockfit/fitting/parameters.hpp"
+
+namespace rockfit::fitting {
+
+struct FitWarning {
+  // "at_bound", "not_identifiable", "simulation_failures", "not_converged", "std_error_unavailable",
+  // "worse_than_start".
+  std::string kind;
+  std::string parameter;  // empty when the warning is not about one parameter
+  std::string message;    // one sentence for people
+};
+
+// One stage of the pipeline (data estimate, global stage, Nelder–Mead, Ceres, …).
+struct StageReport {
+  std::string name;
+  double epsilon_rad_s = 0.0;  // (28) at the stage's best point
+  std::int64_t evaluations = 0;
+  double wall_time_s = 0.0;
+  std::string termination;
+};
+
+struct FitSummary {
+  FitMethod method = FitMethod::kAuto;
+  ParameterSet start;       // where the local search started (data estimate or given values)
+  ParameterSet parameters;  // the result (fixed parameters unchanged)
+  // Per ParameterId; NaN where not available (fixed, at a bound, not identifiable, rank-deficient).
+  PerParameter std_error{};
+  std::array<bool, kNumParameters> identifiable{};  // true for fixed parameters
+  std::array<bool, kNumParameters> at_bound{};
+
+  double epsilon_initial_rad_s = 0.0;  // (28) at `start`
+  double epsilon_rad_s = 0.0;          // (28) at `parameters`
+  bool feasible = false;               // the model runs at `parameters`
+  double t_end_s = 0.0;                // end of the fitting window (recording time)
+
+  std::int64_t simulations = 0;  // model runs of the whole fit
+  double simulations_per_second = 0.0;
+  double wall_time_s = 0.0;
+  std::string termination;  // of the stage whose point was kept
+  bool converged = false;
+  std::string kept_stage;   // name of the stage whose point was kept
+
+  std::map<std::string, std::int64_t> failures_by_reason;  // infeasible points by reason
+  std::vector<StageReport> stages;
+  std::vector<FitWarning> warnings;
+  std::string model_description;
+
+  bool HasWarning(const std::string& kind, const std::string& parameter = "") const;
+  // One line: ε, time, simulations, termination.
+  std::string BriefReport() const;
+  // A table of parameters and every stage and warning, for terminals.
+  std::string FullReport() const;
+  // One JSON object with the documented keys (see fitting/README.md): parameters (value, lower, upper, fixed,
+  // std_error, identifiable, at_bound, unit), epsilon, epsilon_initial, t_end, simulations, wall_s,
+  // termination, warnings, …; `trial` is added when not empty.
+  std::string ToJson(const std::string& trial = "") const;
+};
+
+}  // namespace rockfit::fitting

@@ -1,0 +1,54 @@
+// The global stage of a fit without a starting point.
+//
+// The error (28) over the whole window is strongly multimodal in the impact parameters: the lateral rocking
+// after the facet impact runs through several half-cycles whose phase depends on λ_lat and λ, so a small change
+// of amplitude early on shifts everything later. Over a short window the same parameters act almost linearly.
+// Hence a continuation in the window length:
+//
+//  1. First window [t0, t1 + first_window_s], t1 the first impact of the model at the estimate: Latin-hypercube
+//     starts (plus the estimate) over the parameters that matter there, evaluated in parallel; the best few
+//     distinct starts — always the best of each sign of λ_lat, because the sign selects the vertex the block
+//     rocks on after the facet impact (DESIGN §3) — are polished by Nelder–Mead in parallel.
+//  2. The best num_continued of them are carried to the full window through windows growing by a factor
+//     `continuation_growth` after t1, with a short Nelder–Mead run in each. Parameters that do not act yet in a
+//     window (λ before the first edge impact) are held fixed there; when one starts to act, it is first
+//     scanned over its bounds, because its first influence (the timing of the next lateral half-cycles) is
+//     again multimodal.
+//  3. On the full window, the impact parameters (everything but t0 and α) are scanned over their bounds once
+//     more, one at a time, followed by a last Nelder–Mead run; the best carried start by (28) is the result.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rockfit/fitting/fit_options.hpp"
+#include "rockfit/fitting/local_optimizer.hpp"
+#include "rockfit/fitting/objective.hpp"
+
+namespace rockfit::fitting {
+
+struct GlobalStageResult {
+  Eigen::VectorXd best_x;  // free parameters of the full problem
+  double best_epsilon_rad_s = 0.0;
+  bool feasible = false;
+  bool converged = false;        // the last continuation step of the kept start converged
+  double first_window_end_s = 0.0;
+  int num_samples = 0;           // starts evaluated in the first window
+  int num_feasible_samples = 0;
+  int num_continued = 0;
+  std::int64_t evaluations = 0;
+  double wall_time_s = 0.0;
+};
+
+// The sampling box: t0 and α within the given half-widths of the estimate (they are well determined by
+// phase 1), every other free parameter over its whole bounds; always clipped to the bounds.
+void GlobalSamplingBox(const Objective& objective, const Eigen::VectorXd& estimate, const GlobalStageOptions& options,
+                       Eigen::VectorXd* lower, Eigen::VectorXd* upper);
+
+// Deterministic for a given seed whatever the number of threads (options.num_threads, 0 = all cores).
+GlobalStageResult RunGlobalStage(const Objective& objective, const Eigen::VectorXd& estimate,
+                                 const FitOptions& options);
+
+}  // namespace rockfit::fitting

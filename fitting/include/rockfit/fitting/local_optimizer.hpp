@@ -1,0 +1,49 @@
+// The local back ends behind one interface: NLopt's Nelder–Mead simplex (derivative-free, as the paper's
+// fminsearch) and Ceres' trust-region least squares on per-sample residuals. Both minimise over the free
+// parameters of an Objective within its bounds and report (28) at the point they return.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "rockfit/fitting/fit_options.hpp"
+#include "rockfit/fitting/objective.hpp"
+
+namespace rockfit::fitting {
+
+struct LocalResult {
+  Eigen::VectorXd x;           // the best point found (free parameters, in the order of free_ids())
+  double epsilon_rad_s = 0.0;  // (28) at x (the penalty when no feasible point was found)
+  bool feasible = false;
+  bool converged = false;      // stopped by a convergence test, not by a budget or a failure
+  std::string termination;     // "nlopt: xtol reached", "ceres: CONVERGENCE: …", "nlopt: roundoff limited", …
+  std::int64_t evaluations = 0;  // objective evaluations (model runs plus points rejected before a run)
+  double wall_time_s = 0.0;
+};
+
+class LocalOptimizer {
+ public:
+  virtual ~LocalOptimizer() = default;
+  virtual const char* name() const = 0;  // "nelder-mead", "ceres"
+  // Starts at x0 (clamped into the bounds). Never throws for numerical trouble: that is a termination.
+  virtual LocalResult Minimize(const Objective& objective, const Eigen::VectorXd& x0) const = 0;
+};
+
+std::unique_ptr<LocalOptimizer> MakeNelderMead(const NelderMeadOptions& options);
+std::unique_ptr<LocalOptimizer> MakeCeres(const CeresOptions& options);
+
+// Standard errors of the free parameters of `objective` at x from the Gauss–Newton covariance
+// s²·(JᵀJ)⁻¹ of the residuals √w_k·(ω_m − ω_s) (ceres::Covariance, dense SVD), with
+// s² = Σ w_k‖ω_m − ω_s‖² / (3·nodes − free parameters), i.e. assuming independent measurement errors.
+// `std_error` holds NaN where the covariance is not defined (rank-deficient Jacobian); `message` says why.
+struct StandardErrors {
+  Eigen::VectorXd std_error;
+  bool available = false;
+  std::string message;
+};
+StandardErrors ComputeStandardErrors(const Objective& objective, const Eigen::VectorXd& x, const CeresOptions& options);
+
+}  // namespace rockfit::fitting

@@ -1,0 +1,43 @@
+// The hybrid simulator of rockfit::core as the fitter's trajectory model: one run from the release at tilt α
+// per evaluation, sampled from the integrator's dense output exactly at the requested times after the release
+// (DESIGN §4, §7). Runs that overturn or fail become model failures with a short category for counting.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "rockfit/core/block.hpp"
+#include "rockfit/core/simulator.hpp"
+#include "rockfit/fitting/trajectory_model.hpp"
+
+namespace rockfit::fitting {
+
+struct SimulatorModelOptions {
+  // Tolerances, Zeno and rest thresholds, release edge, gravity. sample_times_s, stop, t_max_s and
+  // sample_attitude are set for each run (the run ends at the last requested time).
+  core::SimulationOptions simulation = DefaultFittingSimulation();
+  // The simulator's defaults, except a cap on the impacts of one run: a fitting window has a few dozen; a
+  // parameter set that makes the block wobble across side edges for thousands of impacts is a failure.
+  static core::SimulationOptions DefaultFittingSimulation();
+  void Validate() const;  // throws InvalidArgument
+};
+
+class SimulatorModel final : public TrajectoryModel {
+ public:
+  SimulatorModel(const core::Block& block, SimulatorModelOptions options = {});
+  void Evaluate(const core::ModelParameters& params, const std::vector<double>& t_after_release_s,
+                ModelOutput* out) const override;
+  std::string Describe() const override;
+  const core::Block& block() const { return block_; }
+  const SimulatorModelOptions& options() const { return options_; }
+
+ private:
+  core::Block block_;
+  SimulatorModelOptions options_;
+};
+
+// The failure category of a failed simulator run from its message ("edge impact infeasible", "integrator",
+// "impact cascade", "too many impacts", or "failed").
+std::string SimulationFailureCategory(const std::string& message);
+
+}  // namespace rockfit::fitting

@@ -1,0 +1,51 @@
+// The error function (28) of the paper (Sect. 5.1), exactly as DESIGN §7 defines it:
+//
+//   ε(t0, α, …) = (t_end − t0)⁻¹ ∫_{t0}^{t_end} ‖ω_m(t) − ω_s(t − t0)‖₂ dt,
+//
+// with the trapezoid rule on the nodes t0 < t_k < t_end, where t_k are the measured sample times, the measured
+// value at t0 (and at t_end when it is not a sample) is interpolated linearly, and ω_s is the model sampled at
+// exactly these node times minus t0 (never re-interpolated). A node enters at t0 with the value the sample
+// it replaces would have, so ε does not jump when t0 crosses a sample time.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace rockfit::fitting {
+
+// Measured angular velocity of one trial in recording time.
+struct MeasuredSignal {
+  std::vector<double> t_s;           // strictly increasing [s]
+  std::vector<Eigen::Vector3d> w_B;  // [rad/s], one per time
+
+  // Throws InvalidArgument when sizes differ, fewer than two samples, a value is not finite, or time does not
+  // strictly increase (naming the first offending sample).
+  void Validate() const;
+  std::size_t size() const { return t_s.size(); }
+  // Linear interpolation of w_B at t, clamped to the first/last sample outside the recording.
+  Eigen::Vector3d Interpolate(double t) const;
+};
+
+// The quadrature nodes of (28) for one t0.
+struct ErrorNodes {
+  std::vector<double> t_s;                  // t_s[0] = t0 < … < t_s.back() = t_end (recording time)
+  std::vector<double> t_after_release_s;    // t_s − t0, where the model is sampled (starts at 0)
+  std::vector<Eigen::Vector3d> w_m_B;       // measured ω at the nodes
+  std::vector<double> weight_s;             // trapezoid weights; they sum to t_end − t0
+  std::size_t first_sample = 0;             // signal index of node 1 when node 1 is a sample
+  std::size_t num_interior = 0;             // nodes 1..num_interior are the samples strictly inside (t0, t_end)
+
+  std::size_t size() const { return t_s.size(); }
+  double duration_s() const { return t_s.back() - t_s.front(); }
+};
+
+// Fills `nodes` (reusing its storage) for the window [t0, t_end]. Returns false when the window is empty or
+// not inside the recording: t0 < t_front, t_end > t_back or t0 ≥ t_end.
+bool BuildErrorNodes(const MeasuredSignal& signal, double t0_s, double t_end_s, ErrorNodes* nodes);
+
+// (28) for the nodes and the model's ω_s at nodes.t_after_release_s (same length).
+double TrajectoryError(const ErrorNodes& nodes, const std::vector<Eigen::Vector3d>& w_s_B);
+
+}  // namespace rockfit::fitting

@@ -1,0 +1,48 @@
+// What the fitter fits: anything that maps model parameters and times after the release to the body-frame
+// angular velocity ω_s at those times. The hybrid simulator is one such model (simulator_model.hpp); tests use
+// cheap analytic ones. A model must be thread-safe: the global stage evaluates it from several threads at once.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rockfit/core/simulator.hpp"
+
+namespace rockfit::fitting {
+
+// One impact (or other discrete event) of a model run, in time after the release.
+struct ModelEvent {
+  double t_s = 0.0;
+  std::string kind;  // "facet", "edge", "zeno", "rest", as in core::ImpactRecord::kind
+};
+
+struct ModelOutput {
+  std::vector<Eigen::Vector3d> w_B;  // one per query time [rad/s]; valid only when ok()
+  std::vector<ModelEvent> events;    // in time order
+  // Empty when the run succeeded. Otherwise a short category that failures are counted by ("overturned",
+  // "impact infeasible", "t_max", …) and a human-readable detail.
+  std::string failure;
+  std::string failure_detail;
+  bool ok() const { return failure.empty(); }
+  void Clear() {
+    w_B.clear();
+    events.clear();
+    failure.clear();
+    failure_detail.clear();
+  }
+};
+
+class TrajectoryModel {
+ public:
+  virtual ~TrajectoryModel() = default;
+  // Fills out->w_B at the ascending times t_after_release_s ≥ 0 (the first is 0, the release), or sets
+  // out->failure. Never throws for parameter values a fitter may try; never returns non-finite ω.
+  virtual void Evaluate(const core::ModelParameters& params, const std::vector<double>& t_after_release_s,
+                        ModelOutput* out) const = 0;
+  // One line for summaries ("hybrid simulator, rel_tol 1e-10", …).
+  virtual std::string Describe() const = 0;
+};
+
+}  // namespace rockfit::fitting

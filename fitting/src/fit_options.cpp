@@ -1,0 +1,102 @@
+#include "rockfit/fitting/fit_options.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "rockfit/core/errors.hpp"
+
+namespace rockfit::fitting {
+namespace {
+
+void RequirePositive(double value, const char* name) {
+  if (!(std::isfinite(value) && value > 0.0)) {
+    throw InvalidArgument(fmt::format("fit option {} must be a positive finite number, got {}", name, value));
+  }
+}
+
+void RequireAtLeast(int value, int minimum, const char* name) {
+  if (value < minimum) throw InvalidArgument(fmt::format("fit option {} must be at least {}, got {}", name, minimum, value));
+}
+
+void RequirePositive(const PerParameter& values, const char* name) {
+  for (ParameterId id : kAllParameters) {
+    const double v = values[static_cast<std::size_t>(id)];
+    if (!(std::isfinite(v) && v > 0.0)) {
+      throw InvalidArgument(
+          fmt::format("fit option {} for {} must be a positive finite number, got {}", name, Name(id), v));
+    }
+  }
+}
+
+}  // namespace
+
+const char* ToString(FitMethod method) {
+  switch (method) {
+    case FitMethod::kNelderMead: return "nelder-mead";
+    case FitMethod::kCeres: return "ceres";
+    case FitMethod::kAuto: return "auto";
+  }
+  return "?";
+}
+
+FitMethod ParseFitMethod(const std::string& name) {
+  if (name == "nelder-mead") return FitMethod::kNelderMead;
+  if (name == "ceres") return FitMethod::kCeres;
+  if (name == "auto") return FitMethod::kAuto;
+  throw InvalidArgument(fmt::format("unknown fit method '{}'; use nelder-mead, ceres or auto", name));
+}
+
+void NelderMeadOptions::Validate() const {
+  RequireAtLeast(max_evaluations, 1, "nelder_mead.max_evaluations");
+  RequirePositive(ftol_abs_rad_s, "nelder_mead.ftol_abs_rad_s");
+  RequireAtLeast(restarts, 0, "nelder_mead.restarts");
+  RequirePositive(xtol_abs, "nelder_mead.xtol_abs");
+  RequirePositive(initial_step, "nelder_mead.initial_step");
+}
+
+void CeresOptions::Validate() const {
+  RequireAtLeast(max_iterations, 1, "ceres.max_iterations");
+  RequirePositive(function_tolerance, "ceres.function_tolerance");
+  RequirePositive(parameter_tolerance, "ceres.parameter_tolerance");
+  RequirePositive(gradient_tolerance, "ceres.gradient_tolerance");
+  RequirePositive(soft_l1_scale_rad_s, "ceres.soft_l1_scale_rad_s");
+  RequirePositive(difference_step, "ceres.difference_step");
+}
+
+void GlobalStageOptions::Validate() const {
+  RequireAtLeast(num_samples, 1, "global.num_samples");
+  RequireAtLeast(num_polished, 1, "global.num_polished");
+  RequireAtLeast(polish_evaluations, 1, "global.polish_evaluations");
+  RequireAtLeast(num_continued, 1, "global.num_continued");
+  RequirePositive(first_window_s, "global.first_window_s");
+  if (!(continuation_growth > 1.0 && std::isfinite(continuation_growth))) {
+    throw InvalidArgument(fmt::format("fit option global.continuation_growth must be above 1, got {}", continuation_growth));
+  }
+  RequireAtLeast(continuation_evaluations, 1, "global.continuation_evaluations");
+  RequireAtLeast(scan_points, 1, "global.scan_points");
+  if (!(continuation_step_fraction > 0.0 && continuation_step_fraction <= 1.0)) {
+    throw InvalidArgument(fmt::format("fit option global.continuation_step_fraction must lie in (0, 1], got {}",
+                                      continuation_step_fraction));
+  }
+  RequirePositive(t0_halfwidth_s, "global.t0_halfwidth_s");
+  RequirePositive(alpha_halfwidth_rad, "global.alpha_halfwidth_rad");
+}
+
+void IdentifiabilityOptions::Validate() const {
+  RequirePositive(probe_step, "identifiability.probe_step");
+  RequirePositive(relative_tolerance, "identifiability.relative_tolerance");
+}
+
+void FitOptions::Validate() const {
+  global.Validate();
+  nelder_mead.Validate();
+  ceres.Validate();
+  identifiability.Validate();
+  RequireAtLeast(num_threads, 0, "num_threads");
+  if (!(at_bound_fraction >= 0.0 && at_bound_fraction < 0.5)) {
+    throw InvalidArgument(fmt::format("fit option at_bound_fraction must lie in [0, 0.5), got {}", at_bound_fraction));
+  }
+}
+
+}  // namespace rockfit::fitting

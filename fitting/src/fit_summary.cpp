@@ -1,0 +1,104 @@
+#include "rockfit/fitting/fit_summary.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace rockfit::fitting {
+namespace {
+
+nlohmann::json NumberOrNull(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
+
+}  // namespace
+
+bool FitSummary::HasWarning(const std::string& kind, const std::string& parameter) const {
+  for (const FitWarning& w : warnings) {
+    if (w.kind == kind && (parameter.empty() || w.parameter == parameter)) return true;
+  }
+  return false;
+}
+
+std::string FitSummary::BriefReport() const {
+  return fmt::format("ε = {:.6g} rad/s (start {:.6g}), {} simulations in {:.3f} s ({:.0f}/s), {}, {} warning(s)",
+                     epsilon_rad_s, epsilon_initial_rad_s, simulations, wall_time_s, simulations_per_second,
+                     termination, warnings.size());
+}
+
+std::string FitSummary::FullReport() const {
+  std::ostringstream out;
+  out << fmt::format("{:<11} {:>12} {:>12} {:>10} {:>10}  {}\n", "parameter", "value", "std error", "lower",
+                     "upper", "");
+  for (ParameterId id : kAllParameters) {
+    const Parameter& p = parameters[id];
+    const std::size_t k = static_cast<std::size_t>(id);
+    std::string flags = p.fixed ? "fixed" : "";
+    if (!p.fixed && at_bound[k]) flags += "at bound ";
+    if (!p.fixed && !identifiable[k]) flags += "not identifiable";
+    const std::string se = std::isfinite(std_error[k]) ? fmt::format("{:12.5g}", std_error[k]) : fmt::format("{:>12}", "-");
+    out << fmt::format("{:<11} {:12.6g} {} {:10.4g} {:10.4g}  {} {}\n", Name(id), p.value, se, p.lower, p.upper,
+                       Unit(id), flags);
+  }
+  out << fmt::format("ε (28)      {:.6g} rad/s (at the start {:.6g} rad/s), window ends at t_end = {:.4f} s\n",
+                     epsilon_rad_s, epsilon_initial_rad_s, t_end_s);
+  out << fmt::format("effort      {} simulations in {:.3f} s ({:.0f} per second), method {}\n", simulations,
+                     wall_time_s, simulations_per_second, ToString(method));
+  for (const StageReport& s : stages) {
+    out << fmt::format("  stage {:<14} ε = {:<11.6g} {:>6} evaluations {:8.3f} s  {}\n", s.name, s.epsilon_rad_s,
+                       s.evaluations, s.wall_time_s, s.termination);
+  }
+  out << fmt::format("termination {} (kept: {})\n", termination, kept_stage);
+  for (const FitWarning& w : warnings) out << "warning     " << w.message << "\n";
+  return out.str();
+}
+
+std::string FitSummary::ToJson(const std::string& trial) const {
+  nlohmann::json j;
+  if (!trial.empty()) j["trial"] = trial;
+  nlohmann::json params = nlohmann::json::object();
+  for (ParameterId id : kAllParameters) {
+    const Parameter& p = parameters[id];
+    const std::size_t k = static_cast<std::size_t>(id);
+    params[Name(id)] = {{"value", p.value},
+                        {"lower", NumberOrNull(p.lower)},
+                        {"upper", NumberOrNull(p.upper)},
+                        {"fixed", p.fixed},
+                        {"std_error", NumberOrNull(std_error[k])},
+                        {"identifiable", identifiable[k]},
+                        {"at_bound", at_bound[k]},
+                        {"start", start.value(id)},
+                        {"unit", Unit(id)}};
+  }
+  j["parameters"] = params;
+  j["epsilon"] = epsilon_rad_s;
+  j["epsilon_initial"] = epsilon_initial_rad_s;
+  j["feasible"] = feasible;
+  j["t_end"] = t_end_s;
+  j["simulations"] = simulations;
+  j["simulations_per_second"] = simulations_per_second;
+  j["wall_s"] = wall_time_s;
+  j["method"] = ToString(method);
+  j["termination"] = termination;
+  j["converged"] = converged;
+  j["kept_stage"] = kept_stage;
+  nlohmann::json warnings_json = nlohmann::json::array();
+  for (const FitWarning& w : warnings) {
+    warnings_json.push_back({{"kind", w.kind}, {"parameter", w.parameter}, {"message", w.message}});
+  }
+  j["warnings"] = warnings_json;
+  j["failures"] = failures_by_reason;
+  nlohmann::json stages_json = nlohmann::json::array();
+  for (const StageReport& s : stages) {
+    stages_json.push_back({{"name", s.name},
+                           {"epsilon", s.epsilon_rad_s},
+                           {"evaluations", s.evaluations},
+                           {"wall_s", s.wall_time_s},
+                           {"termination", s.termination}});
+  }
+  j["stages"] = stages_json;
+  j["model"] = model_description;
+  return j.dump();
+}
+
+}  // namespace rockfit::fitting

@@ -1,0 +1,171 @@
+#include "rockfit/fitting/fitter.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "rockfit/core/errors.hpp"
+#include "rockfit/fitting/global_stage.hpp"
+#include "rockfit/fitting/identifiability.hpp"
+#include "rockfit/fitting/local_optimizer.hpp"
+
+namespace rockfit::fitting {
+namespace {
+
+struct Candidate {
+  std::string stage;
+  Eigen::VectorXd x;
+  double epsilon_rad_s = 0.0;
+  bool feasible = false;
+  bool converged = false;
+  std::string termination;
+};
+
+// Feasible beats infeasible; then lower ε; ties keep the earlier stage.
+bool Better(const Candidate& a, const Candidate& b) {
+  if (a.feasible != b.feasible) return a.feasible;
+  return a.epsilon_rad_s < b.epsilon_rad_s;
+}
+
+Candidate FromLocal(const std::string& stage, const LocalResult& r) {
+  return {stage, r.x, r.epsilon_rad_s, r.feasible, r.converged, r.termination};
+}
+
+std::string FailureList(const std::map<std::string, std::int64_t>& failures) {
+  std::string list;
+  for (const auto& [reason, count] : failures) list += fmt::format("{}{} × {}", list.empty() ? "" : ", ", count, reason);
+  return list;
+}
+
+}  // namespace
+
+FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const FitOptions& options) {
+  options.Validate();
+  if (objective.num_free() == 0) {
+    throw InvalidArgument("every parameter is fixed: free at least one (e.g. --free alpha) or use --evaluate");
+  }
+  const auto clock_start = std::chrono::steady_clock::now();
+  const std::int64_t runs_before = objective.counters().runs();
+  const auto failures_before = objective.counters().failures_by_reason();
+  auto seconds_since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  };
+
+  FitSummary summary;
+  summary.method = options.method;
+  summary.t_end_s = objective.t_end_s();
+  summary.model_description = objective.model().Describe();
+  const Eigen::VectorXd x_start =
+      objective.FreeValues(start_in).cwiseMax(objective.FreeLower()).cwiseMin(objective.FreeUpper());
+  summary.start = objective.WithFree(x_start);
+
+  std::vector<Candidate> candidates;
+  {
+    const auto t = std::chrono::steady_clock::now();
+    const Evaluation e = objective.EvaluateFree(x_start);
+    summary.epsilon_initial_rad_s = e.epsilon_rad_s;
+    candidates.push_back({"start", x_start, e.epsilon_rad_s, e.feasible, false, "start point"});
+    summary.stages.push_back({"start", e.epsilon_rad_s, 1, seconds_since(t), e.feasible ? "evaluated" : e.failure});
+  }
+  Eigen::VectorXd x_current = x_start;
+
+  if (options.global.enabled) {
+    const GlobalStageResult g = RunGlobalStage(objective, x_start, options);
+    const std::string termination =
+        fmt::format("{} of {} first-window starts feasible, {} continued to the full window", g.num_feasible_samples,
+                    g.num_samples, g.num_continued);
+    Candidate c{"global", g.best_x, g.best_epsilon_rad_s, g.feasible, g.converged, termination};
+    summary.stages.push_back({"global", g.best_epsilon_rad_s, g.evaluations, g.wall_time_s, termination});
+    if (Better(c, candidates.front())) x_current = c.x;
+    candidates.push_back(c);
+  }
+  if (options.method == FitMethod::kNelderMead || options.method == FitMethod::kAuto) {
+    const LocalResult r = MakeNelderMead(options.nelder_mead)->Minimize(objective, x_current);
+    summary.stages.push_back({"nelder-mead", r.epsilon_rad_s, r.evaluations, r.wall_time_s, r.termination});
+    const Candidate c = FromLocal("nelder-mead", r);
+    if (r.feasible) x_current = r.x;
+    candidates.push_back(c);
+  }
+  if (options.method == FitMethod::kCeres || options.method == FitMethod::kAuto) {
+    const LocalResult r = MakeCeres(options.ceres)->Minimize(objective, x_current);
+    summary.stages.push_back({"ceres", r.epsilon_rad_s, r.evaluations, r.wall_time_s, r.termination});
+    candidates.push_back(FromLocal("ceres", r));
+  }
+
+  // Keep the best point by (28), whatever the back end optimised.
+  const Candidate* best = &candidates.front();
+  for (const Candidate& c : candidates) {
+    if (Better(c, *best)) best = &c;
+  }
+  summary.parameters = objective.WithFree(best->x);
+  summary.epsilon_rad_s = best->epsilon_rad_s;
+  summary.feasible = best->feasible;
+  summary.termination = best->termination;
+  summary.kept_stage = best->stage;
+  // The start and the global stage are not convergence tests of their own; a local stage that ran from the
+  // kept point and could not improve it has converged there.
+  summary.converged = best->converged;
+  for (const Candidate& c : candidates) {
+    if (c.converged && c.feasible && c.epsilon_rad_s == best->epsilon_rad_s) summary.converged = true;
+  }
+
+  // Identifiability and bounds.
+  const IdentifiabilityReport ident = CheckIdentifiability(objective, summary.parameters, options.identifiability);
+  summary.identifiable = ident.identifiable;
+  summary.std_error.fill(std::numeric_limits<double>::quiet_NaN());
+  ParameterSet for_covariance = summary.parameters;
+  for (ParameterId id : objective.free_ids()) {
+    const std::size_t k = static_cast<std::size_t>(id);
+    const Parameter& p = summary.parameters[id];
+    const double range = p.upper - p.lower;
+    const double margin = std::isfinite(range) ? options.at_bound_fraction * range : 0.0;
+    summary.at_bound[k] = p.value <= p.lower + margin || p.value >= p.upper - margin;
+    if (summary.at_bound[k]) {
+      summary.warnings.push_back({"at_bound", Name(id),
+                                  fmt::format("{} = {:.6g} {} is at its {} bound; the optimum may lie beyond it", Name(id),
+                                              p.value, Unit(id), p.value <= p.lower + margin ? "lower" : "upper")});
+    }
+    if (!ident.identifiable[k]) summary.warnings.push_back({"not_identifiable", Name(id), ident.reason[k]});
+    if (summary.at_bound[k] || !ident.identifiable[k]) for_covariance[id].fixed = true;
+  }
+
+  // Standard errors of the identifiable parameters that are not at a bound.
+  if (options.compute_std_errors && summary.feasible && !for_covariance.FreeIds().empty()) {
+    const Objective restricted = objective.WithParameters(for_covariance);
+    const StandardErrors se =
+        ComputeStandardErrors(restricted, restricted.FreeValues(summary.parameters), options.ceres);
+    for (std::size_t i = 0; i < restricted.num_free(); ++i) {
+      summary.std_error[static_cast<std::size_t>(restricted.free_ids()[i])] = se.std_error[static_cast<Eigen::Index>(i)];
+    }
+    if (!se.available) summary.warnings.push_back({"std_error_unavailable", "", "standard errors: " + se.message});
+  }
+
+  // Model failures during this fit.
+  std::map<std::string, std::int64_t> failures = objective.counters().failures_by_reason();
+  for (const auto& [reason, count] : failures_before) failures[reason] -= count;
+  for (auto it = failures.begin(); it != failures.end();) it = it->second == 0 ? failures.erase(it) : std::next(it);
+  summary.failures_by_reason = failures;
+  if (!failures.empty()) {
+    std::int64_t total = 0;
+    for (const auto& entry : failures) total += entry.second;
+    summary.warnings.push_back({"simulation_failures", "",
+                                fmt::format("{} trial point(s) were infeasible and penalised: {}", total, FailureList(failures))});
+  }
+  if (!summary.feasible) {
+    summary.warnings.push_back({"infeasible", "", "no feasible point found: the model fails everywhere it was tried"});
+  } else if (!summary.converged) {
+    summary.warnings.push_back({"not_converged", "", "the local search stopped before convergence: " + summary.termination});
+  }
+
+  summary.simulations = objective.counters().runs() - runs_before;
+  summary.wall_time_s = seconds_since(clock_start);
+  summary.simulations_per_second =
+      summary.wall_time_s > 0.0 ? static_cast<double>(summary.simulations) / summary.wall_time_s : 0.0;
+  return summary;
+}
+
+}  // namespace rockfit::fitting

@@ -1,0 +1,284 @@
+#include "rockfit/fitting/global_stage.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <numeric>
+#include <optional>
+
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "rockfit/fitting/identifiability.hpp"
+#include "rockfit/fitting/latin_hypercube.hpp"
+
+namespace rockfit::fitting {
+namespace {
+
+// Two starts closer than this in box-normalised coordinates (each axis scaled to [0, 1]) are the same start.
+constexpr double kDistinctStartDistance = 0.05;
+
+template <typename Body>
+void ParallelFor(std::size_t n, int num_threads, const Body& body) {
+  // More threads than cores only makes TBB warn; 0 means all cores.
+  const int cores = tbb::info::default_concurrency();
+  tbb::task_arena arena(num_threads > 0 ? std::min(num_threads, cores) : cores);
+  arena.execute([&] { tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) { body(i); }); });
+}
+
+// `window` with every parameter that does not change ε at `at` held fixed at its value there (all values
+// taken from `at`). nullopt when nothing acts (or the model fails at `at`).
+std::optional<Objective> ActingParameters(const Objective& window, const ParameterSet& at,
+                                          const IdentifiabilityOptions& options) {
+  ParameterSet params = window.parameters();
+  for (ParameterId id : kAllParameters) params[id].value = at.value(id);
+  if (!window.Evaluate(params).feasible) return window.WithParameters(params);
+  const IdentifiabilityReport report = CheckIdentifiability(window.WithParameters(params), params, options);
+  for (ParameterId id : window.free_ids()) {
+    if (!report.identifiable[static_cast<std::size_t>(id)]) params[id].fixed = true;
+  }
+  if (params.FreeIds().empty()) return std::nullopt;
+  return window.WithParameters(params);
+}
+
+// Time of the model's first impact at `at` in recording time, if any.
+std::optional<double> FirstImpactTime(const Objective& objective, const ParameterSet& at) {
+  ErrorNodes nodes;
+  ModelOutput output;
+  if (!objective.EvaluateDetailed(at, &nodes, &output).feasible || output.events.empty()) return std::nullopt;
+  return at.value(ParameterId::kT0) + output.events.front().t_s;
+}
+
+// Nelder–Mead on `window` from the full parameter set `from`; returns the full parameter set it reached.
+ParameterSet MinimizeIn(const Objective& window, const ParameterSet& from, const NelderMeadOptions& options,
+                        std::int64_t* evaluations, bool* converged) {
+  const LocalResult r = MakeNelderMead(options)->Minimize(window, window.FreeValues(from));
+  *evaluations += r.evaluations;
+  *converged = r.converged;
+  return window.WithFree(r.x);
+}
+
+// The best of `points` equally spaced values of `id` over its bounds (and its current value), others held.
+ParameterSet ScanParameter(const Objective& window, const ParameterSet& at, ParameterId id, int points,
+                           std::int64_t* evaluations) {
+  const Parameter& p = window.parameters()[id];
+  ParameterSet best = at;
+  Evaluation best_e = window.Evaluate(at);
+  ++*evaluations;
+  for (int j = 0; j < points; ++j) {
+    ParameterSet trial = at;
+    trial[id].value = p.lower + (p.upper - p.lower) * (j + 0.5) / points;
+    const Evaluation e = window.Evaluate(trial);
+    ++*evaluations;
+    if (e.feasible && (!best_e.feasible || e.epsilon_rad_s < best_e.epsilon_rad_s)) {
+      best = trial;
+      best_e = e;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+void GlobalSamplingBox(const Objective& objective, const Eigen::VectorXd& estimate, const GlobalStageOptions& options,
+                       Eigen::VectorXd* lower, Eigen::VectorXd* upper) {
+  *lower = objective.FreeLower();
+  *upper = objective.FreeUpper();
+  for (std::size_t i = 0; i < objective.num_free(); ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    double half_width = 0.0;
+    if (objective.free_ids()[i] == ParameterId::kT0) half_width = options.t0_halfwidth_s;
+    if (objective.free_ids()[i] == ParameterId::kAlpha) half_width = options.alpha_halfwidth_rad;
+    if (half_width > 0.0) {
+      (*lower)[k] = std::max((*lower)[k], estimate[k] - half_width);
+      (*upper)[k] = std::min((*upper)[k], estimate[k] + half_width);
+    }
+  }
+}
+
+GlobalStageResult RunGlobalStage(const Objective& objective, const Eigen::VectorXd& estimate_in,
+                                 const FitOptions& options) {
+  options.Validate();
+  const GlobalStageOptions& g = options.global;
+  const auto clock_start = std::chrono::steady_clock::now();
+  GlobalStageResult result;
+  const Eigen::VectorXd estimate = estimate_in.cwiseMax(objective.FreeLower()).cwiseMin(objective.FreeUpper());
+  const ParameterSet estimate_set = objective.WithFree(estimate);
+  result.evaluations += 1;
+
+  // 1. The first window and the parameters acting in it.
+  const std::optional<double> t1 = FirstImpactTime(objective, estimate_set);
+  double t_first_end = objective.t_end_s();
+  if (t1 && *t1 + g.first_window_s < objective.t_end_s()) t_first_end = *t1 + g.first_window_s;
+  result.first_window_end_s = t_first_end;
+  result.evaluations += 1 + 2 * static_cast<std::int64_t>(objective.num_free());
+  const std::optional<Objective> first =
+      ActingParameters(objective.WithWindowEnd(t_first_end), estimate_set, options.identifiability);
+
+  std::vector<ParameterSet> polished;
+  std::vector<double> polished_epsilon;
+  if (first) {
+    Eigen::VectorXd lower, upper;
+    const Eigen::VectorXd first_estimate = first->FreeValues(estimate_set);
+    GlobalSamplingBox(*first, first_estimate, g, &lower, &upper);
+    std::vector<Eigen::VectorXd> points = {first_estimate};
+    for (Eigen::VectorXd& p : LatinHypercube(lower, upper, g.num_samples, g.seed)) points.push_back(std::move(p));
+    std::vector<Evaluation> values(points.size());
+    ParallelFor(points.size(), options.num_threads, [&](std::size_t i) { values[i] = first->EvaluateFree(points[i]); });
+    auto count_feasible = [&] {
+      return static_cast<int>(std::count_if(values.begin(), values.end(), [](const Evaluation& e) { return e.feasible; }));
+    };
+    result.evaluations += static_cast<std::int64_t>(points.size());
+    if (count_feasible() == 0) {
+      // The estimate sits in an infeasible region (e.g. a tilt beyond the critical angle): sample the whole
+      // bounds instead.
+      lower = first->FreeLower();
+      upper = first->FreeUpper();
+      std::vector<Eigen::VectorXd> wide = LatinHypercube(lower, upper, g.num_samples, g.seed + 1);
+      const std::size_t offset = points.size();
+      points.insert(points.end(), wide.begin(), wide.end());
+      values.resize(points.size());
+      ParallelFor(wide.size(), options.num_threads,
+                  [&](std::size_t i) { values[offset + i] = first->EvaluateFree(points[offset + i]); });
+      result.evaluations += static_cast<std::int64_t>(wide.size());
+    }
+    result.num_samples = static_cast<int>(points.size());
+    result.num_feasible_samples = count_feasible();
+
+    // Starts to polish: the best of each sign of λ_lat, then the best distinct others.
+    std::vector<std::size_t> order(points.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return values[a].epsilon_rad_s < values[b].epsilon_rad_s; });
+    const Eigen::VectorXd box = (upper - lower).cwiseMax(1e-300);
+    std::vector<std::size_t> chosen;
+    auto distinct = [&](std::size_t candidate) {
+      for (std::size_t c : chosen) {
+        if ((points[c] - points[candidate]).cwiseQuotient(box).norm() < kDistinctStartDistance) return false;
+      }
+      return true;
+    };
+    const auto& ids = first->free_ids();
+    const auto lat = std::find(ids.begin(), ids.end(), ParameterId::kLambdaLat);
+    if (lat != ids.end()) {
+      const auto k = static_cast<Eigen::Index>(lat - ids.begin());
+      for (int sign : {+1, -1}) {
+        for (std::size_t i : order) {
+          if (values[i].feasible && sign * points[i][k] > 0.0) {
+            if (distinct(i)) chosen.push_back(i);
+            break;
+          }
+        }
+      }
+    }
+    for (std::size_t i : order) {
+      if (static_cast<int>(chosen.size()) >= g.num_polished) break;
+      if (distinct(i)) chosen.push_back(i);
+    }
+
+    NelderMeadOptions polish = options.nelder_mead;
+    polish.max_evaluations = g.polish_evaluations;
+    std::vector<LocalResult> runs(chosen.size());
+    ParallelFor(chosen.size(), options.num_threads, [&](std::size_t i) {
+      runs[i] = MakeNelderMead(polish)->Minimize(*first, points[chosen[i]]);
+    });
+    std::vector<std::size_t> by_epsilon(runs.size());
+    std::iota(by_epsilon.begin(), by_epsilon.end(), 0);
+    std::stable_sort(by_epsilon.begin(), by_epsilon.end(),
+                     [&](std::size_t a, std::size_t b) { return runs[a].epsilon_rad_s < runs[b].epsilon_rad_s; });
+    // Carry the best of each λ_lat sign first, then the best others.
+    std::vector<std::size_t> carry;
+    for (int sign : {+1, -1}) {
+      for (std::size_t i : by_epsilon) {
+        if (sign * first->WithFree(runs[i].x).value(ParameterId::kLambdaLat) > 0.0 && runs[i].feasible) {
+          carry.push_back(i);
+          break;
+        }
+      }
+    }
+    for (std::size_t i : by_epsilon) {
+      if (std::find(carry.begin(), carry.end(), i) == carry.end()) carry.push_back(i);
+    }
+    std::stable_sort(carry.begin(), carry.begin() + std::min<std::ptrdiff_t>(2, static_cast<std::ptrdiff_t>(carry.size())),
+                     [&](std::size_t a, std::size_t b) { return runs[a].epsilon_rad_s < runs[b].epsilon_rad_s; });
+    carry.resize(std::min(carry.size(), static_cast<std::size_t>(g.num_continued)));
+    for (const LocalResult& r : runs) result.evaluations += r.evaluations;
+    for (std::size_t i : carry) {
+      polished.push_back(first->WithFree(runs[i].x));
+      polished_epsilon.push_back(runs[i].epsilon_rad_s);
+    }
+  }
+  if (polished.empty()) polished.push_back(estimate_set);
+
+  // 2. Continuation to the full window, each carried start in its own thread.
+  const double t_release_ref = t1 ? *t1 : objective.t_end_s();
+  std::vector<ParameterSet> continued(polished.size());
+  std::vector<std::int64_t> evaluations(polished.size(), 0);
+  std::vector<char> converged(polished.size(), 0);
+  NelderMeadOptions step_options = options.nelder_mead;
+  step_options.max_evaluations = g.continuation_evaluations;
+  // Each window refines the previous one: a smaller simplex keeps the search in the basin it tracks.
+  for (double& step : step_options.initial_step) step *= g.continuation_step_fraction;
+  ParallelFor(polished.size(), options.num_threads, [&](std::size_t i) {
+    ParameterSet at = polished[i];
+    double window_end = t_first_end;
+    bool ok = true;
+    std::vector<ParameterId> acting = first ? first->free_ids() : std::vector<ParameterId>{};
+    while (window_end < objective.t_end_s()) {
+      window_end = std::min(objective.t_end_s(), t_release_ref + (window_end - t_release_ref) * g.continuation_growth);
+      evaluations[i] += 1 + 2 * static_cast<std::int64_t>(objective.num_free());
+      const std::optional<Objective> window =
+          ActingParameters(objective.WithWindowEnd(window_end), at, options.identifiability);
+      if (!window) continue;
+      // A parameter that starts acting in this window (λ at the first edge impact) has had no say so far:
+      // scan it over its bounds before the local search.
+      for (ParameterId id : window->free_ids()) {
+        if (std::find(acting.begin(), acting.end(), id) != acting.end()) continue;
+        acting.push_back(id);
+        at = ScanParameter(*window, at, id, g.scan_points, &evaluations[i]);
+      }
+      bool step_converged = false;
+      at = MinimizeIn(*window, at, step_options, &evaluations[i], &step_converged);
+      ok = step_converged;
+    }
+    // On the full window, every parameter sampled over its whole bounds (not t0 and α, which phase 1 pins
+    // down) is scanned once more: later impacts can make its landscape multimodal where the first windows
+    // were not (e.g. λ with a long cascade of small lateral edge impacts). Then a last local search.
+    if (g.final_scan) {
+      ParameterSet scanned = at;
+      const Evaluation before = objective.Evaluate(at);
+      ++evaluations[i];
+      for (ParameterId id : objective.free_ids()) {
+        if (id == ParameterId::kT0 || id == ParameterId::kAlpha) continue;
+        scanned = ScanParameter(objective, scanned, id, g.scan_points, &evaluations[i]);
+      }
+      if (objective.Evaluate(scanned).epsilon_rad_s < before.epsilon_rad_s) {
+        bool step_converged = false;
+        at = MinimizeIn(objective, scanned, step_options, &evaluations[i], &step_converged);
+        ok = step_converged;
+      }
+      ++evaluations[i];
+    }
+    continued[i] = at;
+    converged[i] = ok ? 1 : 0;
+  });
+  result.num_continued = static_cast<int>(continued.size());
+
+  // 3. The best on the full window.
+  double best = 0.0;
+  for (std::size_t i = 0; i < continued.size(); ++i) {
+    result.evaluations += evaluations[i] + 1;
+    const Evaluation e = objective.Evaluate(continued[i]);
+    if (i == 0 || (e.feasible && !result.feasible) || (e.feasible == result.feasible && e.epsilon_rad_s < best)) {
+      best = e.epsilon_rad_s;
+      result.best_x = objective.FreeValues(continued[i]);
+      result.best_epsilon_rad_s = e.epsilon_rad_s;
+      result.feasible = e.feasible;
+      result.converged = converged[i] != 0;
+    }
+  }
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return result;
+}
+
+}  // namespace rockfit::fitting

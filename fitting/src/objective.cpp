@@ -1,0 +1,133 @@
+#include "rockfit/fitting/objective.hpp"
+
+#include <cmath>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "rockfit/core/errors.hpp"
+
+namespace rockfit::fitting {
+
+void EvaluationCounters::CountFailure(const std::string& reason) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++failures_[reason];
+}
+
+std::int64_t EvaluationCounters::failures() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::int64_t total = 0;
+  for (const auto& entry : failures_) total += entry.second;
+  return total;
+}
+
+std::map<std::string, std::int64_t> EvaluationCounters::failures_by_reason() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return failures_;
+}
+
+void ObjectiveOptions::Validate() const {
+  if (!(std::isfinite(failure_penalty_rad_s) && failure_penalty_rad_s > 0.0)) {
+    throw InvalidArgument(
+        fmt::format("failure_penalty_rad_s must be a positive finite number, got {}", failure_penalty_rad_s));
+  }
+}
+
+Objective::Objective(MeasuredSignal signal, double t_end_s, std::shared_ptr<const TrajectoryModel> model,
+                     ParameterSet parameters, ObjectiveOptions options)
+    : signal_(std::make_shared<const MeasuredSignal>(std::move(signal))),
+      t_end_s_(t_end_s),
+      model_(std::move(model)),
+      parameters_(std::move(parameters)),
+      free_ids_(parameters_.FreeIds()),
+      options_(options),
+      counters_(std::make_shared<EvaluationCounters>()) {
+  signal_->Validate();
+  options_.Validate();
+  parameters_.Validate();
+  if (!model_) throw InvalidArgument("the fitting problem needs a trajectory model");
+  if (!(std::isfinite(t_end_s_) && t_end_s_ > signal_->t_s.front() && t_end_s_ <= signal_->t_s.back())) {
+    throw InvalidArgument(fmt::format("t_end = {} s lies outside the recording ({} s to {} s)", t_end_s_,
+                                      signal_->t_s.front(), signal_->t_s.back()));
+  }
+}
+
+Objective Objective::WithParameters(ParameterSet parameters) const {
+  parameters.Validate();
+  Objective copy = *this;
+  copy.parameters_ = std::move(parameters);
+  copy.free_ids_ = copy.parameters_.FreeIds();
+  return copy;
+}
+
+Objective Objective::WithWindowEnd(double t_end_s) const {
+  if (!(std::isfinite(t_end_s) && t_end_s > signal_->t_s.front() && t_end_s <= signal_->t_s.back())) {
+    throw InvalidArgument(fmt::format("t_end = {} s lies outside the recording ({} s to {} s)", t_end_s,
+                                      signal_->t_s.front(), signal_->t_s.back()));
+  }
+  Objective copy = *this;
+  copy.t_end_s_ = t_end_s;
+  return copy;
+}
+
+ParameterSet Objective::WithFree(const Eigen::VectorXd& x) const {
+  ParameterSet set = parameters_;
+  for (std::size_t i = 0; i < free_ids_.size(); ++i) set[free_ids_[i]].value = x[static_cast<Eigen::Index>(i)];
+  return set;
+}
+
+Eigen::VectorXd Objective::FreeValues(const ParameterSet& set) const {
+  Eigen::VectorXd x(static_cast<Eigen::Index>(free_ids_.size()));
+  for (std::size_t i = 0; i < free_ids_.size(); ++i) x[static_cast<Eigen::Index>(i)] = set.value(free_ids_[i]);
+  return x;
+}
+
+Eigen::VectorXd Objective::FreeLower() const {
+  Eigen::VectorXd x(static_cast<Eigen::Index>(free_ids_.size()));
+  for (std::size_t i = 0; i < free_ids_.size(); ++i) x[static_cast<Eigen::Index>(i)] = parameters_[free_ids_[i]].lower;
+  return x;
+}
+
+Eigen::VectorXd Objective::FreeUpper() const {
+  Eigen::VectorXd x(static_cast<Eigen::Index>(free_ids_.size()));
+  for (std::size_t i = 0; i < free_ids_.size(); ++i) x[static_cast<Eigen::Index>(i)] = parameters_[free_ids_[i]].upper;
+  return x;
+}
+
+Evaluation Objective::Evaluate(const ParameterSet& values) const {
+  // Scratch reused by each thread, so that repeated evaluations do not allocate.
+  thread_local ErrorNodes nodes;
+  thread_local ModelOutput output;
+  return EvaluateDetailed(values, &nodes, &output);
+}
+
+Evaluation Objective::EvaluateDetailed(const ParameterSet& values, ErrorNodes* nodes, ModelOutput* output) const {
+  Evaluation result;
+  auto infeasible = [&](const std::string& reason) {
+    counters_->CountFailure(reason);
+    result.feasible = false;
+    result.failure = reason;
+    result.epsilon_rad_s = options_.failure_penalty_rad_s;
+    return result;
+  };
+  output->Clear();
+  for (ParameterId id : kAllParameters) {
+    if (!std::isfinite(values.value(id))) return infeasible("non-finite parameter");
+  }
+  const double t0 = values.value(ParameterId::kT0);
+  if (!BuildErrorNodes(*signal_, t0, t_end_s_, nodes)) return infeasible("t0 outside the recording window");
+
+  counters_->CountRun();
+  model_->Evaluate(values.ToModel(), nodes->t_after_release_s, output);
+  if (!output->ok()) return infeasible(output->failure);
+  if (output->w_B.size() != nodes->size()) {
+    return infeasible("model returned a wrong number of samples");
+  }
+  const double epsilon = TrajectoryError(*nodes, output->w_B);
+  if (!std::isfinite(epsilon)) return infeasible("non-finite simulated angular velocity");
+  result.feasible = true;
+  result.epsilon_rad_s = epsilon;
+  return result;
+}
+
+}  // namespace rockfit::fitting

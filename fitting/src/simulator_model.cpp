@@ -1,0 +1,107 @@
+#include "rockfit/fitting/simulator_model.hpp"
+
+#include <algorithm>
+#include <exception>
+
+#include <fmt/format.h>
+
+#include "rockfit/core/errors.hpp"
+
+namespace rockfit::fitting {
+namespace {
+
+// Impacts allowed in one fitting run; the paper's Fig. 14 window has about 25.
+constexpr std::size_t kMaxImpactsPerRun = 5000;
+
+bool Contains(const std::string& text, const char* word) { return text.find(word) != std::string::npos; }
+
+}  // namespace
+
+core::SimulationOptions SimulatorModelOptions::DefaultFittingSimulation() {
+  core::SimulationOptions o;
+  o.max_impacts = kMaxImpactsPerRun;
+  o.sample_attitude = false;
+  return o;
+}
+
+void SimulatorModelOptions::Validate() const {
+  core::SimulationOptions probe = simulation;
+  probe.sample_times_s.clear();
+  probe.stop = core::StopCondition::kTMax;
+  probe.Validate();
+  if (simulation.initial_state) {
+    throw InvalidArgument("fitting starts every run from the release at tilt alpha; remove the initial state");
+  }
+}
+
+std::string SimulationFailureCategory(const std::string& message) {
+  const bool edge = Contains(message, "edge impact");
+  const bool facet = Contains(message, "facet impact");
+  const bool no_solution = Contains(message, "no solution");
+  for (const char* status : {"infeasible", "ambiguous", "singular"}) {
+    if (no_solution && Contains(message, status)) return fmt::format("{} impact {}", edge ? "edge" : (facet ? "facet" : "an"), status);
+  }
+  if (Contains(message, "integrator")) return "integrator";
+  if (Contains(message, "without the contact resolving")) return "impact cascade";
+  if (Contains(message, "max_impacts")) return "too many impacts";
+  return "failed";
+}
+
+SimulatorModel::SimulatorModel(const core::Block& block, SimulatorModelOptions options)
+    : block_(block), options_(std::move(options)) {
+  options_.Validate();
+}
+
+void SimulatorModel::Evaluate(const core::ModelParameters& params, const std::vector<double>& times,
+                              ModelOutput* out) const {
+  out->Clear();
+  if (times.empty()) return;
+  // Per-thread options, so that the sample-time vector keeps its storage between runs.
+  thread_local core::SimulationOptions run;
+  run = options_.simulation;
+  run.sample_times_s.assign(times.begin(), times.end());
+  run.stop = core::StopCondition::kTMax;
+  run.t_max_s = std::max(times.back(), 1e-9);
+  run.sample_attitude = false;
+  core::Trajectory trajectory;
+  try {
+    trajectory = core::Simulate(block_, params, run);
+  } catch (const InvalidArgument& e) {
+    out->failure = "invalid parameters";
+    out->failure_detail = e.what();
+    return;
+  } catch (const std::exception& e) {
+    out->failure = "simulator exception";
+    out->failure_detail = e.what();
+    return;
+  }
+  switch (trajectory.end_reason) {
+    case core::EndReason::kOverturned:
+      out->failure = "overturned";
+      out->failure_detail = fmt::format("the block overturns at t = {:.4f} s after the release", trajectory.t_end_s);
+      return;
+    case core::EndReason::kFailed:
+      out->failure = SimulationFailureCategory(trajectory.message);
+      out->failure_detail = trajectory.message;
+      return;
+    default:
+      break;
+  }
+  if (trajectory.w_B.size() != times.size()) {
+    out->failure = "incomplete run";
+    out->failure_detail = fmt::format("the run ended ({}) at t = {:.4f} s with {} of {} samples",
+                                      core::ToString(trajectory.end_reason), trajectory.t_end_s, trajectory.w_B.size(),
+                                      times.size());
+    return;
+  }
+  out->w_B = std::move(trajectory.w_B);
+  out->events.reserve(trajectory.impacts.size());
+  for (const core::ImpactRecord& impact : trajectory.impacts) out->events.push_back({impact.t_s, impact.kind});
+}
+
+std::string SimulatorModel::Describe() const {
+  return fmt::format("hybrid simulator (rel_tol {:g}, abs_tol {:g}, facet τ {})", options_.simulation.rel_tol,
+                     options_.simulation.abs_tol, "per parameters");
+}
+
+}  // namespace rockfit::fitting

@@ -1,0 +1,83 @@
+#include "rockfit/fitting/trajectory_error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+#include <fmt/format.h>
+
+#include "rockfit/core/errors.hpp"
+
+namespace rockfit::fitting {
+
+void MeasuredSignal::Validate() const {
+  if (t_s.size() != w_B.size()) {
+    throw InvalidArgument(fmt::format("measured signal: {} times but {} angular velocities", t_s.size(), w_B.size()));
+  }
+  if (t_s.size() < 2) {
+    throw InvalidArgument(fmt::format("measured signal: need at least two samples, got {}", t_s.size()));
+  }
+  for (std::size_t k = 0; k < t_s.size(); ++k) {
+    if (!std::isfinite(t_s[k]) || !w_B[k].allFinite()) {
+      throw InvalidArgument(fmt::format("measured signal: sample {} is not finite (t = {} s)", k, t_s[k]));
+    }
+    if (k > 0 && !(t_s[k] > t_s[k - 1])) {
+      throw InvalidArgument(fmt::format("measured signal: time does not increase at sample {} ({} s after {} s)", k,
+                                        t_s[k], t_s[k - 1]));
+    }
+  }
+}
+
+Eigen::Vector3d MeasuredSignal::Interpolate(double t) const {
+  if (t <= t_s.front()) return w_B.front();
+  if (t >= t_s.back()) return w_B.back();
+  const auto upper = std::upper_bound(t_s.begin(), t_s.end(), t);  // first sample after t
+  const std::size_t k = static_cast<std::size_t>(std::distance(t_s.begin(), upper));
+  const double s = (t - t_s[k - 1]) / (t_s[k] - t_s[k - 1]);
+  return (1.0 - s) * w_B[k - 1] + s * w_B[k];
+}
+
+bool BuildErrorNodes(const MeasuredSignal& signal, double t0_s, double t_end_s, ErrorNodes* nodes) {
+  if (!(t0_s >= signal.t_s.front()) || !(t_end_s <= signal.t_s.back()) || !(t0_s < t_end_s)) return false;
+  // Samples strictly inside (t0, t_end).
+  const auto begin = std::upper_bound(signal.t_s.begin(), signal.t_s.end(), t0_s);
+  const auto end = std::lower_bound(begin, signal.t_s.end(), t_end_s);
+  const std::size_t first = static_cast<std::size_t>(std::distance(signal.t_s.begin(), begin));
+  const std::size_t interior = static_cast<std::size_t>(std::distance(begin, end));
+  const std::size_t n = interior + 2;
+
+  nodes->first_sample = first;
+  nodes->num_interior = interior;
+  nodes->t_s.resize(n);
+  nodes->t_after_release_s.resize(n);
+  nodes->w_m_B.resize(n);
+  nodes->weight_s.resize(n);
+
+  nodes->t_s[0] = t0_s;
+  nodes->w_m_B[0] = signal.Interpolate(t0_s);
+  for (std::size_t i = 0; i < interior; ++i) {
+    nodes->t_s[i + 1] = signal.t_s[first + i];
+    nodes->w_m_B[i + 1] = signal.w_B[first + i];
+  }
+  nodes->t_s[n - 1] = t_end_s;
+  nodes->w_m_B[n - 1] = signal.Interpolate(t_end_s);
+
+  // Trapezoid weights: w_i = (t_{i+1} − t_{i−1}) / 2, halves at both ends.
+  for (std::size_t i = 0; i < n; ++i) {
+    const double left = i > 0 ? nodes->t_s[i] - nodes->t_s[i - 1] : 0.0;
+    const double right = i + 1 < n ? nodes->t_s[i + 1] - nodes->t_s[i] : 0.0;
+    nodes->weight_s[i] = 0.5 * (left + right);
+    nodes->t_after_release_s[i] = nodes->t_s[i] - t0_s;
+  }
+  return true;
+}
+
+double TrajectoryError(const ErrorNodes& nodes, const std::vector<Eigen::Vector3d>& w_s_B) {
+  double integral = 0.0;  // ∫ ‖ω_m − ω_s‖ dt [rad]
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    integral += nodes.weight_s[i] * (nodes.w_m_B[i] - w_s_B[i]).norm();
+  }
+  return integral / nodes.duration_s();  // (28)
+}
+
+}  // namespace rockfit::fitting

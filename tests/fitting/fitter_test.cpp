@@ -1,0 +1,167 @@
+// The fit pipeline on the analytic test model: every method reaches the error of the truth, bounds and
+// identifiability are reported, failures are counted, the summary carries the documented fields.
+#include "rockfit/fitting/fitter.hpp"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "analytic_trial.hpp"
+#include "rockfit/core/errors.hpp"
+
+namespace rockfit::fitting {
+namespace {
+
+using testing::MakeAnalyticTrial;
+using testing::RealisticDisturbances;
+
+// The acceptance criterion of issue 6: ε no larger than 1.05 × ε at the true parameters.
+constexpr double kEpsilonRatio = 1.05;
+
+struct Tolerances {
+  double t0_s = 2e-3;
+  double alpha_rad = 2e-3;
+  double lambda_lon = 0.03;
+  double lambda_lat_relative = 0.10;
+  double lambda = 0.1;
+};
+
+void ExpectRecovered(const FitSummary& s, const ParameterSet& truth, const Tolerances& tol = {}) {
+  EXPECT_NEAR(s.parameters.value(ParameterId::kT0), truth.value(ParameterId::kT0), tol.t0_s);
+  EXPECT_NEAR(s.parameters.value(ParameterId::kAlpha), truth.value(ParameterId::kAlpha), tol.alpha_rad);
+  EXPECT_NEAR(s.parameters.value(ParameterId::kLambdaLon), truth.value(ParameterId::kLambdaLon), tol.lambda_lon);
+  const double lat = truth.value(ParameterId::kLambdaLat);
+  EXPECT_NEAR(s.parameters.value(ParameterId::kLambdaLat), lat, tol.lambda_lat_relative * std::abs(lat));
+  EXPECT_NEAR(s.parameters.value(ParameterId::kLambda), truth.value(ParameterId::kLambda), tol.lambda);
+}
+
+class FitMethods : public ::testing::TestWithParam<FitMethod> {};
+
+TEST_P(FitMethods, ReachTheErrorOfTheTrueParametersFromARoughStart) {
+  const auto trial = MakeAnalyticTrial(0.2, 0.8, -2.0, 0.6, RealisticDisturbances());
+  const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
+  FitOptions options;
+  options.method = GetParam();
+  const FitSummary s = Fit(objective, trial.RoughStart(), options);
+  ASSERT_TRUE(s.feasible) << s.FullReport();
+  EXPECT_LE(s.epsilon_rad_s, kEpsilonRatio * objective.Evaluate(trial.truth).epsilon_rad_s) << s.FullReport();
+  EXPECT_LT(s.epsilon_rad_s, s.epsilon_initial_rad_s);
+  ExpectRecovered(s, trial.truth);
+  EXPECT_EQ(s.method, GetParam());
+  EXPECT_GT(s.simulations, 0);
+  EXPECT_GT(s.simulations_per_second, 0.0);
+  // The reported ε is (28) at the reported parameters, whichever back end produced them.
+  EXPECT_EQ(s.epsilon_rad_s, objective.Evaluate(s.parameters).epsilon_rad_s);
+  for (ParameterId id : objective.free_ids()) {
+    EXPECT_TRUE(std::isfinite(s.std_error[static_cast<std::size_t>(id)])) << Name(id);
+  }
+}
+
+TEST_P(FitMethods, WithoutTheGlobalStageStillImproveFromANearbyStart) {
+  const auto trial = MakeAnalyticTrial(0.19, 1.2, 1.5, 0.9, RealisticDisturbances(3));
+  const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
+  ParameterSet start = trial.truth;
+  start[ParameterId::kT0].value += 0.001;
+  start[ParameterId::kAlpha].value -= 0.001;
+  start[ParameterId::kLambdaLon].value += 0.02;
+  FitOptions options;
+  options.method = GetParam();
+  options.global.enabled = false;
+  const FitSummary s = Fit(objective, start, options);
+  EXPECT_LE(s.epsilon_rad_s, kEpsilonRatio * objective.Evaluate(trial.truth).epsilon_rad_s) << s.FullReport();
+  ASSERT_EQ(s.stages.size(), GetParam() == FitMethod::kAuto ? 3u : 2u);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllMethods, FitMethods,
+                         ::testing::Values(FitMethod::kNelderMead, FitMethod::kCeres, FitMethod::kAuto),
+                         [](const auto& info) { return std::string(info.param == FitMethod::kNelderMead ? "NelderMead"
+                                                                   : info.param == FitMethod::kCeres  ? "Ceres"
+                                                                                                      : "Auto"); });
+
+TEST(Fit, TheoreticalBoundsRecoverParametersInsideThem) {
+  const auto trial = MakeAnalyticTrial(0.2, 0.7, -0.8, 0.5, RealisticDisturbances(5));
+  const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kTheoretical));
+  ParameterSet start = trial.Bounded(BoundsSet::kTheoretical);
+  start[ParameterId::kT0].value += 0.004;
+  start[ParameterId::kAlpha].value = 0.195;
+  const FitSummary s = Fit(objective, start, FitOptions{});
+  EXPECT_LE(s.epsilon_rad_s, kEpsilonRatio * objective.Evaluate(trial.truth).epsilon_rad_s) << s.FullReport();
+  ExpectRecovered(s, trial.truth);
+  EXPECT_FALSE(s.HasWarning("at_bound")) << s.FullReport();
+}
+
+TEST(Fit, AParameterBeyondTheTheoreticalBoundEndsAtTheBoundWithAWarning) {
+  // λ_lon = 1.3 violates (27), as the paper's fitted values often do (Sect. 5.3).
+  const auto trial = MakeAnalyticTrial(0.2, 0.7, -0.8, 1.3, RealisticDisturbances(6));
+  const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kTheoretical));
+  const FitSummary s = Fit(objective, trial.Bounded(BoundsSet::kTheoretical), FitOptions{});
+  EXPECT_NEAR(s.parameters.value(ParameterId::kLambdaLon), 1.0, 1e-5);
+  EXPECT_TRUE(s.at_bound[static_cast<std::size_t>(ParameterId::kLambdaLon)]);
+  EXPECT_TRUE(s.HasWarning("at_bound", "lambda_lon")) << s.FullReport();
+  EXPECT_TRUE(std::isnan(s.std_error[static_cast<std::size_t>(ParameterId::kLambdaLon)]));
+}
+
+TEST(Fit, SaysLambdaIsNotIdentifiableWithoutEdgeImpacts) {
+  const auto trial = MakeAnalyticTrial(0.2, 0.8, 0.0, 0.6, RealisticDisturbances(7));
+  ParameterSet parameters = trial.Bounded(BoundsSet::kEmpirical);
+  parameters[ParameterId::kLambdaLat] = {0.0, -6.0, 6.0, true};  // as the paper did for blocks 7 and 8
+  const Objective objective = trial.MakeObjective(parameters);
+  ParameterSet start = parameters;
+  start[ParameterId::kAlpha].value = 0.195;
+  const FitSummary s = Fit(objective, start, FitOptions{});
+  EXPECT_TRUE(s.HasWarning("not_identifiable", "lambda")) << s.FullReport();
+  EXPECT_FALSE(s.identifiable[static_cast<std::size_t>(ParameterId::kLambda)]);
+  EXPECT_TRUE(std::isnan(s.std_error[static_cast<std::size_t>(ParameterId::kLambda)]));
+  EXPECT_TRUE(std::isfinite(s.std_error[static_cast<std::size_t>(ParameterId::kAlpha)]));
+  bool mentions_edge_impacts = false;
+  for (const FitWarning& w : s.warnings) mentions_edge_impacts |= w.message.find("no edge impact") != std::string::npos;
+  EXPECT_TRUE(mentions_edge_impacts) << s.FullReport();
+  EXPECT_FALSE(s.HasWarning("not_identifiable", "alpha"));
+}
+
+TEST(Fit, ModelFailuresAreCountedByReasonAndTheFitStillEndsFeasible) {
+  // A start beyond the critical angle: the block overturns there; the global stage finds feasible points.
+  const auto trial = MakeAnalyticTrial(0.2, 0.8, -2.0, 0.6, RealisticDisturbances(8));
+  const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
+  ParameterSet start = trial.RoughStart();
+  start[ParameterId::kAlpha].value = 0.27;
+  const FitSummary s = Fit(objective, start, FitOptions{});
+  EXPECT_TRUE(s.feasible);
+  ASSERT_TRUE(s.failures_by_reason.count("overturned"));
+  EXPECT_GT(s.failures_by_reason.at("overturned"), 0);
+  EXPECT_TRUE(s.HasWarning("simulation_failures"));
+  EXPECT_EQ(s.epsilon_initial_rad_s, objective.options().failure_penalty_rad_s);
+}
+
+TEST(Fit, RefusesAProblemWithoutFreeParameters) {
+  const auto trial = MakeAnalyticTrial(0.2, 0.8, -2.0, 0.6);
+  ParameterSet all_fixed = trial.truth;
+  for (ParameterId id : kAllParameters) all_fixed[id].fixed = true;
+  const Objective objective = trial.MakeObjective(all_fixed);
+  EXPECT_THROW(Fit(objective, all_fixed, FitOptions{}), InvalidArgument);
+}
+
+TEST(FitSummary, JsonCarriesTheDocumentedKeys) {
+  const auto trial = MakeAnalyticTrial(0.2, 0.8, -2.0, 0.6, RealisticDisturbances());
+  const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
+  FitOptions options;
+  options.global.enabled = false;
+  const FitSummary s = Fit(objective, trial.truth, options);
+  const auto j = nlohmann::json::parse(s.ToJson("T01"));
+  EXPECT_EQ(j["trial"], "T01");
+  for (const char* key : {"parameters", "epsilon", "epsilon_initial", "t_end", "simulations", "wall_s", "termination",
+                          "warnings"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  for (ParameterId id : kAllParameters) {
+    const auto& p = j["parameters"][Name(id)];
+    for (const char* key : {"value", "lower", "upper", "fixed", "std_error"}) EXPECT_TRUE(p.contains(key)) << key;
+  }
+  EXPECT_TRUE(j["parameters"]["tau_edge"]["std_error"].is_null());  // fixed: no standard error
+  EXPECT_TRUE(j["parameters"]["tau_edge"]["fixed"].get<bool>());
+  EXPECT_DOUBLE_EQ(j["epsilon"].get<double>(), s.epsilon_rad_s);
+}
+
+}  // namespace
+}  // namespace rockfit::fitting

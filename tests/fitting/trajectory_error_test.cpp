@@ -1,0 +1,108 @@
+// The error (28) against closed-form integrals of simple signals, and its defining properties.
+#include "rockfit/fitting/trajectory_error.hpp"
+
+#include <cmath>
+#include <functional>
+#include <numeric>
+
+#include <gtest/gtest.h>
+
+namespace rockfit::fitting {
+namespace {
+
+// Round-off of sums over a few hundred samples [rad/s].
+constexpr double kSumTolerance = 1e-12;
+
+MeasuredSignal UniformSignal(double rate_hz, std::size_t n, const std::function<Eigen::Vector3d(double)>& w) {
+  MeasuredSignal s;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = static_cast<double>(k) / rate_hz;
+    s.t_s.push_back(t);
+    s.w_B.push_back(w(t));
+  }
+  return s;
+}
+
+std::vector<Eigen::Vector3d> Zeros(std::size_t n) { return std::vector<Eigen::Vector3d>(n, Eigen::Vector3d::Zero()); }
+
+TEST(TrajectoryError, ConstantDifferenceGivesItsNorm) {
+  const Eigen::Vector3d c(0.3, -0.4, 1.2);  // ‖c‖ = 1.3
+  const MeasuredSignal s = UniformSignal(256.0, 300, [&](double) { return c; });
+  ErrorNodes nodes;
+  ASSERT_TRUE(BuildErrorNodes(s, 0.0123, 1.0, &nodes));
+  EXPECT_NEAR(TrajectoryError(nodes, Zeros(nodes.size())), 1.3, kSumTolerance);
+}
+
+TEST(TrajectoryError, LinearSignalIsIntegratedExactlyIncludingTheFractionalEnds) {
+  // ω_m = (a t, 0, 0), ω_s = 0, t > 0: ε = a (t0 + t_end) / 2; the trapezoid rule is exact for linear data.
+  const double a = 2.5;
+  const MeasuredSignal s = UniformSignal(100.0, 200, [&](double t) { return Eigen::Vector3d(a * t, 0, 0); });
+  for (double t0 : {0.0, 0.013, 0.5, 0.555}) {
+    for (double t_end : {1.0, 1.234, 1.99}) {
+      ErrorNodes nodes;
+      ASSERT_TRUE(BuildErrorNodes(s, t0, t_end, &nodes));
+      EXPECT_NEAR(TrajectoryError(nodes, Zeros(nodes.size())), a * (t0 + t_end) / 2.0, kSumTolerance)
+          << "t0 " << t0 << " t_end " << t_end;
+    }
+  }
+}
+
+TEST(TrajectoryError, NodesStartAtReleaseAndWeightsSumToTheWindow) {
+  const MeasuredSignal s = UniformSignal(256.0, 400, [](double t) { return Eigen::Vector3d(t, 2 * t, 0); });
+  ErrorNodes nodes;
+  ASSERT_TRUE(BuildErrorNodes(s, 0.1001, 1.2, &nodes));
+  EXPECT_EQ(nodes.t_after_release_s.front(), 0.0);
+  EXPECT_DOUBLE_EQ(nodes.t_s.front(), 0.1001);
+  EXPECT_DOUBLE_EQ(nodes.t_s.back(), 1.2);
+  EXPECT_NEAR(std::accumulate(nodes.weight_s.begin(), nodes.weight_s.end(), 0.0), 1.2 - 0.1001, kSumTolerance);
+  // Interior nodes are exactly the samples inside the window; the model is queried at sample time − t0.
+  for (std::size_t i = 1; i + 1 < nodes.size(); ++i) {
+    EXPECT_EQ(nodes.t_s[i], s.t_s[nodes.first_sample + i - 1]);
+    EXPECT_EQ(nodes.t_after_release_s[i], nodes.t_s[i] - 0.1001);
+  }
+  // The measured value at t0 is the linear interpolant.
+  EXPECT_NEAR(nodes.w_m_B[0].x(), 0.1001, 1e-15);
+}
+
+TEST(TrajectoryError, IsContinuousWhenT0CrossesASampleTime) {
+  // A non-linear measured signal and a model that depends on the time after release.
+  const MeasuredSignal s =
+      UniformSignal(256.0, 400, [](double t) { return Eigen::Vector3d(std::sin(7 * t), std::cos(3 * t), t * t); });
+  auto epsilon = [&](double t0) {
+    ErrorNodes nodes;
+    EXPECT_TRUE(BuildErrorNodes(s, t0, 1.3, &nodes));
+    std::vector<Eigen::Vector3d> w_s;
+    for (double tau : nodes.t_after_release_s) w_s.emplace_back(0.5 * tau, std::sin(tau), 0.0);
+    return TrajectoryError(nodes, w_s);
+  };
+  const double t_k = s.t_s[77];
+  const double delta = 1e-10;  // s
+  // Both one-sided limits agree to first order in delta (the derivative is O(1)).
+  EXPECT_NEAR(epsilon(t_k - delta), epsilon(t_k), 1e-8);
+  EXPECT_NEAR(epsilon(t_k + delta), epsilon(t_k), 1e-8);
+}
+
+TEST(TrajectoryError, RejectsWindowsOutsideTheRecording) {
+  const MeasuredSignal s = UniformSignal(10.0, 11, [](double) { return Eigen::Vector3d::Zero(); });
+  ErrorNodes nodes;
+  EXPECT_FALSE(BuildErrorNodes(s, -0.1, 0.5, &nodes));
+  EXPECT_FALSE(BuildErrorNodes(s, 0.5, 1.1, &nodes));
+  EXPECT_FALSE(BuildErrorNodes(s, 0.5, 0.5, &nodes));
+  EXPECT_TRUE(BuildErrorNodes(s, 0.0, 1.0, &nodes));
+  EXPECT_EQ(nodes.size(), 11u);  // both ends are samples: no duplicate node
+}
+
+TEST(MeasuredSignal, ValidateNamesTheFirstNonIncreasingSample) {
+  MeasuredSignal s;
+  s.t_s = {0.0, 0.1, 0.1};
+  s.w_B.assign(3, Eigen::Vector3d::Zero());
+  try {
+    s.Validate();
+    FAIL() << "expected InvalidArgument";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("sample 2"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace rockfit::fitting

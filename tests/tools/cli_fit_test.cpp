@@ -1,0 +1,141 @@
+// `rockfit fit` (tools/src/cmd_fit.cpp) on a bundled sample trial: the JSON keys, ε from the fit no worse than at
+// the start, --evaluate, HDF5 output, and usage errors. Small budgets keep it fast under the sanitizers.
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.hpp"
+#include "python_h5py.hpp"
+#include "scratch_dir.hpp"
+#include "test_paths.hpp"
+
+namespace rockfit::testing {
+namespace {
+
+std::string SampleManifest() { return (SourceDir() / "data-samples" / "manifest.toml").string(); }
+
+// A local search from the data estimate with a small budget: what the test checks does not need a full fit.
+std::vector<std::string> QuickFit(std::vector<std::string> extra) {
+  std::vector<std::string> args = {"fit",     SampleManifest(), "--trial",           "block2-A-1",
+                                   "--method", "nelder-mead",    "--max-evaluations", "40",
+                                   "--no-global"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return args;
+}
+
+TEST(CliFit, JsonHasTheDocumentedKeysAndEpsilonNotAboveTheStart) {
+  const CommandResult r = RunRockfit(QuickFit({"--json"}));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  for (const char* key : {"trial", "parameters", "epsilon", "epsilon_initial", "t_end", "simulations", "wall_s",
+                          "termination", "warnings"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j.size(), 9u) << "only the documented keys";
+  EXPECT_EQ(j["trial"], "block2-A-1");
+  for (const char* name : {"t0", "alpha", "lambda", "lambda_lat", "lambda_lon", "tau_edge"}) {
+    ASSERT_TRUE(j["parameters"].contains(name)) << name;
+    for (const char* field : {"value", "lower", "upper", "fixed", "std_error"}) {
+      EXPECT_TRUE(j["parameters"][name].contains(field)) << name << "." << field;
+    }
+  }
+  const double eps = j["epsilon"].get<double>();
+  EXPECT_TRUE(std::isfinite(eps));
+  EXPECT_LE(eps, j["epsilon_initial"].get<double>());
+  EXPECT_TRUE(j["parameters"]["tau_edge"]["fixed"].get<bool>());
+  // The window ends at the second base impact; the truth file gives phase4_end_s = 3.378 s (one sample = 3.9 ms).
+  EXPECT_NEAR(j["t_end"].get<double>(), 3.378, 0.004);
+}
+
+TEST(CliFit, EvaluatePrintsEpsilonWithoutFitting) {
+  const CommandResult truth = RunRockfit({"fit", SampleManifest(), "--trial", "block2-A-1", "--evaluate", "--json",
+                                          "--t0", "2.33", "--alpha", "0.197", "--lambda", "2.185", "--lambda-lat",
+                                          "-2.032", "--lambda-lon", "0.197"});
+  ASSERT_EQ(truth.exit_code, 0) << truth.err;
+  const nlohmann::json t = nlohmann::json::parse(truth.out);
+  const CommandResult off = RunRockfit({"fit", SampleManifest(), "--trial", "block2-A-1", "--evaluate", "--json",
+                                        "--t0", "2.33", "--alpha", "0.197", "--lambda", "2.185", "--lambda-lat",
+                                        "2.032", "--lambda-lon", "0.197"});
+  ASSERT_EQ(off.exit_code, 0) << off.err;
+  const double eps_truth = t["epsilon"].get<double>();
+  // At the true parameters only the measurement errors remain (gyro noise 0.1 °/s, ringing, drift): far below the
+  // |ω| of ~1 rad/s; the wrong sign of λ_lat sends the block the other way and must cost more.
+  EXPECT_GT(eps_truth, 0.0);
+  EXPECT_LT(eps_truth, 0.1);
+  EXPECT_GT(nlohmann::json::parse(off.out)["epsilon"].get<double>(), 2.0 * eps_truth);
+  const CommandResult text = RunRockfit({"fit", SampleManifest(), "--trial", "block2-A-1", "--evaluate"});
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("ε (28)"), std::string::npos) << text.out;
+}
+
+TEST(CliFit, UnknownParameterNameIsAUsageError) {
+  const CommandResult r = RunRockfit(QuickFit({"--fix", "lambda_side"}));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("lambda_side"), std::string::npos) << r.err;
+  EXPECT_EQ(RunRockfit(QuickFit({"--lower", "alpha"})).exit_code, 1);
+  EXPECT_EQ(RunRockfit(QuickFit({"--method", "simplex"})).exit_code, 1);
+}
+
+TEST(CliFit, WritesTheFitGroupAndKeepsOthers) {
+  if (!HaveH5py()) GTEST_SKIP() << "/usr/bin/python3 with h5py is missing";
+  const ScratchDir dir("cli_fit");
+  const std::string out = (dir / "fits.h5").string();
+  ASSERT_EQ(RunRockfit(QuickFit({"--fix", "t0,alpha", "-o", out})).exit_code, 0);
+  const CommandResult r = RunRockfit(
+      {"fit", SampleManifest(), "--trial", "block2-B-1", "--method", "nelder-mead", "--max-evaluations", "20",
+       "--no-global", "-o", out});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const CommandResult check = RunH5pyScript(R"(
+import sys, h5py
+f = h5py.File(sys.argv[1], 'r')
+assert sorted(f['fits'].keys()) == ['block2-A-1', 'block2-B-1'], list(f['fits'].keys())
+g = f['fits/block2-A-1']
+names = [n.decode() if isinstance(n, bytes) else n for n in g['parameters/name'][()]]
+assert names == ['t0', 'alpha', 'lambda', 'lambda_lat', 'lambda_lon', 'tau_edge'], names
+assert list(g['parameters/fixed'][()]) == [1, 1, 0, 0, 0, 1]
+assert g['w_B_simulated'].shape == g['w_B_measured'].shape and g['w_B_measured'].shape[1] == 3
+assert g.attrs['epsilon_rad_s'] <= g.attrs['epsilon_initial_rad_s']
+assert len(g['impacts/t_s']) > 0
+print('ok')
+)",
+                                            out);
+  EXPECT_EQ(check.exit_code, 0) << check.out;
+}
+
+// The PNG signature and the image size from the IHDR chunk that follows it (big-endian).
+std::pair<unsigned, unsigned> PngSize(const std::filesystem::path& path) {
+  const std::string bytes = ReadWholeFile(path);
+  if (bytes.size() < 24 || bytes.compare(0, 8, std::string("\x89PNG\r\n\x1a\n", 8)) != 0) return {0, 0};
+  auto be32 = [&](std::size_t at) {
+    unsigned v = 0;
+    for (std::size_t i = 0; i < 4; ++i) v = (v << 8) | static_cast<unsigned char>(bytes[at + i]);
+    return v;
+  };
+  return {be32(16), be32(20)};
+}
+
+TEST(CliFit, PlotsOfTheFitAndOfTheParameters) {
+  const ScratchDir dir("cli_fit_plot");
+  const std::string out = (dir / "fits.h5").string();
+  const auto direct = dir / "direct.png";
+  const CommandResult fit = RunRockfit(QuickFit({"-o", out, "--plot", direct.string()}));
+  if (fit.exit_code == 4 && fit.err.find("gnuplot") != std::string::npos) GTEST_SKIP() << "gnuplot is missing";
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  EXPECT_EQ(PngSize(direct), std::make_pair(1200u, 900u));
+  const auto from_file = dir / "fit.png";
+  ASSERT_EQ(RunRockfit({"plot", "fit", out, "--trial", "block2-A-1", "-o", from_file.string()}).exit_code, 0);
+  EXPECT_EQ(PngSize(from_file), std::make_pair(1200u, 900u));
+  const auto params = dir / "params.png";
+  const CommandResult p = RunRockfit({"plot", "parameters", out, "-o", params.string(), "--json"});
+  ASSERT_EQ(p.exit_code, 0) << p.err;
+  EXPECT_EQ(nlohmann::json::parse(p.out)["fits"], 1);
+  EXPECT_EQ(PngSize(params), std::make_pair(1200u, 1200u));
+  // A trial that is not in the file: bad input with its name.
+  const CommandResult missing = RunRockfit({"plot", "fit", out, "--trial", "nope", "-o", (dir / "x.png").string()});
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("nope"), std::string::npos) << missing.err;
+}
+
+}  // namespace
+}  // namespace rockfit::testing

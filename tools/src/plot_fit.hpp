@@ -1,0 +1,26 @@
+// The fit picture (paper Fig. 14): measured ω as dots, simulated ω as lines, one panel per component, the
+// model's impacts as vertical marks. Used by `rockfit plot fit` and `rockfit fit --plot`.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace rockfit::tools {
+
+struct FitPlotData {
+  std::string trial;
+  std::vector<double> t_s;                    // the nodes of (28) (recording time)
+  std::vector<Eigen::Vector3d> w_measured_B;  // [rad/s]
+  std::vector<Eigen::Vector3d> w_simulated_B; // [rad/s]; empty when the model failed
+  std::vector<double> impact_t_s;
+  std::vector<std::string> impact_kind;
+  double epsilon_rad_s = 0.0;
+};
+
+// OutputError when gnuplot is missing or fails.
+void RenderFitPlot(const FitPlotData& data, const std::filesystem::path& output, int width_px, int height_px);
+
+}  // namespace rockfit::tools
