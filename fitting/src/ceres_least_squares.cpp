@@ -222,9 +222,7 @@ Eigen::VectorXd FreeSteps(const Objective& objective, const CeresOptions& option
 }
 
 // Builds the problem: one parameter block `x` with its bounds, one residual block per slot. `limited`: limited
-// differences for the minimiser's Jacobian; plain central differences for the covariance, where the jumps of
-// residuals as simulated impacts cross sample times are information on the impact times (with them, standard
-// errors match the scatter of repeated fits; see the tests).
+// differences (used by the minimiser and the covariance); plain central differences otherwise.
 void BuildProblem(const Objective& objective, ResidualEvaluator* evaluator, const CeresOptions& options,
                   ceres::LossFunction* loss, bool limited, Eigen::VectorXd* x, ceres::Problem* problem) {
   const Eigen::VectorXd lower = objective.FreeLower();
@@ -287,6 +285,24 @@ class CeresLeastSquares final : public LocalOptimizer {
   CeresOptions options_;
 };
 
+// Residuals of neighbouring samples are correlated (gyro ringing after impacts, model error that varies
+// slowly), so they carry less information than independent ones. With the lag-1 autocorrelation ρ of the
+// residual series (each component in time order), an AR(1) process has an effective sample size
+// N·(1 − ρ)/(1 + ρ); the variances grow by the inverse factor (never shrink).
+double CorrelationInflation(const double* r, std::size_t slots) {
+  double lag0 = 0.0, lag1 = 0.0;
+  for (std::size_t c = 0; c < 3; ++c) {
+    for (std::size_t k = 0; k < slots; ++k) {
+      const double v = r[3 * k + c];
+      lag0 += v * v;
+      if (k > 0) lag1 += v * r[3 * (k - 1) + c];
+    }
+  }
+  if (lag0 <= 0.0) return 1.0;
+  const double rho = std::clamp(lag1 / lag0, 0.0, 0.99);
+  return (1.0 + rho) / (1.0 - rho);
+}
+
 }  // namespace
 
 std::unique_ptr<LocalOptimizer> MakeCeres(const CeresOptions& options) {
@@ -308,6 +324,7 @@ StandardErrors ComputeStandardErrors(const Objective& objective, const Eigen::Ve
   }
   double sum_sq = 0.0;
   for (std::size_t i = 0; i < 3 * evaluator.num_slots(); ++i) sum_sq += r[i] * r[i];
+  const double inflation = CorrelationInflation(r, evaluator.num_slots());
   const std::size_t nodes = evaluator.num_nodes_at(x.data());
   const double dof = 3.0 * static_cast<double>(nodes) - static_cast<double>(n);
   if (dof <= 0.0) {
@@ -315,7 +332,7 @@ StandardErrors ComputeStandardErrors(const Objective& objective, const Eigen::Ve
     return result;
   }
   ceres::Problem problem;
-  BuildProblem(objective, &evaluator, options, nullptr, false, &x, &problem);
+  BuildProblem(objective, &evaluator, options, nullptr, true, &x, &problem);
   // Rank test first (Ceres would log an error for a rank-deficient Jacobian); the Jacobian comes from the
   // evaluator's cache, so this costs no model run.
   {
@@ -349,7 +366,7 @@ StandardErrors ComputeStandardErrors(const Objective& objective, const Eigen::Ve
     result.message = "ceres::Covariance could not return the block";
     return result;
   }
-  const double s2 = sum_sq / dof;
+  const double s2 = inflation * sum_sq / dof;
   for (Eigen::Index i = 0; i < n; ++i) {
     result.std_error[i] = cov(i, i) >= 0.0 ? std::sqrt(s2 * cov(i, i)) : std::numeric_limits<double>::quiet_NaN();
   }

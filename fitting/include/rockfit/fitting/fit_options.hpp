@@ -51,9 +51,9 @@ struct CeresOptions {
 struct GlobalStageOptions {
   bool enabled = true;
   int num_samples = 32;          // Latin-hypercube starts in the first window (plus the data estimate)
-  int num_polished = 3;          // best distinct starts polished there (the best of each sign of λ_lat included)
+  int num_polished = 6;          // best distinct starts polished there (the best of each sign of λ_lat included)
   int polish_evaluations = 120;  // Nelder–Mead evaluations per polished start
-  int num_continued = 2;         // polished starts carried to the full window
+  int num_continued = 4;         // polished starts carried to the full window (the best of each sign of λ_lat first)
   // The first window ends this long after the model's first impact [s]: long enough to see the jump and the
   // start of the lateral motion, short enough that no lateral half-cycle completes.
   double first_window_s = 0.03;
@@ -62,7 +62,7 @@ struct GlobalStageOptions {
   double continuation_step_fraction = 0.25;  // their initial simplex, as a fraction of nelder_mead.initial_step
   // A parameter that starts acting in a continuation window (λ at the first edge impact) is first scanned
   // over its bounds at this many equally spaced values.
-  int scan_points = 24;
+  int scan_points = 48;
   // On the full window, scan every parameter sampled over its whole bounds once more, then search locally.
   bool final_scan = true;
   std::uint64_t seed = 20211230;

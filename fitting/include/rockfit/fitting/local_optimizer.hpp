@@ -36,8 +36,11 @@ std::unique_ptr<LocalOptimizer> MakeNelderMead(const NelderMeadOptions& options)
 std::unique_ptr<LocalOptimizer> MakeCeres(const CeresOptions& options);
 
 // Standard errors of the free parameters of `objective` at x from the Gauss–Newton covariance
-// s²·(JᵀJ)⁻¹ of the residuals √w_k·(ω_m − ω_s) (ceres::Covariance, dense SVD), with
-// s² = Σ w_k‖ω_m − ω_s‖² / (3·nodes − free parameters), i.e. assuming independent measurement errors.
+// κ·s²·(JᵀJ)⁻¹ of the residuals √w_k·(ω_m − ω_s) (ceres::Covariance, dense SVD), with
+// s² = Σ w_k‖ω_m − ω_s‖² / (3·nodes − free parameters) and κ = (1 + ρ)/(1 − ρ) for the lag-1 autocorrelation ρ
+// of the residuals (an AR(1) correction for correlated errors). J uses the limited differences of the Ceres
+// back end: the jumps of residuals where a simulated impact crosses a sample time are not differentiated.
+// These are local, linearised uncertainties; see fitting/README.md for where they fail.
 // `std_error` holds NaN where the covariance is not defined (rank-deficient Jacobian); `message` says why.
 struct StandardErrors {
   Eigen::VectorXd std_error;
