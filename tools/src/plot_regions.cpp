@@ -15,9 +15,9 @@
 #include "cli_common.hpp"
 #include "command_registry.hpp"
 #include "gnuplot.hpp"
-#include "impact_regions.hpp"
 #include "plot_command.hpp"
 #include "rockfit/core/errors.hpp"
+#include "rockfit/core/facet_impact_regions.hpp"
 
 namespace rockfit::tools {
 namespace {
@@ -77,7 +77,7 @@ int RunPlotRegions(const RegionsCommand& cmd) {
   const core::Block block = MakeBlock(cmd.block);
   const int b = ParsePivotEdge(cmd.pivot_edge);
   const Eigen::Vector3d falling_B = (block.p_BV_B(b) - block.p_BV_B(b - 1)).normalized();  // core/README.md
-  RegionGridOptions options;
+  core::FacetRegionOptions options;
   options.pivot_b = b;
   options.w_minus_B = cmd.omega_minus.empty() ? falling_B : ParseVector3(cmd.omega_minus, "--omega-minus");
   options.tau_rule = cmd.tau ? core::FacetTauRule::kFixed : core::FacetTauRule::kNoSpin;
@@ -89,11 +89,11 @@ int RunPlotRegions(const RegionsCommand& cmd) {
   options.lambda_lon_min = lon[0];
   options.lambda_lon_max = lon[1];
   options.n_lat = options.n_lon = cmd.points;
-  if (cmd.points < 2 || cmd.points > kMaxGridPoints) {
-    throw InvalidArgument(fmt::format("--points must be between 2 and {}, got {}", kMaxGridPoints, cmd.points));
+  if (cmd.points < 2 || cmd.points > core::kFacetRegionMaxPoints) {
+    throw InvalidArgument(fmt::format("--points must be between 2 and {}, got {}", core::kFacetRegionMaxPoints, cmd.points));
   }
   ImageFormatFor(cmd.picture.output);  // reject a bad extension before the work
-  const RegionGrid grid = EvaluateFacetRegions(block, options);
+  const core::FacetRegionGrid grid = core::EvaluateFacetRegions(block, options);
 
   // Background: one RGB pixel per grid point, pale where ΔE > 0.
   std::map<std::string, std::size_t> counts;
@@ -101,8 +101,8 @@ int RunPlotRegions(const RegionsCommand& cmd) {
   std::vector<std::vector<double>> image(5);
   for (std::size_t j = 0; j < grid.lambda_lon.size(); ++j) {
     for (std::size_t i = 0; i < grid.lambda_lat.size(); ++i) {
-      const RegionCell& cell = grid.at(static_cast<int>(i), static_cast<int>(j));
-      const std::string label = RegionLabel(cell);
+      const core::FacetRegionCell& cell = grid.at(static_cast<int>(i), static_cast<int>(j));
+      const std::string label = core::FacetRegionLabel(cell);
       ++counts[label];
       const char* colour = "#ffffff";
       for (const auto& style : kStyles) {
@@ -122,10 +122,10 @@ int RunPlotRegions(const RegionsCommand& cmd) {
 
   GnuplotFigure figure;
   const std::string image_file = figure.AddData("regions", image);
-  const auto add_lines = [&](const std::string& name, const std::vector<Segment>& segments) {
+  const auto add_lines = [&](const std::string& name, const std::vector<core::ContourSegment>& segments) {
     std::vector<std::vector<double>> columns(2);
     std::vector<std::size_t> starts;
-    for (const auto& line : ChainSegments(segments)) {
+    for (const auto& line : core::ChainSegments(segments)) {
       starts.push_back(columns[0].size());
       for (const auto& p : line) {
         columns[0].push_back(p.x());

@@ -1,4 +1,4 @@
-#include "impact_regions.hpp"
+#include "rockfit/core/facet_impact_regions.hpp"
 
 #include <cmath>
 #include <deque>
@@ -10,9 +10,8 @@
 #include <Eigen/LU>
 
 #include "rockfit/core/errors.hpp"
-#include "rockfit/core/impact_maps.hpp"
 
-namespace rockfit::tools {
+namespace rockfit::core {
 namespace {
 
 void RequireFinite(double value, const char* name) {
@@ -29,8 +28,8 @@ void RequireRange(double lo, double hi, const char* name) {
 }
 
 void RequireCount(int n, const char* name) {
-  if (n < 2 || n > kMaxGridPoints) {
-    throw InvalidArgument(std::string("regions: ") + name + " must be between 2 and " + std::to_string(kMaxGridPoints) +
+  if (n < 2 || n > kFacetRegionMaxPoints) {
+    throw InvalidArgument(std::string("regions: ") + name + " must be between 2 and " + std::to_string(kFacetRegionMaxPoints) +
                           " grid points, got " + std::to_string(n));
   }
 }
@@ -54,7 +53,7 @@ Eigen::Vector2d Crossing(const Eigen::Vector2d& p, double f_p, const Eigen::Vect
 
 }  // namespace
 
-void RegionGridOptions::Validate() const {
+void FacetRegionOptions::Validate() const {
   RequireFinite(tau, "τ");
   if (!w_minus_B.allFinite() || w_minus_B.norm() == 0.0) throw InvalidArgument("regions: ω⁻ must be finite and non-zero");
   RequireRange(lambda_lat_min, lambda_lat_max, "λ_lat");
@@ -63,13 +62,13 @@ void RegionGridOptions::Validate() const {
   RequireCount(n_lon, "λ_lon");
 }
 
-double FacetCandidateDeterminant(const core::Block& block, int pivot_b, int a, double lambda_lat, double lambda_lon,
-                                 core::FacetTauRule rule) {
+double FacetCandidateDeterminant(const Block& block, int pivot_b, int a, double lambda_lat, double lambda_lon,
+                                 FacetTauRule rule) {
   const Eigen::Vector3d p_C = block.p_BC_B();
-  const Eigen::Vector3d p_R = core::FacetResultantPoint(block, pivot_b, lambda_lat, lambda_lon);  // (21)
+  const Eigen::Vector3d p_R = FacetResultantPoint(block, pivot_b, lambda_lat, lambda_lon);  // (21)
   const Eigen::Matrix3d M =
-      block.inertia_C_B() - block.mass() * core::SkewOf(p_R, p_C) * core::SkewOf(block.p_BV_B(a), p_C);  // (18)
-  if (rule == core::FacetTauRule::kFixed) return M.determinant();
+      block.inertia_C_B() - block.mass() * SkewOf(p_R, p_C) * SkewOf(block.p_BV_B(a), p_C);  // (18)
+  if (rule == FacetTauRule::kFixed) return M.determinant();
   // (18) with (24): unknowns (ω⁺_x, ω⁺_y, τ), columns M e_x, M e_y and −u_z.
   Eigen::Matrix3d system;
   system.col(0) = M.col(0);
@@ -78,11 +77,11 @@ double FacetCandidateDeterminant(const core::Block& block, int pivot_b, int a, d
   return system.determinant();
 }
 
-std::vector<Segment> ZeroContour(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& f,
+std::vector<ContourSegment> ZeroContour(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& f,
                                  const std::vector<char>& valid) {
   const std::size_t nx = x.size(), ny = y.size();
   if (f.size() != nx * ny || valid.size() != nx * ny) throw InvalidArgument("ZeroContour: field size differs from the grid");
-  std::vector<Segment> segments;
+  std::vector<ContourSegment> segments;
   if (nx < 2 || ny < 2) return segments;
   for (std::size_t j = 0; j + 1 < ny; ++j) {
     for (std::size_t i = 0; i + 1 < nx; ++i) {
@@ -121,9 +120,9 @@ std::vector<Segment> ZeroContour(const std::vector<double>& x, const std::vector
   return segments;
 }
 
-RegionGrid EvaluateFacetRegions(const core::Block& block, const RegionGridOptions& options) {
+FacetRegionGrid EvaluateFacetRegions(const Block& block, const FacetRegionOptions& options) {
   options.Validate();
-  RegionGrid grid;
+  FacetRegionGrid grid;
   grid.lambda_lat = Axis(options.lambda_lat_min, options.lambda_lat_max, options.n_lat);
   grid.lambda_lon = Axis(options.lambda_lon_min, options.lambda_lon_max, options.n_lon);
   const std::size_t n = grid.lambda_lat.size() * grid.lambda_lon.size();
@@ -131,7 +130,7 @@ RegionGrid EvaluateFacetRegions(const core::Block& block, const RegionGridOption
   std::vector<double> delta_energy(n, 0.0);
   std::vector<char> has_energy(n, 0);
 
-  core::FacetImpactParameters params;
+  FacetImpactParameters params;
   params.tau_rule = options.tau_rule;
   params.tau = options.tau;
   std::size_t k = 0;
@@ -139,11 +138,11 @@ RegionGrid EvaluateFacetRegions(const core::Block& block, const RegionGridOption
     for (double lat : grid.lambda_lat) {
       params.lambda_lat = lat;
       params.lambda_lon = lon;
-      const core::ImpactOutcome out = core::FacetImpact(block, options.pivot_b, options.w_minus_B, params);
-      RegionCell& cell = grid.cells[k];
+      const ImpactOutcome out = FacetImpact(block, options.pivot_b, options.w_minus_B, params);
+      FacetRegionCell& cell = grid.cells[k];
       cell.status = out.status;
       cell.contact = out.contact_after;
-      cell.has_energy = out.status == core::ImpactStatus::kOk;
+      cell.has_energy = out.status == ImpactStatus::kOk;
       cell.delta_energy_J = cell.has_energy ? out.delta_energy_J : 0.0;  // (26)
       delta_energy[k] = cell.delta_energy_J;
       has_energy[k] = cell.has_energy ? 1 : 0;
@@ -161,13 +160,13 @@ RegionGrid EvaluateFacetRegions(const core::Block& block, const RegionGridOption
         det[k++] = FacetCandidateDeterminant(block, options.pivot_b, a, lat, lon, options.tau_rule);
       }
     }
-    const std::vector<Segment> curve = ZeroContour(grid.lambda_lat, grid.lambda_lon, det, everywhere);
+    const std::vector<ContourSegment> curve = ZeroContour(grid.lambda_lat, grid.lambda_lon, det, everywhere);
     grid.singular.insert(grid.singular.end(), curve.begin(), curve.end());
   }
   return grid;
 }
 
-std::vector<std::vector<Eigen::Vector2d>> ChainSegments(const std::vector<Segment>& segments) {
+std::vector<std::vector<Eigen::Vector2d>> ChainSegments(const std::vector<ContourSegment>& segments) {
   using Key = std::pair<double, double>;
   std::map<Key, std::vector<std::size_t>> ends;
   for (std::size_t s = 0; s < segments.size(); ++s) {
@@ -175,6 +174,9 @@ std::vector<std::vector<Eigen::Vector2d>> ChainSegments(const std::vector<Segmen
     ends[{segments[s].to.x(), segments[s].to.y()}].push_back(s);
   }
   std::vector<char> used(segments.size(), 0);
+  // A segment of zero length (a corner with f = 0 exactly) adds nothing to a drawing and would start a line of
+  // its own.
+  for (std::size_t s = 0; s < segments.size(); ++s) used[s] = segments[s].from == segments[s].to ? 1 : 0;
   // The other end of segment s, seen from point p.
   const auto other = [&](std::size_t s, const Eigen::Vector2d& p) { return segments[s].from == p ? segments[s].to : segments[s].from; };
   const auto next_unused = [&](const Eigen::Vector2d& p) -> std::optional<std::size_t> {
@@ -201,10 +203,10 @@ std::vector<std::vector<Eigen::Vector2d>> ChainSegments(const std::vector<Segmen
   return lines;
 }
 
-std::string RegionLabel(const RegionCell& cell) {
-  if (cell.status != core::ImpactStatus::kOk) return core::ToString(cell.status);
+std::string FacetRegionLabel(const FacetRegionCell& cell) {
+  if (cell.status != ImpactStatus::kOk) return ToString(cell.status);
   if (cell.contact.first == 0) return "rest";
   return cell.contact.ToString();
 }
 
-}  // namespace rockfit::tools
+}  // namespace rockfit::core
