@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
@@ -63,6 +64,9 @@ constexpr RegionStyle kStyles[] = {
     {"V1V2", "#8c6d31"}, {"V2V3", "#9467bd"}, {"V3V4", "#1a9a1a"},       {"V4V1", "#17becf"},
     {"rest", "#000000"}, {"infeasible", "#d4d4d4"}, {"ambiguous", "#d62728"}, {"singular", "#4d4d4d"},
 };
+// ω⁻ counts as "not falling" when V_{b+1} moves down slower than this × |ω⁻|·L (L = COM to vertex); the same
+// fraction as the warnings of `rockfit impact facet`. Dimensionless.
+constexpr double kFallingRelTol = 1e-9;
 // Cells where the energy grows (ΔE > 0) are drawn in the colour mixed with this much white.
 constexpr double kPaleWhiteFraction = 0.6;
 
@@ -93,6 +97,15 @@ int RunPlotRegions(const RegionsCommand& cmd) {
     throw InvalidArgument(fmt::format("--points must be between 2 and {}, got {}", core::kFacetRegionMaxPoints, cmd.points));
   }
   ImageFormatFor(cmd.picture.output);  // reject a bad extension before the work
+  // As `rockfit impact facet`: an ω⁻ that does not bring V_{b+1} down makes every cell infeasible.
+  const Eigen::Vector3d& w_B = options.w_minus_B;
+  const double velocity_scale = w_B.norm() * (block.p_BC_B() - block.p_BV_B(b)).norm();
+  if (w_B.cross(block.p_BV_B(b + 1) - block.p_BV_B(b)).z() >= -kFallingRelTol * velocity_scale) {
+    std::cerr << fmt::format("rockfit: warning: with this ω⁻ the base does not fall onto the ground about V{}V{}; in "
+                             "rockfit's frame a falling block has ω⁻ = +ω·({:+.3g}, {:+.3g}, {:+.3g}), ω > 0 (the "
+                             "paper's Fig. 11 writes [0, −1, 0] for V1V2 in its own axes; see core/README.md)\n",
+                             core::Block::WrapVertex(b - 1), b, falling_B.x(), falling_B.y(), falling_B.z());
+  }
   const core::FacetRegionGrid grid = core::EvaluateFacetRegions(block, options);
 
   // Background: one RGB pixel per grid point, pale where ΔE > 0.
@@ -216,7 +229,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   r->add_option("--tau", cmd->tau,
                 "Fixed vertical angular impulse τ [N·m·s] (Fig. 11b,c); omitted: the unified no-spin map (24) (Fig. 11a)")
       ->group("Impact");
-  r->add_option("--lat-range", cmd->lat_range, "λ_lat range MIN,MAX (horizontal axis; write --lat-range=-2,2)")
+  r->add_option("--lat-range", cmd->lat_range, "λ_lat range MIN,MAX (horizontal axis)")
       ->capture_default_str()
       ->group("Grid");
   r->add_option("--lon-range", cmd->lon_range, "λ_lon range MIN,MAX (vertical axis)")->capture_default_str()->group("Grid");
