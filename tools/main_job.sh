@@ -21,10 +21,8 @@ echo "== 3. figures: Euler angles raw vs corrected (Fig. 5) and the campaign sum
 "$rockfit" plot summary "$out/campaign.h5" -o "$out/summary.png"
 
 echo
-echo "== 4. fit t0, α, λ, λ_lat, λ_lon of every trial by the error (28), no starting point (paper Sect. 5)"
-"$rockfit" batch "$manifest" -o "$out/campaign.h5"
-"$rockfit" plot fit "$out/campaign.h5" --trial block2-A-1 -o "$out/fit_block2-A-1.png"
-"$rockfit" plot parameters "$out/campaign.h5" -o "$out/parameters.png"
+echo "== 4. fit t0, α, λ, λ_lat, λ_lon of one trial with no starting point (error (28)); truth: recordings/block2-A-1_truth.json"
+"$rockfit" fit "$manifest" --trial block2-A-1 -o "$out/fits.h5" --plot "$out/fit_block2-A-1.png"
 
 echo
 echo "outputs in $out:"

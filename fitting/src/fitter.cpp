@@ -16,6 +16,11 @@
 namespace rockfit::fitting {
 namespace {
 
+// ε above this fraction of the mean measured |ω| over the window is reported as a poor fit. Fits of the
+// synthetic sample trials reach 1–2 % (gyro noise and ringing); a wrong block, mounting or window gives tens of
+// percent.
+constexpr double kPoorFitFraction = 0.2;
+
 struct Candidate {
   std::string stage;
   Eigen::VectorXd x;
@@ -154,6 +159,20 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
     for (const auto& entry : failures) total += entry.second;
     summary.warnings.push_back({"simulation_failures", "",
                                 fmt::format("{} trial point(s) were infeasible and penalised: {}", total, FailureList(failures))});
+  }
+  // A fit whose mean error is a large part of the motion itself does not describe the recording.
+  if (summary.feasible) {
+    ErrorNodes nodes;
+    if (BuildErrorNodes(objective.signal(), summary.parameters.value(ParameterId::kT0), objective.t_end_s(), &nodes)) {
+      const double mean_rate = TrajectoryError(nodes, std::vector<Eigen::Vector3d>(nodes.size(), Eigen::Vector3d::Zero()));
+      if (summary.epsilon_rad_s > kPoorFitFraction * mean_rate) {
+        summary.warnings.push_back(
+            {"poor_fit", "",
+             fmt::format("ε is {:.0f} % of the mean measured |ω| ({:.3g} rad/s) in the window: the model does not "
+                         "describe this recording; check the block size, the sensor mounting and the window",
+                         100.0 * summary.epsilon_rad_s / mean_rate, mean_rate)});
+      }
+    }
   }
   if (!summary.feasible) {
     summary.warnings.push_back({"infeasible", "", "no feasible point found: the model fails everywhere it was tried"});

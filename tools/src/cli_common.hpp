@@ -43,6 +43,10 @@ std::optional<core::Block> MakeOptionalBlock(const BlockArgs& args);
 // Parses "X,Y,Z" into a vector; throws InvalidArgument naming `option` on failure.
 Eigen::Vector3d ParseVector3(const std::string& text, const std::string& option);
 
+// --pivot-edge "I,J" with I, J cyclic neighbours → b of the pivot edge V_{b−1}V_b (either order names the same
+// edge). Throws InvalidArgument listing the allowed pairs.
+int ParsePivotEdge(const std::string& text);
+
 nlohmann::json ToJson(const Eigen::Vector3d& v);
 // Prints one JSON object on stdout (pretty, 2 spaces).
 void PrintJson(const nlohmann::json& object);

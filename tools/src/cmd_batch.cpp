@@ -1,21 +1,30 @@
-// `rockfit batch MANIFEST`: fit every trial of a campaign in parallel into one HDF5 file (DESIGN §7, §8), with
-// a progress bar on a terminal, failures isolated and listed, and --resume after an interruption.
+// `rockfit batch MANIFEST -o fits.h5`: fit every trial of a campaign in parallel into one HDF5 file (DESIGN §7,
+// §8). Each finished trial is committed through an atomic transaction before the next one is written (a mutex
+// serialises the writers), so killing the batch at any moment loses at most the trials still running, and
+// `--resume` skips the trials the file already holds with the same settings.
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
+#include <map>
+#include <mutex>
 #include <thread>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
 #include "command_registry.hpp"
-#include "fit_cli.hpp"
+#include "fit_setup.hpp"
 #include "recording_input.hpp"
 #include "rockfit/core/errors.hpp"
-#include "rockfit/fitting/batch.hpp"
+#include "rockfit/fitting/fitter.hpp"
+#include "rockfit/io/campaign_hdf5.hpp"
+#include "rockfit/io/hdf5_transaction.hpp"
 #include "rockfit/io/manifest.hpp"
 
 namespace rockfit::tools {
@@ -23,133 +32,248 @@ namespace {
 
 struct BatchCommand {
   std::string manifest;
-  std::string output = "fits.h5";
+  std::string output;
   FitArgs fit;
   int jobs = 0;
   bool resume = false;
-  std::vector<std::string> trials;
   bool json = false;
-  bool no_progress = false;
 };
 
-std::string Clock(double seconds) {
-  const long s = static_cast<long>(seconds + 0.5);
-  return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60) : fmt::format("{}:{:02}", s / 60, s % 60);
+struct TrialOutcome {
+  std::string trial;
+  bool ok = false;
+  bool skipped = false;
+  int exit_code = kExitOk;
+  std::string message;
+  double epsilon_rad_s = std::nan("");
+  double wall_s = 0.0;
+};
+
+const char* const kSummaryParameters[] = {"t0", "alpha", "lambda", "lambda_lat", "lambda_lon", "tau_edge"};
+
+// /summary/fits from every /fits/<trial> in the file: a per-trial table and a per-(block, position) table of
+// mean and sample standard deviation (layout in fitting/README.md).
+void WriteFitSummaryTables(const io::hdf5::Group& root) {
+  std::vector<std::string> trials, blocks, positions;
+  std::map<std::string, std::vector<double>> columns;
+  std::vector<double> epsilon, wall;
+  std::vector<std::int64_t> simulations;
+  const io::hdf5::Group fits = root.OpenGroup("fits");
+  for (const std::string& id : fits.Children()) {
+    const io::hdf5::Group g = fits.OpenGroup(id);
+    trials.push_back(id);
+    blocks.push_back(g.GetString("block").value_or(""));
+    positions.push_back(g.GetString("position").value_or(""));
+    const std::vector<std::string> names = g.ReadStrings("parameters/name");
+    const std::vector<double> values = g.ReadDoubles("parameters/value");
+    for (const char* name : kSummaryParameters) {
+      const auto it = std::find(names.begin(), names.end(), name);
+      columns[name].push_back(it == names.end() ? std::nan("") : values[static_cast<std::size_t>(it - names.begin())]);
+    }
+    epsilon.push_back(g.GetDouble("epsilon_rad_s").value_or(std::nan("")));
+    wall.push_back(g.GetDouble("wall_s").value_or(std::nan("")));
+    simulations.push_back(g.GetInt("simulations").value_or(0));
+  }
+  const io::hdf5::Group t = root.CreateGroup("summary/fits/per_trial");
+  t.WriteStrings("trial", trials);
+  t.WriteStrings("block", blocks);
+  t.WriteStrings("position", positions);
+  for (const char* name : kSummaryParameters) {
+    t.WriteDoubles(name, columns[name], fitting::Unit(fitting::ParseParameterName(name)));
+  }
+  t.WriteDoubles("epsilon_rad_s", epsilon, "rad/s");
+  t.WriteDoubles("wall_s", wall, "s");
+  t.WriteInts("simulations", simulations, "1");
+
+  std::map<std::pair<std::string, std::string>, std::vector<std::size_t>> groups;
+  for (std::size_t i = 0; i < trials.size(); ++i) groups[{blocks[i], positions[i]}].push_back(i);
+  std::vector<std::string> group_block, group_position;
+  std::vector<std::int64_t> count;
+  std::map<std::string, std::vector<double>> mean, std_dev;
+  for (const auto& [key, members] : groups) {
+    group_block.push_back(key.first);
+    group_position.push_back(key.second);
+    count.push_back(static_cast<std::int64_t>(members.size()));
+    for (const char* name : kSummaryParameters) {
+      double sum = 0.0;
+      for (std::size_t i : members) sum += columns[name][i];
+      const double m = sum / static_cast<double>(members.size());
+      double ss = 0.0;
+      for (std::size_t i : members) ss += (columns[name][i] - m) * (columns[name][i] - m);
+      mean[name].push_back(m);
+      std_dev[name].push_back(members.size() > 1 ? std::sqrt(ss / static_cast<double>(members.size() - 1)) : std::nan(""));
+    }
+  }
+  const io::hdf5::Group g = root.CreateGroup("summary/fits/per_group");
+  g.WriteStrings("block", group_block);
+  g.WriteStrings("position", group_position);
+  g.WriteInts("n", count, "1");
+  for (const char* name : kSummaryParameters) {
+    const std::string unit = fitting::Unit(fitting::ParseParameterName(name));
+    g.WriteDoubles(std::string(name) + "_mean", mean[name], unit);
+    g.WriteDoubles(std::string(name) + "_std", std_dev[name], unit);
+  }
 }
 
-// Progress on stderr: a bar redrawn in place on a terminal, one line per trial otherwise.
-class ProgressReporter {
- public:
-  ProgressReporter(bool terminal, bool quiet) : terminal_(terminal), quiet_(quiet), start_(std::chrono::steady_clock::now()) {}
+// Hashes of the fits already in the file (for --resume).
+std::map<std::string, std::string> StoredSettingsHashes(const std::filesystem::path& path) {
+  std::map<std::string, std::string> hashes;
+  if (!std::filesystem::exists(path) || !io::hdf5::File::IsHdf5(path)) return hashes;
+  const io::hdf5::File file = io::hdf5::File::Open(path);
+  if (!file.Root().IsGroup("fits")) return hashes;
+  const io::hdf5::Group fits = file.Root().OpenGroup("fits");
+  for (const std::string& id : fits.Children()) {
+    hashes[id] = fits.OpenGroup(id).GetString("settings_hash").value_or("");
+  }
+  return hashes;
+}
 
-  void operator()(const fitting::BatchTrialResult& r, std::size_t finished, std::size_t total) {
-    if (r.status == "failed") ++failed_;
-    if (quiet_) return;
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    if (r.status != "skipped") ++fitted_;
-    const std::size_t remaining = total - finished;
-    // ETA from the trials fitted in this run (skipped ones cost nothing).
-    const std::string eta = fitted_ > 0 ? Clock(elapsed / static_cast<double>(fitted_) * static_cast<double>(remaining)) : "?";
+class Progress {
+ public:
+  Progress(std::size_t total, bool terminal) : total_(total), terminal_(terminal), start_(Clock::now()) {}
+  void Report(const TrialOutcome& o) {
+    ++done_;
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    const double eta = done_ > 0 ? elapsed / static_cast<double>(done_) * static_cast<double>(total_ - done_) : 0.0;
+    const std::string what = o.skipped ? "already fitted"
+                             : o.ok    ? fmt::format("ε = {:.4g} rad/s in {:.1f} s", o.epsilon_rad_s, o.wall_s)
+                                       : "FAILED: " + o.message;
     if (terminal_) {
       constexpr int kWidth = 30;
-      const int filled = static_cast<int>(kWidth * finished / std::max<std::size_t>(total, 1));
-      std::fprintf(stderr, "\r[%s%s] %zu/%zu trials, %zu failed, elapsed %s, ETA %s   ", std::string(filled, '#').c_str(),
-                   std::string(kWidth - filled, '.').c_str(), finished, total, failed_, Clock(elapsed).c_str(), eta.c_str());
-      if (finished == total) std::fprintf(stderr, "\n");
-      if (r.status == "failed") std::fprintf(stderr, "\r%-80s\n", fmt::format("trial {} failed: {}", r.trial_id, r.message).c_str());
+      const int filled = static_cast<int>(kWidth * done_ / std::max<std::size_t>(total_, 1));
+      std::cerr << fmt::format("\r\033[K[{}{}] {}/{}  ETA {:.0f} s  {}: {}", std::string(filled, '#'),
+                               std::string(kWidth - filled, '.'), done_, total_, eta, o.trial, what.substr(0, 60))
+                << (done_ == total_ ? "\n" : "") << std::flush;
     } else {
-      std::string what = r.status == "ok"        ? fmt::format("ok, ε = {:.5g} rad/s, {:.2f} s", r.epsilon_rad_s, r.wall_time_s)
-                         : r.status == "skipped" ? std::string("skipped (already fitted with the same settings)")
-                                                 : "failed: " + r.message;
-      std::fprintf(stderr, "[%zu/%zu] %s %s (ETA %s)\n", finished, total, r.trial_id.c_str(), what.c_str(), eta.c_str());
+      std::cerr << fmt::format("rockfit batch: [{}/{}] {}: {} (elapsed {:.1f} s, ETA {:.0f} s)\n", done_, total_,
+                               o.trial, what, elapsed, eta);
     }
-    std::fflush(stderr);
   }
 
  private:
+  using Clock = std::chrono::steady_clock;
+  std::size_t total_;
+  std::size_t done_ = 0;
   bool terminal_;
-  bool quiet_;
-  std::chrono::steady_clock::time_point start_;
-  std::size_t failed_ = 0;
-  std::size_t fitted_ = 0;
+  Clock::time_point start_;
 };
 
-int RunBatchCommand(const BatchCommand& cmd) {
-  if (cmd.fit.t_end_s) throw InvalidArgument("--t-end is a time of one recording; batches detect each window end");
+int RunBatch(const BatchCommand& cmd) {
   const io::Manifest manifest = io::ReadManifest(cmd.manifest);
-  fitting::BatchOptions options;
-  options.parameters = MakeParameterSet(cmd.fit);
-  options.trial = MakeTrialFitOptions(cmd.fit);
-  options.jobs = cmd.jobs;
-  options.resume = cmd.resume;
-  options.rockfit_version = ROCKFIT_VERSION;
-  options.only_trials = cmd.trials;
-  const int jobs = cmd.jobs > 0 ? cmd.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  ProgressReporter progress(::isatty(STDERR_FILENO) != 0, cmd.no_progress);
-  if (!cmd.no_progress) {
-    std::fprintf(stderr, "fitting %zu trial(s) of %s with %d job(s) into %s%s\n",
-                 cmd.trials.empty() ? manifest.trials.size() : cmd.trials.size(), cmd.manifest.c_str(), jobs,
-                 cmd.output.c_str(), cmd.resume ? " (resuming)" : "");
-  }
-  const fitting::BatchReport report =
-      fitting::RunBatch(manifest, cmd.output, options, LoadManifestTrial,
-                        [&](const fitting::BatchTrialResult& r, std::size_t finished, std::size_t total) {
-                          progress(r, finished, total);
-                        });
+  if (manifest.trials.empty()) throw BadInput(fmt::format("{}: the manifest lists no trials", cmd.manifest));
+  if (cmd.jobs < 0) throw InvalidArgument("-j must be ≥ 0 (0: all cores)");
+  MakeParameterSet(cmd.fit);  // option errors before any work
+  fitting::ParseFitMethod(cmd.fit.method);
+  // Fail early on an output that cannot be written (OutputError, exit 4), before hours of fitting.
+  { io::hdf5::Transaction probe(cmd.output); }
 
+  const std::map<std::string, std::string> stored = cmd.resume ? StoredSettingsHashes(cmd.output)
+                                                               : std::map<std::string, std::string>{};
+  const std::size_t n = manifest.trials.size();
+  std::vector<TrialOutcome> outcomes(n);
+  std::atomic<std::size_t> next{0};
+  std::mutex write_mutex;
+  Progress progress(n, isatty(fileno(stderr)) != 0);
+  FitArgs fit_args = cmd.fit;
+  fit_args.threads = 1;  // parallel over trials, not inside one fit
+
+  auto work = [&] {
+    for (std::size_t i = next.fetch_add(1); i < n; i = next.fetch_add(1)) {
+      const io::TrialSpec& spec = manifest.trials[i];
+      TrialOutcome& o = outcomes[i];
+      o.trial = TrialNameFrom(spec.id);
+      try {
+        const core::Block block = manifest.FindBlock(spec.block_id).ToBlock();
+        const std::string hash = SettingsHash(FitSettingsText(block, fit_args));
+        const auto it = stored.find(o.trial);
+        if (it != stored.end() && it->second == hash) {
+          o.ok = o.skipped = true;
+        } else {
+          const io::Recording recording = LoadManifestTrial(spec);
+          const PreparedFit prepared = PrepareFit(recording, block, fit_args);
+          const fitting::FitSummary summary = fitting::Fit(prepared.objective, prepared.start, prepared.options);
+          o.epsilon_rad_s = summary.epsilon_rad_s;
+          o.wall_s = summary.wall_time_s;
+          o.ok = summary.feasible;
+          if (!o.ok) {
+            o.exit_code = kExitNumerical;
+            o.message = "no feasible parameters: " + summary.termination;
+          }
+          std::lock_guard<std::mutex> lock(write_mutex);
+          io::hdf5::Transaction tx(cmd.output, {"/fits/" + o.trial, "/summary/fits"});
+          io::WriteFileAttributes(tx.Root(), ROCKFIT_VERSION);
+          WriteFitGroup(tx.Root(), o.trial, {spec.block_id, spec.position, spec.notes}, prepared, summary);
+          WriteFitSummaryTables(tx.Root());
+          tx.Commit();
+        }
+      } catch (const InvalidArgument& e) {
+        o.exit_code = kExitUsage;
+        o.message = e.what();
+      } catch (const BadInput& e) {
+        o.exit_code = kExitBadInput;
+        o.message = e.what();
+      } catch (const OutputError& e) {
+        o.exit_code = kExitCannotWrite;
+        o.message = e.what();
+      } catch (const std::exception& e) {
+        o.exit_code = kExitNumerical;
+        o.message = e.what();
+      }
+      std::lock_guard<std::mutex> lock(write_mutex);
+      progress.Report(o);
+    }
+  };
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t workers = std::min<std::size_t>(n, cmd.jobs > 0 ? static_cast<std::size_t>(cmd.jobs) : cores);
+  std::vector<std::thread> threads;
+  for (std::size_t w = 1; w < workers; ++w) threads.emplace_back(work);
+  work();
+  for (std::thread& t : threads) t.join();
+
+  int exit_code = kExitOk;
+  std::size_t failed = 0, skipped = 0;
+  nlohmann::json trials = nlohmann::json::array();
+  for (const TrialOutcome& o : outcomes) {
+    if (o.skipped) ++skipped;
+    if (!o.ok) {
+      ++failed;
+      exit_code = std::max(exit_code, o.exit_code);
+    }
+    trials.push_back({{"trial", o.trial},
+                      {"ok", o.ok},
+                      {"skipped", o.skipped},
+                      {"epsilon", std::isfinite(o.epsilon_rad_s) ? nlohmann::json(o.epsilon_rad_s) : nlohmann::json()},
+                      {"wall_s", o.wall_s},
+                      {"message", o.message}});
+  }
   if (cmd.json) {
-    nlohmann::json trials = nlohmann::json::array();
-    for (const auto& r : report.trials) {
-      trials.push_back({{"trial", r.trial_id},
-                        {"status", r.status},
-                        {"message", r.message},
-                        {"epsilon", r.status == "ok" ? nlohmann::json(r.epsilon_rad_s) : nlohmann::json()},
-                        {"wall_s", r.wall_time_s},
-                        {"simulations", r.simulations},
-                        {"warnings", r.warnings}});
-    }
-    PrintJson({{"manifest", cmd.manifest},
-               {"output", cmd.output},
-               {"trials", trials},
-               {"ok", report.ok},
-               {"failed", report.failed},
-               {"skipped", report.skipped},
-               {"jobs", jobs},
-               {"wall_s", report.wall_time_s}});
+    PrintJson({{"output", cmd.output}, {"trials", trials}, {"fitted", n - failed - skipped}, {"skipped", skipped},
+               {"failed", failed}});
   } else {
-    std::cout << fmt::format("{} trial(s): {} fitted, {} skipped (already fitted), {} failed in {:.1f} s; written {}\n",
-                             report.trials.size(), report.ok, report.skipped, report.failed, report.wall_time_s,
-                             cmd.output);
-    for (const auto& r : report.trials) {
-      if (r.status == "failed") std::cout << "  failed: " << r.trial_id << ": " << r.message << "\n";
+    std::cout << fmt::format("{} trials: {} fitted, {} skipped (already in {} with the same settings), {} failed\n", n,
+                             n - failed - skipped, skipped, cmd.output, failed);
+  }
+  if (failed > 0) {
+    std::cerr << fmt::format("rockfit: {} trial(s) failed:\n", failed);
+    for (const TrialOutcome& o : outcomes) {
+      if (!o.ok) std::cerr << "  " << o.trial << ": " << o.message << "\n";
     }
+    std::cerr << "Fix or remove them and re-run with --resume (finished trials are kept).\n";
   }
-  if (report.failed > 0) {
-    std::cerr << "rockfit: " << report.failed << " trial(s) failed (listed above); the others are in " << cmd.output
-              << ". Fix their input and run again with --resume to fit only what is missing.\n";
-    return kExitNumerical;
-  }
-  return kExitOk;
+  return exit_code;
 }
 
 const CommandRegistration kRegistration([](CLI::App& root) {
   auto cmd = std::make_shared<BatchCommand>();
-  CLI::App* app = root.add_subcommand("batch", "Fit every trial of a campaign manifest in parallel into one HDF5 file");
-  app->add_option("MANIFEST", cmd->manifest, "Campaign manifest (TOML)")->required();
-  app->add_option("-o,--output", cmd->output, "HDF5 file: /fits/<trial> and the tables /fit_summary/{trials,groups}")
-      ->capture_default_str()
-      ->group("Output");
-  app->add_option("-j,--jobs", cmd->jobs, "Trials fitted at a time (0: all cores)")->capture_default_str();
-  app->add_flag("--resume", cmd->resume,
-                "Skip trials already fitted with the same settings (in the output or left by an interrupted run)");
-  app->add_option("--trial", cmd->trials, "Fit only these trials (repeatable)");
-  AddFitOptions(*app, cmd->fit, false);
-  app->add_flag("--no-progress", cmd->no_progress, "No progress output on stderr")->group("Output");
-  app->add_flag("--json", cmd->json,
-                "Print one JSON object: manifest, output, trials (trial, status, message, epsilon, wall_s, simulations, "
-                "warnings), ok, failed, skipped, jobs, wall_s")
-      ->group("Output");
-  app->callback([cmd] { SetExitCode(RunBatchCommand(*cmd)); });
+  CLI::App* app = root.add_subcommand(
+      "batch", "Fit every trial of a campaign manifest in parallel into one HDF5 file (/fits/<trial>, /summary/fits)");
+  app->add_option("MANIFEST", cmd->manifest, "Campaign manifest (.toml)")->required();
+  app->add_option("-o,--output", cmd->output, "HDF5 file (created or extended; other groups are kept)")->required();
+  app->add_option("-j,--jobs", cmd->jobs, "Trials fitted at once (0: all cores)")->capture_default_str();
+  app->add_flag("--resume", cmd->resume, "Skip trials already in the file with the same settings (settings_hash)");
+  app->add_flag("--json", cmd->json, "Print one JSON object");
+  AddFitOptions(*app, cmd->fit);
+  app->callback([cmd] { SetExitCode(RunBatch(*cmd)); });
 });
 
 }  // namespace

@@ -1,21 +1,16 @@
-// `rockfit fit`: fit t0, α, λ, λ_lat, λ_lon of one trial without a starting point (DESIGN §7), or evaluate the
-// error (28) of given parameters (--evaluate).
-#include <cmath>
+// `rockfit fit PATH` / `rockfit fit MANIFEST --trial ID`: fit t0, α, λ, λ_lat, λ_lon of one trial (paper Sect. 5,
+// DESIGN §7) from no starting point, or `--evaluate` the error (28) at given parameters.
 #include <iostream>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
 #include "command_registry.hpp"
-#include "fit_cli.hpp"
-#include "gnuplot.hpp"
+#include "fit_setup.hpp"
 #include "plot_fit.hpp"
 #include "recording_input.hpp"
 #include "rockfit/core/errors.hpp"
-#include "rockfit/fitting/fit_settings.hpp"
-#include "rockfit/fitting/fit_store.hpp"
-#include "rockfit/fitting/trial_fit.hpp"
+#include "rockfit/fitting/fitter.hpp"
 #include "rockfit/io/campaign_hdf5.hpp"
 #include "rockfit/io/hdf5_transaction.hpp"
 
@@ -26,138 +21,102 @@ struct FitCommand {
   RecordingArgs input;
   BlockArgs block;
   FitArgs fit;
-  std::vector<std::string> evaluate;
   std::string output;
   std::string plot;
   bool json = false;
+  bool evaluate = false;
+  std::optional<double> t0_s, alpha_rad, lambda, lambda_lat, lambda_lon;
 };
 
-fitting::MeasuredSignal SignalOf(const io::Recording& r) {
-  fitting::MeasuredSignal s;
-  s.t_s = r.t_s;
-  s.w_B = r.w_B;
-  return s;
-}
-
 core::Block BlockFor(const FitCommand& cmd, const TrialInput& input) {
-  if (HasBlockOptions(cmd.block)) return MakeBlock(cmd.block);
-  if (input.manifest_block) return input.manifest_block->ToBlock();
-  throw InvalidArgument("the block is needed: give --b1 --b2 --h with --density or --mass, --manifest FILE --block ID, "
-                        "or fit a trial of a manifest (PATH.toml --trial ID)");
-}
-
-nlohmann::json EstimateJson(const fitting::DataEstimate& e) {
-  return {{"first_impact_s", e.first_impact_s},
-          {"t_end_impact_s", e.t_end_impact_s},
-          {"rest_bias_rad_s", e.bias_estimated ? ToJson(e.rest_bias_rad_s) : nlohmann::json()},
-          {"w_minus_rad_s", e.w_minus_rad_s},
-          {"alpha_from_energy_rad", e.alpha_from_energy_rad},
-          {"notes", e.notes}};
-}
-
-int RunEvaluate(const FitCommand& cmd, const TrialInput& input, const core::Block& block) {
-  fitting::ParameterSet values = MakeParameterSet(cmd.fit);
-  const auto given = ParseAssignments(cmd.evaluate, "--evaluate");
-  for (const auto& [id, value] : given) values[id].value = value;
-  fitting::TrialFitOptions options = MakeTrialFitOptions(cmd.fit);
-  // Parameters not given take the estimate from the data.
-  fitting::ParameterSet estimate_request = values;
-  for (fitting::ParameterId id : fitting::kAllParameters) {
-    const bool was_given = std::any_of(given.begin(), given.end(), [&](const auto& g) { return g.first == id; });
-    estimate_request[id].fixed = was_given || values[id].fixed;
+  std::optional<core::Block> block = MakeOptionalBlock(cmd.block);
+  if (!block && input.manifest_block) block = input.manifest_block->ToBlock();
+  if (!block) {
+    throw InvalidArgument("the fit needs the block geometry: give --b1 --b2 --h with --density or --mass, or "
+                          "--manifest FILE --block ID (or PATH a manifest with --trial ID)");
   }
-  const fitting::TrialEvaluation e = fitting::EvaluateTrial(block, SignalOf(input.recording), estimate_request, options);
-  fitting::ParameterSet used = e.estimate.parameters;
-  for (const auto& [id, value] : given) used[id].value = value;
-  // The evaluation used `estimate_request` values for given/fixed ones and the estimate for the others.
+  return *block;
+}
+
+int RunEvaluate(const FitCommand& cmd, const TrialInput& input, const PreparedFit& prepared) {
+  fitting::ParameterSet values = prepared.start;
+  const std::pair<fitting::ParameterId, std::optional<double>> given[] = {
+      {fitting::ParameterId::kT0, cmd.t0_s},           {fitting::ParameterId::kAlpha, cmd.alpha_rad},
+      {fitting::ParameterId::kLambda, cmd.lambda},      {fitting::ParameterId::kLambdaLat, cmd.lambda_lat},
+      {fitting::ParameterId::kLambdaLon, cmd.lambda_lon}};
+  nlohmann::json params = nlohmann::json::object();
+  for (const auto& [id, v] : given) {
+    if (v) values[id].value = *v;
+    params[fitting::Name(id)] = {{"value", values.value(id)}, {"given", v.has_value()}};
+  }
+  const fitting::Evaluation e = prepared.objective.Evaluate(values);
   if (cmd.json) {
-    nlohmann::json j;
-    j["trial"] = input.trial_id;
-    for (fitting::ParameterId id : fitting::kAllParameters) {
-      const bool was_given = std::any_of(given.begin(), given.end(), [&](const auto& g) { return g.first == id; });
-      j["parameters"][fitting::Name(id)] = {{"value", used.value(id)}, {"given", was_given}, {"unit", fitting::Unit(id)}};
-    }
-    j["epsilon"] = e.epsilon_rad_s;
-    j["feasible"] = e.feasible;
-    j["failure"] = e.failure;
-    j["t_end"] = e.t_end_s;
-    j["estimate"] = EstimateJson(e.estimate);
-    PrintJson(j);
+    PrintJson({{"trial", input.trial_id},
+               {"epsilon", e.feasible ? nlohmann::json(e.epsilon_rad_s) : nlohmann::json()},
+               {"feasible", e.feasible},
+               {"failure", e.failure},
+               {"t_end", prepared.objective.t_end_s()},
+               {"parameters", params}});
   } else {
-    std::cout << fmt::format("trial {}: ε (28) = {:.6g} rad/s over [t0, t_end = {:.4f} s]{}\n", input.trial_id,
-                             e.epsilon_rad_s, e.t_end_s, e.feasible ? "" : " (infeasible: " + e.failure + ")");
-    for (fitting::ParameterId id : fitting::kAllParameters) {
-      const bool was_given = std::any_of(given.begin(), given.end(), [&](const auto& g) { return g.first == id; });
-      std::cout << fmt::format("  {:<11} {:12.6g} {:<6} {}\n", fitting::Name(id), used.value(id), fitting::Unit(id),
-                               was_given ? "given" : (values[id].fixed ? "fixed" : "estimated from the data"));
+    std::cout << fmt::format("trial        {}\n", input.trial_id);
+    for (const auto& [id, v] : given) {
+      std::cout << fmt::format("{:<12} {:.6g} {}{}\n", fitting::Name(id), values.value(id), fitting::Unit(id),
+                               v ? "" : "   (data estimate)");
     }
-  }
-  if (!cmd.plot.empty() && !e.trace.ok) {
-    std::cerr << "rockfit: no picture: the model fails at these parameters (" << e.trace.failure << ")\n";
-  }
-  if (!cmd.plot.empty() && e.trace.ok) {
-    fitting::TrialFit as_fit;
-    as_fit.signal = e.signal;
-    as_fit.trace = e.trace;
-    as_fit.summary.parameters = used;
-    as_fit.summary.epsilon_rad_s = e.epsilon_rad_s;
-    RenderFitFigure(FitFigureFrom(as_fit, input.trial_id), cmd.plot, 1200, 900);
+    if (e.feasible) {
+      std::cout << fmt::format("ε (28)       {:.6g} rad/s over [t0, {:.4f} s]\n", e.epsilon_rad_s,
+                               prepared.objective.t_end_s());
+    } else {
+      std::cout << "ε (28)       — (the simulation failed: " << e.failure << ")\n";
+    }
   }
   if (!e.feasible) {
-    std::cerr << "rockfit: the model fails at these parameters (" << e.failure << "); ε is the penalty value\n";
+    std::cerr << "rockfit: the model cannot run at these parameters (" << e.failure
+              << "); try values inside the bounds shown by `rockfit fit --help`\n";
     return kExitNumerical;
   }
   return kExitOk;
 }
 
 int RunFit(const FitCommand& cmd) {
-  if (!cmd.plot.empty()) ImageFormatFor(cmd.plot);  // reject a wrong extension before the work
   const TrialInput input = LoadTrialInput(cmd.input);
   const core::Block block = BlockFor(cmd, input);
-  if (!cmd.evaluate.empty()) return RunEvaluate(cmd, input, block);
+  const PreparedFit prepared = PrepareFit(input.recording, block, cmd.fit);
+  if (cmd.evaluate) return RunEvaluate(cmd, input, prepared);
 
-  const fitting::ParameterSet parameters = MakeParameterSet(cmd.fit);
-  const fitting::TrialFitOptions options = MakeTrialFitOptions(cmd.fit);
-  const fitting::TrialFit fit = fitting::FitTrial(block, SignalOf(input.recording), parameters, options);
-  const fitting::FitSummary& s = fit.summary;
-
+  const fitting::FitSummary summary = fitting::Fit(prepared.objective, prepared.start, prepared.options);
+  const std::string trial = TrialNameFrom(input.trial_id);
   if (!cmd.output.empty()) {
-    const nlohmann::json input_json = {{"path", cmd.input.path}, {"trial", input.trial_id},
-                                       {"block", {{"b1_m", block.b1()}, {"b2_m", block.b2()}, {"h_m", block.h()},
-                                                  {"mass_kg", block.mass()}}}};
-    const std::string settings = fitting::FitSettingsJson(parameters, options, input_json.dump());
-    io::hdf5::Transaction tx(cmd.output, {"/fits/" + input.trial_id, "/fit_summary"});
+    io::hdf5::Transaction tx(cmd.output, {"/fits/" + trial});
     io::WriteFileAttributes(tx.Root(), ROCKFIT_VERSION);
-    fitting::FitLabels labels{input.labels.block_id, input.labels.position, block.b1(), block.b2(), block.h()};
-    fitting::WriteFitHdf5(tx.Root(), input.trial_id, labels, fit, settings, fitting::SettingsHash(settings));
-    fitting::WriteFitTablesHdf5(tx.Root());
+    WriteFitGroup(tx.Root(), trial, input.labels, prepared, summary);
     tx.Commit();
   }
   if (!cmd.plot.empty()) {
-    if (fit.trace.ok) {
-      RenderFitFigure(FitFigureFrom(fit, input.trial_id), cmd.plot, 1200, 900);
-    } else {
-      std::cerr << "rockfit: no picture: the model fails at the fitted parameters (" << fit.trace.failure << ")\n";
+    FitPlotData data;
+    data.trial = trial;
+    data.epsilon_rad_s = summary.epsilon_rad_s;
+    fitting::ErrorNodes nodes;
+    fitting::ModelOutput output;
+    prepared.objective.EvaluateDetailed(summary.parameters, &nodes, &output);
+    data.t_s = nodes.t_s;
+    data.w_measured_B = nodes.w_m_B;
+    if (output.ok()) data.w_simulated_B = output.w_B;
+    for (const fitting::ModelEvent& e : output.events) {
+      data.impact_t_s.push_back(summary.parameters.value(fitting::ParameterId::kT0) + e.t_s);
+      data.impact_kind.push_back(e.kind);
     }
+    RenderFitPlot(data, cmd.plot, 1200, 900);
   }
-
   if (cmd.json) {
-    nlohmann::json j = nlohmann::json::parse(s.ToJson(input.trial_id));
-    j["estimate"] = EstimateJson(fit.estimate);
-    j["block"] = {{"b1_m", block.b1()}, {"b2_m", block.b2()}, {"h_m", block.h()}, {"mass_kg", block.mass()}};
-    if (!cmd.output.empty()) j["output"] = cmd.output;
-    if (!cmd.plot.empty()) j["plot"] = cmd.plot;
-    PrintJson(j);
+    PrintJson(FitResultJson(trial, summary));
   } else {
-    std::cout << "trial " << input.trial_id << " (" << s.model_description << ")\n";
-    for (const std::string& note : fit.estimate.notes) std::cout << "estimate    " << note << "\n";
-    std::cout << s.FullReport();
-    if (!cmd.output.empty()) std::cout << "written " << cmd.output << " (/fits/" << input.trial_id << ")\n";
-    if (!cmd.plot.empty() && fit.trace.ok) std::cout << "written " << cmd.plot << "\n";
+    for (const std::string& note : prepared.notes) std::cout << "estimate     " << note << "\n";
+    std::cout << FitResultTable(trial, summary);
   }
-  if (!s.feasible) {
-    std::cerr << "rockfit: no feasible parameters for trial " << input.trial_id
-              << ": the model fails everywhere it was tried; check the block size, the mounting and the bounds\n";
+  if (!summary.feasible) {
+    std::cerr << "rockfit: no parameter set in the bounds lets the simulation run (" << summary.termination
+              << "); widen the bounds (--lower/--upper, --bounds empirical) or check the block geometry\n";
     return kExitNumerical;
   }
   return kExitOk;
@@ -166,21 +125,22 @@ int RunFit(const FitCommand& cmd) {
 const CommandRegistration kRegistration([](CLI::App& root) {
   auto cmd = std::make_shared<FitCommand>();
   CLI::App* app = root.add_subcommand(
-      "fit", "Fit release time, tilt and impact parameters (t0, α, λ, λ_lat, λ_lon) of one trial by the error (28), "
-             "without a starting point");
+      "fit",
+      "Fit the release time t0, tilt α and impact parameters λ, λ_lat, λ_lon of one trial by minimising the error "
+      "(28) between measured and simulated ω, from no starting point (data estimate, global stage, local polish)");
   AddRecordingOptions(*app, cmd->input);
   AddBlockOptions(*app, cmd->block);
-  AddFitOptions(*app, cmd->fit, true);
-  app->add_option("--evaluate", cmd->evaluate,
-                  "Print ε (28) of these parameters instead of fitting, NAME=VALUE,... (the others from the data)")
-      ->group("Fit");
-  app->add_option("-o,--output", cmd->output, "HDF5 file to store the fit in (/fits/<trial>; other content is kept)")
-      ->group("Output");
-  app->add_option("--plot", cmd->plot, "Draw measured and simulated ω (Fig. 14) to FILE.png or FILE.svg")->group("Output");
-  app->add_flag("--json", cmd->json,
-                "Print one JSON object: trial, parameters (value, lower, upper, fixed, std_error, …), epsilon, "
-                "epsilon_initial, t_end, simulations, wall_s, termination, warnings, …")
-      ->group("Output");
+  AddFitOptions(*app, cmd->fit);
+  app->add_option("-o,--output", cmd->output, "HDF5 file to write /fits/<trial> into (other groups are kept)");
+  app->add_option("--plot", cmd->plot, "Picture of the fit (.png or .svg): measured dots, simulated lines, impacts");
+  app->add_flag("--json", cmd->json, "Print one JSON object");
+  app->add_flag("--evaluate", cmd->evaluate,
+                "Print ε (28) at --t0 --alpha --lambda --lambda-lat --lambda-lon (others: data estimate); no fit");
+  app->add_option("--t0", cmd->t0_s, "With --evaluate: release time [s]");
+  app->add_option("--alpha", cmd->alpha_rad, "With --evaluate: release tilt [rad]");
+  app->add_option("--lambda", cmd->lambda, "With --evaluate: λ of edge impacts (19)");
+  app->add_option("--lambda-lat", cmd->lambda_lat, "With --evaluate: λ_lat of facet impacts (21)");
+  app->add_option("--lambda-lon", cmd->lambda_lon, "With --evaluate: λ_lon of facet impacts (21)");
   app->callback([cmd] { SetExitCode(RunFit(*cmd)); });
 });
 

@@ -59,27 +59,6 @@ void RequireVertex(int k, const std::string& option) {
   }
 }
 
-// "I,J" with I, J cyclic neighbours → b of the pivot edge V_{b−1}V_b (either order names the same edge).
-int ParsePivotEdge(const std::string& text) {
-  const std::string allowed = "--pivot-edge expects two neighbouring base vertices I,J (1,2 2,3 3,4 or 4,1, in either order)";
-  std::stringstream stream(text);
-  std::string cell;
-  std::vector<int> vertices;
-  while (std::getline(stream, cell, ',')) {
-    char* end = nullptr;
-    const long value = std::strtol(cell.c_str(), &end, 10);
-    if (cell.empty() || end == cell.c_str() || *end != '\0' || value < 1 || value > 4) {
-      throw InvalidArgument(allowed + ", got '" + text + "'");
-    }
-    vertices.push_back(static_cast<int>(value));
-  }
-  if (vertices.size() != 2 || !core::Block::AreNeighbours(vertices[0], vertices[1])) {
-    throw InvalidArgument(allowed + ", got '" + text + "'");
-  }
-  // In cyclic order the edge is V_{b−1}V_b: b is the vertex that follows the other one.
-  return core::Block::WrapVertex(vertices[0] + 1) == vertices[1] ? vertices[1] : vertices[0];
-}
-
 std::string FormatVector(const Eigen::Vector3d& v) { return fmt::format("({:+.9f}, {:+.9f}, {:+.9f})", v.x(), v.y(), v.z()); }
 
 std::string YesNo(bool value) { return value ? "yes" : "no"; }

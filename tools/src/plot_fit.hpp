@@ -1,6 +1,5 @@
-// Figures of fits (DESIGN §10): the measured and simulated angular velocity of one trial (the paper's Fig. 14)
-// and the fitted parameters of a campaign per block and position (Fig. 15). `rockfit plot fit` and
-// `rockfit plot parameters` (registered in plot_fit.cpp) and `rockfit fit --plot` draw them.
+// The fit picture (paper Fig. 14): measured ω as dots, simulated ω as lines, one panel per component, the
+// model's impacts as vertical marks. Used by `rockfit plot fit` and `rockfit fit --plot`.
 #pragma once
 
 #include <filesystem>
@@ -9,25 +8,19 @@
 
 #include <Eigen/Core>
 
-#include "rockfit/fitting/fit_store.hpp"
-#include "rockfit/fitting/trial_fit.hpp"
-
 namespace rockfit::tools {
 
-struct FitFigureData {
-  std::string trial_id;
-  std::vector<double> t_s;
-  std::vector<Eigen::Vector3d> w_measured_B;
-  std::vector<Eigen::Vector3d> w_simulated_B;
-  std::vector<double> impact_t_s;        // the model's impacts
+struct FitPlotData {
+  std::string trial;
+  std::vector<double> t_s;                    // the nodes of (28) (recording time)
+  std::vector<Eigen::Vector3d> w_measured_B;  // [rad/s]
+  std::vector<Eigen::Vector3d> w_simulated_B; // [rad/s]; empty when the model failed
+  std::vector<double> impact_t_s;
   std::vector<std::string> impact_kind;
-  std::string caption;                    // parameters and ε
+  double epsilon_rad_s = 0.0;
 };
 
-FitFigureData FitFigureFrom(const fitting::StoredFit& fit);
-FitFigureData FitFigureFrom(const fitting::TrialFit& fit, const std::string& trial_id);
-
-// Three panels (ω_x, ω_y, ω_z): measured as dots, simulated as lines, impacts as vertical marks.
-void RenderFitFigure(const FitFigureData& data, const std::filesystem::path& output, int width_px, int height_px);
+// OutputError when gnuplot is missing or fails.
+void RenderFitPlot(const FitPlotData& data, const std::filesystem::path& output, int width_px, int height_px);
 
 }  // namespace rockfit::tools

@@ -15,7 +15,7 @@ namespace rockfit::fitting {
 
 struct FitWarning {
   // "at_bound", "not_identifiable", "simulation_failures", "not_converged", "std_error_unavailable",
-  // "worse_than_start".
+  // "infeasible", "poor_fit".
   std::string kind;
   std::string parameter;  // empty when the warning is not about one parameter
   std::string message;    // one sentence for people

@@ -1,0 +1,52 @@
+// The fitting problem of one recorded trial, ready for Fit(): the data estimate (initial_guess.hpp), the gyro
+// bias measured at rest removed from the signal, the window [t0, t_end] and the hybrid simulator as the model.
+// `rockfit fit` and `rockfit batch` build their problems here (tools/src/fit_setup.cpp).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rockfit/core/block.hpp"
+#include "rockfit/fitting/initial_guess.hpp"
+#include "rockfit/fitting/objective.hpp"
+#include "rockfit/fitting/simulator_model.hpp"
+#include "rockfit/fitting/trajectory_model.hpp"
+
+namespace rockfit::fitting {
+
+struct TrialProblemOptions {
+  InitialGuessOptions guess;
+  // Subtract the mean ω over the samples at rest (from the start of the recording to rest_margin_s before the
+  // estimated release, when that lasts at least rest_min_duration_s). A constant gyro bias of 0.3 deg/s
+  // otherwise shifts the fitted t0 by milliseconds: (28) absorbs it into the shape of phase 1.
+  bool subtract_rest_bias = true;
+  double rest_margin_s = 0.05;
+  double rest_min_duration_s = 0.1;
+  // A detected window ends this long before the impact that ends it (a simulated impact right at t_end moves in
+  // and out of the window with the parameters and makes ε jump). Not applied to a given t_end.
+  double window_end_margin_s = 0.012;
+  std::optional<double> t_end_s;  // given end of the window (recording time)
+  void Validate() const;          // throws InvalidArgument
+};
+
+struct TrialProblem {
+  Objective objective;          // the bias-corrected signal, the window, the model, the bounds
+  ParameterSet start;           // the data estimate (fixed parameters at their values), inside the bounds
+  InitialGuess guess;           // on the corrected signal
+  Eigen::Vector3d rest_bias_rad_s = Eigen::Vector3d::Zero();
+  bool bias_subtracted = false;
+  std::vector<std::string> notes;  // the guess's notes and the bias
+};
+
+// `model` defaults to the hybrid simulator for `block`. t0 bounds left open in `parameters` are narrowed to
+// [start of the recording, first impact]. Throws BadInput when the recording shows no release, InvalidArgument
+// for a given t_end outside (t0, end of the recording].
+TrialProblem PrepareTrialProblem(const MeasuredSignal& recorded, const core::Block& block,
+                                 const ParameterSet& parameters, const TrialProblemOptions& options = {},
+                                 std::shared_ptr<const TrajectoryModel> model = nullptr);
+
+}  // namespace rockfit::fitting

@@ -1,0 +1,339 @@
+#include "rockfit/fitting/initial_guess.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "rockfit/core/errors.hpp"
+#include "rockfit/core/facet_impact.hpp"
+#include "rockfit/core/planar_avrf.hpp"
+#include "rockfit/core/planar_rocking.hpp"
+#include "rockfit/io/peak_finding.hpp"
+
+namespace rockfit::fitting {
+namespace {
+
+// Step of the RK4 integration of the planar phase 1 [s]: its error (~h⁴) is far below one gyro sample.
+constexpr double kPhase1StepS = 1e-4;
+// The planar fit searches α within this distance of the landing-rate estimate and of the swept angle [rad]:
+// the landing rate read from one sample before the impact is low by at most one sample of angular
+// acceleration (≈ 5 % in α away from the critical angle).
+constexpr double kAlphaSearchHalfWidthRad = 0.03;
+// Points of the α scan before the golden section: a step of 2 mrad over the ±0.03 rad interval.
+constexpr int kAlphaScanPoints = 30;
+// Golden-section iterations: (0.618)^40 of the interval, far below the resolution of the data.
+constexpr int kGoldenIterations = 40;
+// The phase-1 fit looks at the data from this multiple of T(α) before the impact (it sees the release).
+constexpr double kPhase1WindowFactor = 1.5;
+
+// ω(τ) of the planar fall from rest at α about the release edge: ψ̈ = −(K/2)·sin(θ_c − ψ) (energy of
+// planar_rocking.hpp differentiated), sampled every kPhase1StepS until ψ reaches 0; ω = −ψ̇ ≥ 0.
+std::vector<double> PlanarFallRates(const core::PlanarRocker& rocker, double alpha_rad) {
+  const double half_k = 0.5 * rocker.K();
+  const double theta_c = rocker.critical_angle_rad;
+  auto accel = [&](double psi) { return -half_k * std::sin(theta_c - psi); };
+  std::vector<double> rates{0.0};
+  double psi = alpha_rad, rate = 0.0;  // rate = ψ̇
+  const double h = kPhase1StepS;
+  while (psi > 0.0 && rates.size() < 200000) {
+    const double k1p = rate, k1v = accel(psi);
+    const double k2p = rate + 0.5 * h * k1v, k2v = accel(psi + 0.5 * h * k1p);
+    const double k3p = rate + 0.5 * h * k2v, k3v = accel(psi + 0.5 * h * k2p);
+    const double k4p = rate + h * k3v, k4v = accel(psi + h * k3p);
+    psi += h / 6.0 * (k1p + 2 * k2p + 2 * k3p + k4p);
+    rate += h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
+    rates.push_back(-rate);
+  }
+  return rates;
+}
+
+double InterpolateRate(const std::vector<double>& rates, double tau_s) {
+  if (tau_s <= 0.0) return 0.0;
+  const double u = tau_s / kPhase1StepS;
+  const std::size_t i = static_cast<std::size_t>(u);
+  if (i + 1 >= rates.size()) return rates.back();
+  const double f = u - static_cast<double>(i);
+  return rates[i] + f * (rates[i + 1] - rates[i]);
+}
+
+template <typename F>
+double GoldenMinimum(double lo, double hi, F&& f) {
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double a = lo, b = hi;
+  double c = b - g * (b - a), d = a + g * (b - a);
+  double fc = f(c), fd = f(d);
+  for (int i = 0; i < kGoldenIterations; ++i) {
+    if (fc < fd) {
+      b = d; d = c; fd = fc; c = b - g * (b - a); fc = f(c);
+    } else {
+      a = c; c = d; fc = fd; d = a + g * (b - a); fd = f(d);
+    }
+  }
+  return 0.5 * (a + b);
+}
+
+// Inverse of LandingRate by bisection on [0, θ_c].
+double AlphaFromLandingRate(const core::PlanarRocker& rocker, double rate_rad_s) {
+  double lo = 0.0, hi = rocker.critical_angle_rad;
+  if (core::LandingRate(rocker, hi) <= rate_rad_s) return hi;
+  for (int i = 0; i < 100; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (core::LandingRate(rocker, mid) < rate_rad_s ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+std::vector<io::Peak> RatePeaks(const MeasuredSignal& signal, int axis, const io::ImpactDetectionOptions& options) {
+  std::vector<double> magnitude(signal.size());
+  for (std::size_t k = 0; k < signal.size(); ++k) magnitude[k] = std::abs(signal.w_B[k][axis]);
+  const double dt = (signal.t_s.back() - signal.t_s.front()) / static_cast<double>(signal.size() - 1);
+  io::PeakOptions peak;
+  peak.min_prominence = options.min_prominence_rad_s;
+  peak.min_separation_samples = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(options.min_separation_s / dt)));
+  return io::FindPeaks(magnitude, peak);
+}
+
+double Clamp(const Parameter& p, double v) { return std::min(std::max(v, p.lower), p.upper); }
+
+void SetValue(ParameterSet* set, ParameterId id, double v) {
+  Parameter& p = (*set)[id];
+  if (!p.fixed) p.value = Clamp(p, v);
+}
+
+}  // namespace
+
+void InitialGuessOptions::Validate() const {
+  detection.Validate();
+  if (!(first_impact_fraction > 0.0 && first_impact_fraction <= 1.0)) {
+    throw InvalidArgument(fmt::format("first_impact_fraction must lie in (0, 1], got {}", first_impact_fraction));
+  }
+  if (window_end_impact < 2) throw InvalidArgument("window_end_impact must be at least 2 (the second base impact)");
+  if (!(later_impact_fraction > 0.0 && later_impact_fraction <= 1.0)) {
+    throw InvalidArgument(fmt::format("later_impact_fraction must lie in (0, 1], got {}", later_impact_fraction));
+  }
+  if (!std::isfinite(default_lambda)) throw InvalidArgument("default_lambda must be finite");
+  if (!(min_jump_fraction >= 0.0 && min_jump_fraction < 1.0)) {
+    throw InvalidArgument(fmt::format("min_jump_fraction must lie in [0, 1), got {}", min_jump_fraction));
+  }
+  if (!(flat_tilt_fraction > 0.0 && flat_tilt_fraction < 1.0)) {
+    throw InvalidArgument(fmt::format("flat_tilt_fraction must lie in (0, 1), got {}", flat_tilt_fraction));
+  }
+  if (post_impact_samples < 1) throw InvalidArgument("post_impact_samples must be at least 1");
+}
+
+std::vector<double> DetectBaseImpactTimes(const MeasuredSignal& signal, const InitialGuessOptions& options) {
+  options.Validate();
+  signal.Validate();
+  const std::vector<io::Peak> peaks = RatePeaks(signal, 1, options.detection);
+  double largest = 0.0;
+  for (const io::Peak& p : peaks) largest = std::max(largest, p.value);
+  std::vector<double> times;
+  double first_value = 0.0, first_sign = 1.0;
+  std::vector<double> tilt_y(signal.size(), 0.0), max_tilt_y(signal.size(), 0.0);  // [rad]
+  for (const io::Peak& p : peaks) {
+    if (times.empty()) {
+      if (p.value >= options.first_impact_fraction * largest) {
+        times.push_back(signal.t_s[p.index]);
+        first_value = p.value;
+        first_sign = signal.w_B[p.index][1] >= 0.0 ? 1.0 : -1.0;
+        for (std::size_t k = p.index + 1; k < signal.size(); ++k) {  // trapezoid rule from the first impact
+          tilt_y[k] = tilt_y[k - 1] + 0.5 * (signal.t_s[k] - signal.t_s[k - 1]) *
+                                          (signal.w_B[k][1] + signal.w_B[k - 1][1]);
+          max_tilt_y[k] = std::max(max_tilt_y[k - 1], std::abs(tilt_y[k]));
+        }
+      }
+    } else if (p.value >= options.later_impact_fraction * first_value && p.index + 1 < signal.size()) {
+      // A base impact on the release side: the block rocks back (ω_y has the opposite sign of the landing from
+      // the release) and |ω_y| drops abruptly after the peak. Smooth maxima of |ω_y| in 3D rocking on a
+      // vertex and the jumps of edge impacts while rocking on the far side fail one of these tests.
+      // It also happens with the base back near flat: the tilt about y accumulated since the first impact (the
+      // integral of ω_y, flat at the first impact) is small against its largest value in between; edge impacts
+      // between the far vertices V3, V4 happen at a large tilt.
+      const double w = signal.w_B[p.index][1];
+      const double drop = std::abs(w) - std::abs(signal.w_B[p.index + 1][1]);
+      const bool flat = std::abs(tilt_y[p.index]) <= options.flat_tilt_fraction * max_tilt_y[p.index];
+      if (w * first_sign < 0.0 && drop >= options.min_jump_fraction * std::abs(w) && flat) {
+        times.push_back(signal.t_s[p.index]);
+      }
+    }
+  }
+  if (times.empty()) {
+    throw BadInput(fmt::format("no impact found in the recording: |ω_y| has no peak with a prominence of {} rad/s; "
+                               "check the mounting (--mounting) and that the recording contains a release",
+                               options.detection.min_prominence_rad_s));
+  }
+  return times;
+}
+
+double DetectWindowEnd(const MeasuredSignal& signal, const InitialGuessOptions& options) {
+  const std::vector<double> times = DetectBaseImpactTimes(signal, options);
+  const std::size_t n = static_cast<std::size_t>(options.window_end_impact);
+  return times.size() >= n ? times[n - 1] : signal.t_s.back();
+}
+
+InitialGuess EstimateInitialGuess(const MeasuredSignal& signal, const core::Block& block, const ParameterSet& base,
+                                  const InitialGuessOptions& options) {
+  options.Validate();
+  signal.Validate();
+  InitialGuess guess;
+  guess.parameters = base;
+  const std::vector<double> impacts = DetectBaseImpactTimes(signal, options);
+  guess.t_first_impact_s = impacts.front();
+  const std::size_t n_end = static_cast<std::size_t>(options.window_end_impact);
+  guess.t_end_s = impacts.size() >= n_end ? impacts[n_end - 1] : signal.t_s.back();
+
+  const std::size_t k_peak = static_cast<std::size_t>(
+      std::lower_bound(signal.t_s.begin(), signal.t_s.end(), guess.t_first_impact_s) - signal.t_s.begin());
+  if (k_peak < 3) throw BadInput("the first impact is at the start of the recording: the release is not recorded");
+  const double sign = signal.w_B[k_peak][1] >= 0.0 ? 1.0 : -1.0;
+  const double dt = (signal.t_s.back() - signal.t_s.front()) / static_cast<double>(signal.size() - 1);
+
+  // Phase 1: a coarse α from the landing rate, then the planar fall fitted to the samples before the impact.
+  const core::PlanarRocker rocker = core::PlanarRockerAboutEdge(block, 1, 2);
+  const double alpha_max = rocker.critical_angle_rad * (1.0 - 1e-6);
+  const double peak_rate = sign * signal.w_B[k_peak][1];
+  const double alpha_coarse = std::min(AlphaFromLandingRate(rocker, peak_rate), alpha_max);
+  const std::size_t k_last = k_peak - 1;  // before the impact whether the peak sample is just before or after it
+  // The tilt swept in phase 1, ∫ω_y dt from the start of the recording to the impact (the block turns from α to
+  // flat). Near the critical angle the landing rate hardly depends on α (dω⁻/dα → 0 as α → θ_c), so the
+  // landing-rate estimate can be off by more than the search width below; the swept angle is not.
+  double alpha_swept = 0.0;
+  for (std::size_t k = 1; k <= k_last; ++k) {
+    alpha_swept += 0.5 * (signal.t_s[k] - signal.t_s[k - 1]) * sign * (signal.w_B[k][1] + signal.w_B[k - 1][1]);
+  }
+  alpha_swept = std::clamp(alpha_swept, 1e-3, alpha_max);
+  const double window_s = kPhase1WindowFactor * core::FallTime(rocker, std::max(alpha_coarse, alpha_swept));
+  std::size_t k_first = 0;
+  while (k_first < k_last && signal.t_s[k_first] < signal.t_s[k_peak] - window_s) ++k_first;
+
+  auto cost_at = [&](const std::vector<double>& rates, double t0) {
+    double sum = 0.0;
+    for (std::size_t k = k_first; k <= k_last; ++k) {
+      const double d = sign * signal.w_B[k][1] - InterpolateRate(rates, signal.t_s[k] - t0);
+      sum += d * d;
+    }
+    return sum;
+  };
+  auto best_t0_for = [&](double alpha, double* cost) {
+    const std::vector<double> rates = PlanarFallRates(rocker, alpha);
+    const double fall = static_cast<double>(rates.size() - 1) * kPhase1StepS;
+    const double t0_center = signal.t_s[k_peak] - fall;
+    const double t0 = GoldenMinimum(t0_center - 1.5 * dt, t0_center + 1.5 * dt,
+                                    [&](double t) { return cost_at(rates, t); });
+    *cost = cost_at(rates, t0);
+    return t0;
+  };
+  // A scan first: near the critical angle the fall is slow and the cost has several shallow minima in α.
+  auto cost_of_alpha = [&](double a) {
+    double c = 0.0;
+    best_t0_for(a, &c);
+    return c;
+  };
+  const double alpha_lo = std::max(1e-3, std::min(alpha_coarse, alpha_swept) - kAlphaSearchHalfWidthRad);
+  const double alpha_hi = std::min(alpha_max, std::max(alpha_coarse, alpha_swept) + kAlphaSearchHalfWidthRad);
+  // The scan keeps its step (2 mrad) when both estimates widen the interval.
+  const int scan_points = std::max(
+      kAlphaScanPoints, static_cast<int>(std::ceil(kAlphaScanPoints * (alpha_hi - alpha_lo) / (2.0 * kAlphaSearchHalfWidthRad))));
+  const double alpha_step = (alpha_hi - alpha_lo) / scan_points;
+  double best_scan = alpha_lo, best_scan_cost = std::numeric_limits<double>::infinity();
+  for (int i = 0; i <= scan_points; ++i) {
+    const double a = alpha_lo + alpha_step * i;
+    const double c = cost_of_alpha(a);
+    if (c < best_scan_cost) {
+      best_scan_cost = c;
+      best_scan = a;
+    }
+  }
+  const double alpha = GoldenMinimum(std::max(alpha_lo, best_scan - alpha_step), std::min(alpha_hi, best_scan + alpha_step),
+                                     cost_of_alpha);
+  double cost = 0.0;
+  const double t0 = best_t0_for(alpha, &cost);
+  const double t_impact = t0 + core::FallTime(rocker, alpha);
+  guess.landing_rate_rad_s = core::LandingRate(rocker, alpha);
+  SetValue(&guess.parameters, ParameterId::kT0, t0);
+  SetValue(&guess.parameters, ParameterId::kAlpha, alpha);
+  guess.notes.push_back(fmt::format("first impact at {:.4f} s; planar phase-1 fit: t0 = {:.4f} s, α = {:.4f} rad "
+                                    "(landing-rate estimate {:.4f} rad, swept angle {:.4f} rad)",
+                                    guess.t_first_impact_s, t0, alpha, alpha_coarse, alpha_swept));
+
+  // First jump: ω⁺ from the samples just after the impact, corrected for the planar deceleration about the far
+  // edge (the same |ψ̈| ≈ (K/2)·sin θ_c near the flat position) so that it refers to the impact instant.
+  const double decel = 0.5 * rocker.K() * std::sin(rocker.critical_angle_rad);
+  std::vector<double> wx, wy;
+  for (std::size_t k = 0; k < signal.size() && static_cast<int>(wy.size()) < options.post_impact_samples; ++k) {
+    if (signal.t_s[k] <= t_impact) continue;
+    wx.push_back(sign * signal.w_B[k][0]);
+    wy.push_back(sign * signal.w_B[k][1] + decel * (signal.t_s[k] - t_impact));
+  }
+  if (wy.empty()) throw BadInput("the recording ends at the first impact: nothing after it to fit");
+  auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  const double wx_plus = median(wx), wy_plus = median(wy);
+  guess.jump_ratio = wy_plus / guess.landing_rate_rad_s;
+
+  const core::PlanarBlock planar = core::PlanarBlockAboutY(block);
+  double lambda_lon = guess.jump_ratio != -1.0 ? core::LambdaFromAvrf(planar, guess.jump_ratio)  // inverse of (6)
+                                               : guess.parameters.value(ParameterId::kLambdaLon);
+  double lambda_lat = wx_plus >= 0.0 ? 1.0 : -1.0;
+  guess.notes.push_back(fmt::format("first jump r = ω_y⁺/ω_y⁻ = {:.4f} → λ_lon = {:.3f} by the inverse of (6); "
+                                    "ω_x⁺ = {:.3f} rad/s → sign of λ_lat {}", guess.jump_ratio, lambda_lon, wx_plus,
+                                    wx_plus >= 0.0 ? "+" : "−"));
+
+  // Refine (λ_lat, λ_lon) with the facet impact map (18)+(21): the pair whose ω⁺ is closest to the measured one,
+  // on a grid over the bounds, λ_lat restricted to the sign seen in the data.
+  const Parameter& p_lat = guess.parameters[ParameterId::kLambdaLat];
+  const Parameter& p_lon = guess.parameters[ParameterId::kLambdaLon];
+  const Eigen::Vector3d w_minus(0.0, guess.landing_rate_rad_s, 0.0);
+  double best = std::numeric_limits<double>::infinity();
+  double best_lat = lambda_lat, best_lon = lambda_lon;
+  auto try_pair = [&](double lat, double lon) {
+    core::FacetImpactParameters fp;
+    fp.lambda_lat = lat;
+    fp.lambda_lon = lon;
+    fp.tau_rule = base.facet_tau_rule();
+    const core::ImpactOutcome out = core::FacetImpact(block, 2, w_minus, fp);
+    if (out.status != core::ImpactStatus::kOk) return;
+    const double d = std::hypot(out.w_plus_B.x() - wx_plus, out.w_plus_B.y() - wy_plus);
+    if (d < best) {
+      best = d;
+      best_lat = lat;
+      best_lon = lon;
+    }
+  };
+  constexpr int kGrid = 48;
+  const double lat_lo = p_lat.fixed ? p_lat.value : (wx_plus >= 0.0 ? std::max(0.0, p_lat.lower) : p_lat.lower);
+  const double lat_hi = p_lat.fixed ? p_lat.value : (wx_plus >= 0.0 ? p_lat.upper : std::min(0.0, p_lat.upper));
+  const double lon_lo = p_lon.fixed ? p_lon.value : p_lon.lower;
+  const double lon_hi = p_lon.fixed ? p_lon.value : p_lon.upper;
+  for (int pass = 0; pass < 2; ++pass) {
+    const double span_lat = pass == 0 ? (lat_hi - lat_lo) : 2.0 * (lat_hi - lat_lo) / kGrid;
+    const double span_lon = pass == 0 ? (lon_hi - lon_lo) : 2.0 * (lon_hi - lon_lo) / kGrid;
+    const double c_lat = pass == 0 ? 0.5 * (lat_lo + lat_hi) : best_lat;
+    const double c_lon = pass == 0 ? 0.5 * (lon_lo + lon_hi) : best_lon;
+    for (int i = 0; i <= kGrid; ++i) {
+      for (int j = 0; j <= kGrid; ++j) {
+        const double lat = std::clamp(c_lat - 0.5 * span_lat + span_lat * i / kGrid, lat_lo, lat_hi);
+        const double lon = std::clamp(c_lon - 0.5 * span_lon + span_lon * j / kGrid, lon_lo, lon_hi);
+        try_pair(lat, lon);
+      }
+    }
+  }
+  if (std::isfinite(best)) {
+    lambda_lat = best_lat;
+    lambda_lon = best_lon;
+    guess.notes.push_back(fmt::format("facet map fit of ω⁺: λ_lat = {:.3f}, λ_lon = {:.3f} (miss {:.3f} rad/s)",
+                                      lambda_lat, lambda_lon, best));
+  }
+  SetValue(&guess.parameters, ParameterId::kLambdaLat, lambda_lat);
+  SetValue(&guess.parameters, ParameterId::kLambdaLon, lambda_lon);
+  SetValue(&guess.parameters, ParameterId::kLambda, options.default_lambda);
+  guess.notes.push_back(fmt::format("λ = {} (default; the global stage scans it once edge impacts act)",
+                                    options.default_lambda));
+  return guess;
+}
+
+}  // namespace rockfit::fitting

@@ -1,0 +1,77 @@
+#include "rockfit/fitting/trial_problem.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "rockfit/core/errors.hpp"
+
+namespace rockfit::fitting {
+
+void TrialProblemOptions::Validate() const {
+  guess.Validate();
+  for (double v : {rest_margin_s, rest_min_duration_s, window_end_margin_s}) {
+    if (!(std::isfinite(v) && v >= 0.0)) {
+      throw InvalidArgument(fmt::format("trial problem options: durations must be non-negative seconds, got {}", v));
+    }
+  }
+  if (t_end_s && !std::isfinite(*t_end_s)) throw InvalidArgument("--t-end must be a finite time in seconds");
+}
+
+TrialProblem PrepareTrialProblem(const MeasuredSignal& recorded, const core::Block& block,
+                                 const ParameterSet& parameters, const TrialProblemOptions& options,
+                                 std::shared_ptr<const TrajectoryModel> model) {
+  options.Validate();
+  recorded.Validate();
+  MeasuredSignal signal = recorded;
+  InitialGuess guess = EstimateInitialGuess(signal, block, parameters, options.guess);
+  std::vector<std::string> notes;
+
+  // The gyro bias at rest, then the estimate again on the corrected signal.
+  Eigen::Vector3d bias = Eigen::Vector3d::Zero();
+  bool subtracted = false;
+  if (options.subtract_rest_bias) {
+    const double rest_end = guess.parameters.value(ParameterId::kT0) - options.rest_margin_s;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    std::size_t n = 0;
+    for (; n < signal.size() && signal.t_s[n] < rest_end; ++n) sum += signal.w_B[n];
+    if (n > 0 && rest_end - signal.t_s.front() >= options.rest_min_duration_s) {
+      bias = sum / static_cast<double>(n);
+      for (Eigen::Vector3d& w : signal.w_B) w -= bias;
+      subtracted = true;
+      guess = EstimateInitialGuess(signal, block, parameters, options.guess);
+      notes.push_back(fmt::format("gyro bias at rest over {:.2f} s before the release: ({:.4f}, {:.4f}, {:.4f}) rad/s, "
+                                  "subtracted",
+                                  rest_end - signal.t_s.front(), bias.x(), bias.y(), bias.z()));
+    } else {
+      notes.push_back("gyro bias not measured: the recording starts too close to the release");
+    }
+  }
+  notes.insert(notes.begin(), guess.notes.begin(), guess.notes.end());
+
+  ParameterSet start = guess.parameters;
+  Parameter& t0 = start[ParameterId::kT0];
+  if (!std::isfinite(t0.lower)) t0.lower = signal.t_s.front();
+  if (!std::isfinite(t0.upper)) t0.upper = guess.t_first_impact_s;
+  t0.value = std::clamp(t0.value, t0.lower, t0.upper);
+  start.Validate();
+
+  double t_end = guess.t_end_s;
+  if (options.t_end_s) {
+    t_end = *options.t_end_s;
+  } else if (options.window_end_margin_s > 0.0) {
+    // Keep the end after the first impact whatever the margin.
+    t_end = std::max(guess.t_end_s - options.window_end_margin_s, 0.5 * (guess.t_end_s + guess.t_first_impact_s));
+  }
+  if (!(t_end > start.value(ParameterId::kT0) && t_end <= signal.t_s.back())) {
+    throw InvalidArgument(fmt::format("--t-end {} s must lie after the release (t0 ≈ {:.4f} s) and inside the "
+                                      "recording (ends at {:.4f} s)",
+                                      t_end, start.value(ParameterId::kT0), signal.t_s.back()));
+  }
+  if (!model) model = std::make_shared<SimulatorModel>(block);
+  Objective objective(std::move(signal), t_end, std::move(model), start);
+  return TrialProblem{std::move(objective), std::move(start), std::move(guess), bias, subtracted, std::move(notes)};
+}
+
+}  // namespace rockfit::fitting

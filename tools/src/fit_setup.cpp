@@ -1,0 +1,223 @@
+#include "fit_setup.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "rockfit/core/errors.hpp"
+#include "rockfit/fitting/simulator_model.hpp"
+
+namespace rockfit::tools {
+namespace {
+
+std::vector<std::string> SplitList(const std::vector<std::string>& items) {
+  std::vector<std::string> out;
+  for (const std::string& item : items) {
+    std::size_t start = 0;
+    while (start <= item.size()) {
+      const std::size_t comma = item.find(',', start);
+      const std::string name = item.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+      if (!name.empty()) out.push_back(name);
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+  }
+  return out;
+}
+
+void ApplyBound(const std::string& entry, const std::string& option, bool lower, fitting::ParameterSet* set) {
+  const std::size_t eq = entry.find('=');
+  if (eq == std::string::npos) {
+    throw InvalidArgument(fmt::format("{} '{}': expected NAME=VALUE, e.g. {} lambda_lat=-2", option, entry, option));
+  }
+  const fitting::ParameterId id = fitting::ParseParameterName(entry.substr(0, eq));
+  double value = 0.0;
+  try {
+    std::size_t used = 0;
+    value = std::stod(entry.substr(eq + 1), &used);
+    if (used != entry.size() - eq - 1) throw std::invalid_argument("trailing characters");
+  } catch (const std::exception&) {
+    throw InvalidArgument(fmt::format("{} '{}': '{}' is not a number", option, entry, entry.substr(eq + 1)));
+  }
+  if (!std::isfinite(value)) throw InvalidArgument(fmt::format("{} '{}': the bound must be finite", option, entry));
+  (lower ? (*set)[id].lower : (*set)[id].upper) = value;
+}
+
+nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
+
+}  // namespace
+
+void AddFitOptions(CLI::App& app, FitArgs& args) {
+  app.add_option("--method", args.method, "Back end: nelder-mead, ceres or auto (global stage, Nelder–Mead, Ceres polish)")
+      ->capture_default_str();
+  app.add_option("--bounds", args.bounds, "Default bounds: empirical (wider than (25)/(27)) or theoretical")
+      ->capture_default_str();
+  app.add_option("--free", args.free, "Parameters to fit in addition to the defaults (t0,alpha,lambda,lambda_lat,lambda_lon,tau_edge)")
+      ->delimiter(',');
+  app.add_option("--fix", args.fix, "Parameters to hold at their start value (the data estimate)")->delimiter(',');
+  app.add_option("--lower", args.lower, "Lower bound NAME=VALUE (repeatable)");
+  app.add_option("--upper", args.upper, "Upper bound NAME=VALUE (repeatable)");
+  app.add_option("--t-end", args.t_end_s, "End of the fitting window in recording time [s] (default: the second base impact)");
+  app.add_option("--max-evaluations", args.max_evaluations, "Nelder–Mead evaluation budget (0: default)");
+  app.add_flag("--no-global", args.no_global, "Skip the global stage (local search from the data estimate only)");
+  app.add_flag("--keep-bias", args.keep_bias, "Do not subtract the gyro bias measured at rest before the release");
+  app.add_option("--threads", args.threads, "Threads of the global stage (0: all cores)");
+}
+
+fitting::ParameterSet MakeParameterSet(const FitArgs& args) {
+  fitting::ParameterSet set = fitting::ParameterSet::Defaults(fitting::ParseBoundsSet(args.bounds));
+  for (const std::string& name : SplitList(args.free)) set[fitting::ParseParameterName(name)].fixed = false;
+  for (const std::string& name : SplitList(args.fix)) set[fitting::ParseParameterName(name)].fixed = true;
+  for (const std::string& e : args.lower) ApplyBound(e, "--lower", true, &set);
+  for (const std::string& e : args.upper) ApplyBound(e, "--upper", false, &set);
+  return set;
+}
+
+PreparedFit PrepareFit(const io::Recording& recording, const core::Block& block, const FitArgs& args) {
+  fitting::FitOptions options;
+  options.method = fitting::ParseFitMethod(args.method);
+  options.global.enabled = !args.no_global;
+  if (args.max_evaluations < 0) throw InvalidArgument("--max-evaluations must be ≥ 0");
+  if (args.max_evaluations > 0) options.nelder_mead.max_evaluations = args.max_evaluations;
+  if (args.threads < 0) throw InvalidArgument("--threads must be ≥ 0");
+  options.num_threads = args.threads;
+  options.Validate();
+
+  fitting::ParameterSet set = MakeParameterSet(args);
+  const fitting::MeasuredSignal signal{recording.t_s, recording.w_B};
+  fitting::TrialProblemOptions problem_options;
+  problem_options.t_end_s = args.t_end_s;
+  problem_options.subtract_rest_bias = !args.keep_bias;
+  fitting::TrialProblem problem = fitting::PrepareTrialProblem(signal, block, set, problem_options);
+  std::string settings = FitSettingsText(block, args);
+  return PreparedFit{std::move(problem.objective), std::move(problem.start), options, std::move(problem.guess),
+                     settings, std::move(problem.notes)};
+}
+
+std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
+  const fitting::ParameterSet set = MakeParameterSet(args);
+  // v2: the gyro bias at rest is subtracted unless --keep-bias, and a detected window ends just before its impact.
+  std::string settings = fmt::format("rockfit-fit v2; method={}; bounds={}; t_end={}; max_evaluations={}; global={}; "
+                                     "keep_bias={}; block=({:.17g},{:.17g},{:.17g},{:.17g})",
+                                     fitting::ToString(fitting::ParseFitMethod(args.method)), args.bounds,
+                                     args.t_end_s ? fmt::format("{:.17g}", *args.t_end_s) : "auto",
+                                     args.max_evaluations, !args.no_global, args.keep_bias, block.b1(), block.b2(),
+                                     block.h(), block.mass());
+  for (fitting::ParameterId id : fitting::kAllParameters) {
+    const fitting::Parameter& p = set[id];
+    settings += fmt::format("; {}:{}[{:.17g},{:.17g}]", fitting::Name(id), p.fixed ? "fixed" : "free", p.lower, p.upper);
+  }
+  return settings;
+}
+
+std::string SettingsHash(const std::string& settings) {
+  std::uint64_t h = 14695981039346656037ull;  // FNV-1a 64
+  for (unsigned char c : settings) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return fmt::format("{:016x}", h);
+}
+
+nlohmann::json FitResultJson(const std::string& trial, const fitting::FitSummary& s) {
+  nlohmann::json params = nlohmann::json::object();
+  for (fitting::ParameterId id : fitting::kAllParameters) {
+    const fitting::Parameter& p = s.parameters[id];
+    params[fitting::Name(id)] = {{"value", p.value},
+                                 {"lower", NumberOrNull(p.lower)},
+                                 {"upper", NumberOrNull(p.upper)},
+                                 {"fixed", p.fixed},
+                                 {"std_error", NumberOrNull(s.std_error[static_cast<std::size_t>(id)])}};
+  }
+  nlohmann::json warnings = nlohmann::json::array();
+  for (const fitting::FitWarning& w : s.warnings) {
+    warnings.push_back({{"kind", w.kind}, {"parameter", w.parameter}, {"message", w.message}});
+  }
+  return {{"trial", trial},     {"parameters", params}, {"epsilon", s.epsilon_rad_s},
+          {"epsilon_initial", s.epsilon_initial_rad_s}, {"t_end", s.t_end_s}, {"simulations", s.simulations},
+          {"wall_s", s.wall_time_s}, {"termination", s.termination}, {"warnings", warnings}};
+}
+
+std::string FitResultTable(const std::string& trial, const fitting::FitSummary& s) {
+  std::string out = fmt::format("trial        {}\n", trial);
+  out += fmt::format("{:<12} {:>12} {:>12} {:>12} {:>12}  {:<6} {}\n", "parameter", "value", "std_error", "lower",
+                     "upper", "unit", "");
+  for (fitting::ParameterId id : fitting::kAllParameters) {
+    const fitting::Parameter& p = s.parameters[id];
+    const double se = s.std_error[static_cast<std::size_t>(id)];
+    out += fmt::format("{:<12} {:>12.6g} {:>12} {:>12.6g} {:>12.6g}  {:<6} {}\n", fitting::Name(id), p.value,
+                       std::isfinite(se) ? fmt::format("{:.3g}", se) : "—", p.lower, p.upper, fitting::Unit(id),
+                       p.fixed ? "fixed" : "");
+  }
+  out += fmt::format("ε (28)       {:.6g} rad/s (start {:.6g} rad/s), window ends at {:.4f} s\n", s.epsilon_rad_s,
+                     s.epsilon_initial_rad_s, s.t_end_s);
+  out += fmt::format("effort       {} simulations in {:.2f} s; {}\n", s.simulations, s.wall_time_s, s.termination);
+  for (const fitting::FitWarning& w : s.warnings) out += "warning      " + w.message + "\n";
+  return out;
+}
+
+void WriteFitGroup(const io::hdf5::Group& root, const std::string& trial, const io::TrialLabels& labels,
+                   const PreparedFit& fit, const fitting::FitSummary& s) {
+  const io::hdf5::Group g = root.CreateGroup("fits/" + trial);
+  g.SetString("block", labels.block_id);
+  g.SetString("position", labels.position);
+  std::vector<std::string> names, units, fixed_text;
+  std::vector<double> value, lower, upper, std_error, start;
+  std::vector<std::int64_t> fixed;
+  for (fitting::ParameterId id : fitting::kAllParameters) {
+    const fitting::Parameter& p = s.parameters[id];
+    names.push_back(fitting::Name(id));
+    units.push_back(fitting::Unit(id));
+    value.push_back(p.value);
+    lower.push_back(p.lower);
+    upper.push_back(p.upper);
+    fixed.push_back(p.fixed ? 1 : 0);
+    std_error.push_back(s.std_error[static_cast<std::size_t>(id)]);
+    start.push_back(s.start.value(id));
+  }
+  const io::hdf5::Group table = g.CreateGroup("parameters");
+  table.WriteStrings("name", names);
+  table.WriteStrings("unit", units);
+  table.WriteDoubles("value", value, "per row: see the unit dataset");
+  table.WriteDoubles("lower", lower, "per row: see the unit dataset");
+  table.WriteDoubles("upper", upper, "per row: see the unit dataset");
+  table.WriteInts("fixed", fixed, "1");
+  table.WriteDoubles("std_error", std_error, "per row: see the unit dataset");
+  table.WriteDoubles("start", start, "per row: see the unit dataset");
+  g.SetDouble("epsilon_rad_s", s.epsilon_rad_s);
+  g.SetDouble("epsilon_initial_rad_s", s.epsilon_initial_rad_s);
+  g.SetDouble("t_end_s", s.t_end_s);
+  g.SetInt("simulations", s.simulations);
+  g.SetDouble("wall_s", s.wall_time_s);
+  g.SetString("termination", s.termination);
+  g.SetString("method", fitting::ToString(s.method));
+  g.SetInt("feasible", s.feasible ? 1 : 0);
+  g.SetString("settings", fit.settings);
+  g.SetString("settings_hash", SettingsHash(fit.settings));
+  g.SetString("model", s.model_description);
+  std::vector<std::string> warnings;
+  for (const fitting::FitWarning& w : s.warnings) warnings.push_back(w.kind + ": " + w.message);
+  g.WriteStrings("warnings", warnings);
+  g.WriteStrings("summary", {s.FullReport()});
+
+  // The simulated ω at the measured times of the window (the nodes of (28)) and the model's impact log.
+  fitting::ErrorNodes nodes;
+  fitting::ModelOutput output;
+  fit.objective.EvaluateDetailed(s.parameters, &nodes, &output);
+  g.WriteDoubles("time_s", nodes.t_s, "s");
+  g.WriteVectors("w_B_measured", nodes.w_m_B, "rad/s");
+  if (output.ok() && output.w_B.size() == nodes.size()) g.WriteVectors("w_B_simulated", output.w_B, "rad/s");
+  std::vector<double> impact_t;
+  std::vector<std::string> impact_kind;
+  const double t0 = s.parameters.value(fitting::ParameterId::kT0);
+  for (const fitting::ModelEvent& e : output.events) {
+    impact_t.push_back(t0 + e.t_s);
+    impact_kind.push_back(e.kind);
+  }
+  const io::hdf5::Group impacts = g.CreateGroup("impacts");
+  impacts.WriteDoubles("t_s", impact_t, "s");
+  impacts.WriteStrings("kind", impact_kind);
+}
+
+}  // namespace rockfit::tools

@@ -1,0 +1,80 @@
+// What `rockfit fit` and `rockfit batch` share: the fit options on the command line, the fitting problem of one
+// recording (objective, data-driven start, window end), the JSON of a result and the /fits/<trial> HDF5 group
+// (layout in fitting/README.md, "Command line and HDF5 /fits").
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "rockfit/core/block.hpp"
+#include "rockfit/fitting/fit_options.hpp"
+#include "rockfit/fitting/fit_summary.hpp"
+#include "rockfit/fitting/initial_guess.hpp"
+#include "rockfit/fitting/objective.hpp"
+#include "rockfit/fitting/trial_problem.hpp"
+#include "rockfit/io/campaign_hdf5.hpp"
+#include "rockfit/io/hdf5_file.hpp"
+#include "rockfit/io/recording.hpp"
+
+namespace rockfit::tools {
+
+struct FitArgs {
+  std::string method = "auto";
+  std::string bounds = "empirical";
+  std::vector<std::string> free;   // parameter names, comma lists allowed
+  std::vector<std::string> fix;
+  std::vector<std::string> lower;  // NAME=V
+  std::vector<std::string> upper;
+  std::optional<double> t_end_s;
+  int max_evaluations = 0;  // 0: the FitOptions default
+  bool no_global = false;
+  bool keep_bias = false;  // do not subtract the gyro bias measured at rest
+  int threads = 0;
+};
+
+// --method, --bounds, --free, --fix, --lower, --upper, --t-end, --max-evaluations, --no-global, --keep-bias,
+// --threads.
+void AddFitOptions(CLI::App& app, FitArgs& args);
+
+struct PreparedFit {
+  fitting::Objective objective;
+  fitting::ParameterSet start;  // the data estimate (fixed parameters at their values)
+  fitting::FitOptions options;
+  fitting::InitialGuess guess;
+  std::string settings;  // canonical text of every setting that changes the result (for --resume)
+  std::vector<std::string> notes;  // how the start and the window were found, the gyro bias
+};
+
+// The parameter set from the bound set and --free/--fix/--lower/--upper (InvalidArgument naming the bad entry).
+fitting::ParameterSet MakeParameterSet(const FitArgs& args);
+
+// The problem of one recording (fitting::PrepareTrialProblem): data estimate, gyro bias at rest removed,
+// t_end (given, or just before the impact that ends phase 4), t0 bounds narrowed to [start of the recording,
+// first impact] when they are unbounded.
+PreparedFit PrepareFit(const io::Recording& recording, const core::Block& block, const FitArgs& args);
+
+// The canonical text of every setting that changes a fit of `block` (not the recording): method, budget,
+// window end, bounds and fixed flags, block geometry. Stored with each fit; --resume compares its hash.
+std::string FitSettingsText(const core::Block& block, const FitArgs& args);
+
+// FNV-1a of the settings text, as 16 hex digits.
+std::string SettingsHash(const std::string& settings);
+
+// The documented JSON of one fit: trial, parameters (value, lower, upper, fixed, std_error), epsilon,
+// epsilon_initial, t_end, simulations, wall_s, termination, warnings.
+nlohmann::json FitResultJson(const std::string& trial, const fitting::FitSummary& summary);
+
+// A table for terminals.
+std::string FitResultTable(const std::string& trial, const fitting::FitSummary& summary);
+
+// Writes /fits/<trial> under `root` (the group must not exist: callers replace it through the transaction).
+void WriteFitGroup(const io::hdf5::Group& root, const std::string& trial, const io::TrialLabels& labels,
+                   const PreparedFit& fit, const fitting::FitSummary& summary);
+
+}  // namespace rockfit::tools
