@@ -79,6 +79,7 @@ int RunEvaluate(const FitCommand& cmd, const TrialInput& input, const PreparedFi
 }
 
 int RunFit(const FitCommand& cmd) {
+  MakeParameterSet(cmd.fit);  // option errors (exit 1) before reading the recording
   const TrialInput input = LoadTrialInput(cmd.input);
   const core::Block block = BlockFor(cmd, input);
   const PreparedFit prepared = PrepareFit(input.recording, block, cmd.fit);

@@ -26,12 +26,8 @@ std::vector<std::string> SplitList(const std::vector<std::string>& items) {
   return out;
 }
 
-void ApplyBound(const std::string& entry, const std::string& option, bool lower, fitting::ParameterSet* set) {
-  const std::size_t eq = entry.find('=');
-  if (eq == std::string::npos) {
-    throw InvalidArgument(fmt::format("{} '{}': expected NAME=VALUE, e.g. {} lambda_lat=-2", option, entry, option));
-  }
-  const fitting::ParameterId id = fitting::ParseParameterName(entry.substr(0, eq));
+// The number after '=' in `entry` (an option value NAME=VALUE); InvalidArgument naming the option otherwise.
+double ParseEntryValue(const std::string& entry, std::size_t eq, const std::string& option) {
   double value = 0.0;
   try {
     std::size_t used = 0;
@@ -40,7 +36,17 @@ void ApplyBound(const std::string& entry, const std::string& option, bool lower,
   } catch (const std::exception&) {
     throw InvalidArgument(fmt::format("{} '{}': '{}' is not a number", option, entry, entry.substr(eq + 1)));
   }
-  if (!std::isfinite(value)) throw InvalidArgument(fmt::format("{} '{}': the bound must be finite", option, entry));
+  if (!std::isfinite(value)) throw InvalidArgument(fmt::format("{} '{}': the value must be finite", option, entry));
+  return value;
+}
+
+void ApplyBound(const std::string& entry, const std::string& option, bool lower, fitting::ParameterSet* set) {
+  const std::size_t eq = entry.find('=');
+  if (eq == std::string::npos) {
+    throw InvalidArgument(fmt::format("{} '{}': expected NAME=VALUE, e.g. {} lambda_lat=-2", option, entry, option));
+  }
+  const fitting::ParameterId id = fitting::ParseParameterName(entry.substr(0, eq));
+  const double value = ParseEntryValue(entry, eq, option);
   (lower ? (*set)[id].lower : (*set)[id].upper) = value;
 }
 
@@ -55,22 +61,51 @@ void AddFitOptions(CLI::App& app, FitArgs& args) {
       ->capture_default_str();
   app.add_option("--free", args.free, "Parameters to fit in addition to the defaults (t0,alpha,lambda,lambda_lat,lambda_lon,tau_edge)")
       ->delimiter(',');
-  app.add_option("--fix", args.fix, "Parameters to hold at their start value (the data estimate)")->delimiter(',');
+  app.add_option("--fix", args.fix,
+                 "Parameters to hold fixed: NAME (at the data estimate) or NAME=VALUE, e.g. --fix lambda_lat=0")
+      ->delimiter(',');
   app.add_option("--lower", args.lower, "Lower bound NAME=VALUE (repeatable)");
   app.add_option("--upper", args.upper, "Upper bound NAME=VALUE (repeatable)");
-  app.add_option("--t-end", args.t_end_s, "End of the fitting window in recording time [s] (default: the second base impact)");
+  app.add_option("--t-end", args.t_end_s, "End of the fitting window in recording time [s] (default: 12 ms before the impact that ends phase 4)");
   app.add_option("--max-evaluations", args.max_evaluations, "Nelder–Mead evaluation budget (0: default)");
   app.add_flag("--no-global", args.no_global, "Skip the global stage (local search from the data estimate only)");
   app.add_flag("--keep-bias", args.keep_bias, "Do not subtract the gyro bias measured at rest before the release");
   app.add_option("--threads", args.threads, "Threads of the global stage (0: all cores)");
 }
 
+std::vector<FixEntry> ParseFixEntries(const FitArgs& args) {
+  std::vector<FixEntry> entries;
+  for (const std::string& entry : SplitList(args.fix)) {
+    const std::size_t eq = entry.find('=');
+    FixEntry fix;
+    fix.id = fitting::ParseParameterName(entry.substr(0, eq));
+    if (eq != std::string::npos) fix.value = ParseEntryValue(entry, eq, "--fix");
+    entries.push_back(fix);
+  }
+  return entries;
+}
+
 fitting::ParameterSet MakeParameterSet(const FitArgs& args) {
   fitting::ParameterSet set = fitting::ParameterSet::Defaults(fitting::ParseBoundsSet(args.bounds));
   for (const std::string& name : SplitList(args.free)) set[fitting::ParseParameterName(name)].fixed = false;
-  for (const std::string& name : SplitList(args.fix)) set[fitting::ParseParameterName(name)].fixed = true;
+  for (const FixEntry& fix : ParseFixEntries(args)) {
+    fitting::Parameter& p = set[fix.id];
+    if (fix.value) {
+      p.value = *fix.value;
+      p.fixed = true;
+    } else {
+      p.fixed = false;  // estimated from the data first, fixed afterwards (PrepareFit)
+    }
+  }
   for (const std::string& e : args.lower) ApplyBound(e, "--lower", true, &set);
   for (const std::string& e : args.upper) ApplyBound(e, "--upper", false, &set);
+  for (const FixEntry& fix : ParseFixEntries(args)) {
+    const fitting::Parameter& p = set[fix.id];
+    if (fix.value && !(p.lower <= *fix.value && *fix.value <= p.upper)) {
+      throw InvalidArgument(fmt::format("--fix {}={:g}: the value lies outside the bounds [{:g}, {:g}]; change them "
+                                        "with --lower/--upper", fitting::Name(fix.id), *fix.value, p.lower, p.upper));
+    }
+  }
   return set;
 }
 
@@ -90,6 +125,17 @@ PreparedFit PrepareFit(const io::Recording& recording, const core::Block& block,
   problem_options.t_end_s = args.t_end_s;
   problem_options.subtract_rest_bias = !args.keep_bias;
   fitting::TrialProblem problem = fitting::PrepareTrialProblem(signal, block, set, problem_options);
+  // --fix NAME without a value: held at the data estimate.
+  bool fixed_at_estimate = false;
+  for (const FixEntry& fix : ParseFixEntries(args)) {
+    if (fix.value) continue;
+    problem.start[fix.id].fixed = true;
+    fixed_at_estimate = true;
+  }
+  if (fixed_at_estimate) {
+    if (problem.start.FreeIds().empty()) throw InvalidArgument("--fix leaves no parameter free to fit");
+    problem.objective = problem.objective.WithParameters(problem.start);
+  }
   std::string settings = FitSettingsText(block, args);
   return PreparedFit{std::move(problem.objective), std::move(problem.start), options, std::move(problem.guess),
                      settings, std::move(problem.notes)};
@@ -107,6 +153,10 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   for (fitting::ParameterId id : fitting::kAllParameters) {
     const fitting::Parameter& p = set[id];
     settings += fmt::format("; {}:{}[{:.17g},{:.17g}]", fitting::Name(id), p.fixed ? "fixed" : "free", p.lower, p.upper);
+    if (p.fixed) settings += fmt::format("={:.17g}", p.value);
+  }
+  for (const FixEntry& fix : ParseFixEntries(args)) {
+    if (!fix.value) settings += fmt::format("; {}:fixed at the data estimate", fitting::Name(fix.id));
   }
   return settings;
 }

@@ -51,7 +51,15 @@ struct PreparedFit {
   std::vector<std::string> notes;  // how the start and the window were found, the gyro bias
 };
 
+// One --fix entry: NAME (held at the data estimate) or NAME=VALUE.
+struct FixEntry {
+  fitting::ParameterId id = fitting::ParameterId::kT0;
+  std::optional<double> value;
+};
+std::vector<FixEntry> ParseFixEntries(const FitArgs& args);
+
 // The parameter set from the bound set and --free/--fix/--lower/--upper (InvalidArgument naming the bad entry).
+// Parameters fixed without a value stay free here: the data estimate gives their value, PrepareFit fixes them.
 fitting::ParameterSet MakeParameterSet(const FitArgs& args);
 
 // The problem of one recording (fitting::PrepareTrialProblem): data estimate, gyro bias at rest removed,
