@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "build_type.hpp"
+#include "fit_acceptance.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/fitting/fitter.hpp"
 #include "synth_trial.hpp"
@@ -17,18 +18,10 @@
 namespace rockfit::fitting {
 namespace {
 
-using testing::kOptimisedBuild;
-using testing::MakeSynthTrial;
+using namespace rockfit::testing;  // tolerances, kOptimisedBuild, MakeSynthTrial
 
 constexpr double kSample_s = 1.0 / 256.0;
 
-// Issue 6, "Done when".
-constexpr double kT0Tolerance_s = 2e-3;
-constexpr double kAlphaTolerance_rad = 2e-3;
-constexpr double kLambdaLonTolerance = 0.03;
-constexpr double kLambdaLatRelative = 0.10;
-constexpr double kLambdaTolerance = 0.1;
-constexpr double kEpsilonRatio = 1.05;
 
 struct FitResult {
   TrialProblem problem;

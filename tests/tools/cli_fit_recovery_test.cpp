@@ -15,18 +15,12 @@
 
 #include "build_type.hpp"
 #include "cli_runner.hpp"
+#include "fit_acceptance.hpp"
 #include "scratch_dir.hpp"
 
 namespace rockfit::testing {
 namespace {
 
-// Issue 6, "Done when".
-constexpr double kT0Tolerance_s = 2e-3;
-constexpr double kAlphaTolerance_rad = 2e-3;
-constexpr double kLambdaLonTolerance = 0.03;
-constexpr double kLambdaLatRelative = 0.10;
-constexpr double kLambdaTolerance = 0.1;
-constexpr double kEpsilonRatio = 1.05;
 
 struct Truth {
   double b2_m, h_m;
@@ -69,15 +63,21 @@ nlohmann::json RunJson(std::vector<std::string> args) {
   return nlohmann::json::parse(r.out);
 }
 
+// `rockfit fit` of the recording at `prefix` with the trial's block and mounting and `extra` options.
+std::vector<std::string> FitCommand(const std::string& prefix, const Truth& t, const std::vector<std::string>& extra) {
+  std::vector<std::string> fit = {"fit", prefix, "--mounting=" + t.mounting};
+  const std::vector<std::string> block = BlockArgs(t);
+  fit.insert(fit.end(), block.begin(), block.end());
+  fit.insert(fit.end(), extra.begin(), extra.end());
+  return fit;
+}
+
 // Fits the synthetic trial with `extra` options and checks every criterion against its truth.
 void ExpectRecovered(const Truth& t, const std::vector<std::string>& extra = {}) {
   const ScratchDir dir("cli_fit_recovery");
   nlohmann::json truth_file;
   const std::string prefix = Synthesize(dir, t, &truth_file);
-  std::vector<std::string> fit = {"fit", prefix, "--mounting=" + t.mounting};
-  const std::vector<std::string> block = BlockArgs(t);
-  fit.insert(fit.end(), block.begin(), block.end());
-  fit.insert(fit.end(), extra.begin(), extra.end());
+  const std::vector<std::string> fit = FitCommand(prefix, t, extra);
   const nlohmann::json j = RunJson(fit);
   const nlohmann::json& p = j["parameters"];
   const double t_end = j["t_end"].get<double>();
@@ -158,11 +158,8 @@ TEST(CliFitRecovery, LambdaIsReportedNotIdentifiableInAPlanarTrial) {
   const Truth t{0.04, 0.2, 1.0, 0.18, 1.2, 0.0, 0.7, "x,y,z", 3108};
   nlohmann::json truth_file;
   const std::string prefix = Synthesize(dir, t, &truth_file);
-  std::vector<std::string> fit = {"fit", prefix, "--fix", "lambda_lat=0", "--no-global", "--method", "nelder-mead",
-                                  "--max-evaluations", "60"};
-  const std::vector<std::string> block = BlockArgs(t);
-  fit.insert(fit.end(), block.begin(), block.end());
-  const nlohmann::json j = RunJson(fit);
+  const nlohmann::json j = RunJson(FitCommand(
+      prefix, t, {"--fix", "lambda_lat=0", "--no-global", "--method", "nelder-mead", "--max-evaluations", "60"}));
   EXPECT_TRUE(j["parameters"]["lambda_lat"]["fixed"].get<bool>());
   EXPECT_EQ(j["parameters"]["lambda_lat"]["value"].get<double>(), 0.0);
   bool lambda_flagged = false;
@@ -182,11 +179,8 @@ TEST(CliFitRecovery, FixWithoutAValueHoldsTheDataEstimate) {
   const Truth t{0.04, 0.2, 1.0, 0.18, 1.2, -2.0, 0.7, "x,y,z", 3109};
   nlohmann::json truth_file;
   const std::string prefix = Synthesize(dir, t, &truth_file);
-  std::vector<std::string> fit = {"fit", prefix, "--fix", "t0", "--no-global", "--method", "nelder-mead",
-                                  "--max-evaluations", "20"};
-  const std::vector<std::string> block = BlockArgs(t);
-  fit.insert(fit.end(), block.begin(), block.end());
-  const nlohmann::json j = RunJson(fit);
+  const nlohmann::json j = RunJson(
+      FitCommand(prefix, t, {"--fix", "t0", "--no-global", "--method", "nelder-mead", "--max-evaluations", "20"}));
   EXPECT_TRUE(j["parameters"]["t0"]["fixed"].get<bool>());
   // The phase-1 estimate is good to a few samples (3.9 ms each).
   EXPECT_NEAR(j["parameters"]["t0"]["value"].get<double>(), t.t0_s, 0.02);

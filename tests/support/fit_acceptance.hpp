@@ -1,0 +1,14 @@
+// The acceptance criteria of the automatic fit (issue 6, "Done when"), shared by the library's system tests
+// (tests/fitting/trial_problem_test.cpp) and the command-line ones (tests/tools/cli_fit_recovery_test.cpp).
+#pragma once
+
+namespace rockfit::testing {
+
+constexpr double kT0Tolerance_s = 2e-3;
+constexpr double kAlphaTolerance_rad = 2e-3;
+constexpr double kLambdaLonTolerance = 0.03;
+constexpr double kLambdaLatRelative = 0.10;  // of |λ_lat|, with the sign always right
+constexpr double kLambdaTolerance = 0.1;     // when edge impacts happen in the window
+constexpr double kEpsilonRatio = 1.05;       // ε of the fit over ε of the true parameters
+
+}  // namespace rockfit::testing
