@@ -138,6 +138,24 @@ TEST(FitSystem, BothBackEndsPolishTheDataEstimate) {
   }
 }
 
+TEST(FitSystem, WeakLateralMotionFindsTheJointBasinOfLambdaAndLambdaLat) {
+  ROCKFIT_REQUIRE_OPTIMISED_BUILD();
+  // A deep block with weak lateral motion (case 11 of `LLO=0.05 LHI=0.5 sweep.py … 16 12`): the continued
+  // starts end in a valley of (28) along which λ_lat and λ trade for each other (λ = 3.07, λ_lat = −0.342 at
+  // ε 1.2 × ε(truth) without the refinement); the joint (λ, λ_lat) scan and the second pass find the truth.
+  const core::Block block = core::Block::FromDensity(0.05, 0.03782592839333507, 0.175494159779338, 2692.0);
+  const double t0_s = 0.9660540691724219;
+  const auto trial = MakeSynthTrial(0.20584848006981443, 1.8270303924379572, -0.3011092591948558,
+                                    0.6658312054002498, 1011, t0_s, t0_s + 2.5,
+                                    Eigen::Vector3d(-0.1798389072629259, -0.01693756887550263, -0.2647271474006842),
+                                    block);
+  FitOptions options;
+  options.num_threads = 1;
+  const FitResult fit = FitSynth(trial, ParameterSet::Defaults(), options);
+  ASSERT_TRUE(fit.summary.feasible);
+  ExpectRecovered(trial, fit);
+}
+
 TEST(FitSystem, LambdaIsNotIdentifiableWithoutLateralMotion) {
   // λ_lat fixed at 0, as the paper did for blocks 7 and 8: the motion stays planar, no edge impact happens.
   const auto trial = MakeSynthTrial(0.2, 0.8, 0.0, 0.6, 24);
@@ -181,6 +199,7 @@ TEST(FitSystem, EveryStageRunsOnTheSimulator) {
   g.num_continued = 2;
   g.continuation_evaluations = 8;
   g.scan_points = 3;
+  g.joint_scan_lat_points = 3;
   options.nelder_mead.max_evaluations = 20;
   options.nelder_mead.restarts = 0;
   options.ceres.max_iterations = 2;
