@@ -1,6 +1,9 @@
 #include "rockfit/fitting/global_stage.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
 #include <chrono>
 #include <numeric>
 #include <optional>
@@ -139,6 +142,86 @@ std::optional<ParameterSet> JointLambdaScan(const Objective& objective, const Pa
   return grid[*best];
 }
 
+// The scan along the ridge of (28) in (t0, α, λ_lon). The data fix the first impact t1 = t0 + T(α) much better
+// than t0 and α apart (T the model's fall time), and the rate after it, which λ_lon scales, better than the rate
+// before it, which α sets; near θ_c the local searches barely move along this ridge. t0 is moved by
+// `ridge_points` equally spaced steps within ±ridge_t0_halfwidth_s and α with it so that t1 stays (to first
+// order: dα = −dt0 / T'(α), T' by a central difference of two model runs); at each point λ_lon (when free) is
+// re-fitted by a parabola through three values ridge_lambda_lon_step apart around its value at the previous
+// point, walking outwards from `at`. Returns the best point (nullopt when t0 or α is not free or the model has
+// no impact).
+std::optional<ParameterSet> RidgeScan(const Objective& objective, const ParameterSet& at, const GlobalStageOptions& g,
+                                      std::int64_t* evaluations) {
+  const auto& ids = objective.free_ids();
+  auto is_free = [&](ParameterId id) { return std::find(ids.begin(), ids.end(), id) != ids.end(); };
+  if (!is_free(ParameterId::kT0) || !is_free(ParameterId::kAlpha) || g.ridge_points < 1) return std::nullopt;
+  const Parameter& t0 = objective.parameters()[ParameterId::kT0];
+  const Parameter& alpha = objective.parameters()[ParameterId::kAlpha];
+  const Parameter& lon = objective.parameters()[ParameterId::kLambdaLon];
+  const double alpha0 = at.value(ParameterId::kAlpha);
+  const double h = g.ridge_alpha_difference_rad;
+  if (alpha0 - h < alpha.lower || alpha0 + h > alpha.upper) return std::nullopt;
+  auto fall_time = [&](double alpha_rad) -> std::optional<double> {
+    ParameterSet q = at;
+    q[ParameterId::kAlpha].value = alpha_rad;
+    ++*evaluations;
+    const std::optional<double> t1 = FirstImpactTime(objective, q);
+    if (!t1) return std::nullopt;
+    return *t1 - q.value(ParameterId::kT0);
+  };
+  const std::optional<double> fall_minus = fall_time(alpha0 - h);
+  const std::optional<double> fall_plus = fall_time(alpha0 + h);
+  if (!fall_minus || !fall_plus || !(*fall_plus > *fall_minus)) return std::nullopt;
+  const double dfall_dalpha = (*fall_plus - *fall_minus) / (2.0 * h);  // T'(α) > 0 [s/rad]
+
+  std::optional<ParameterSet> best;
+  double best_epsilon = 0.0;
+  auto evaluate = [&](const ParameterSet& q) {
+    const Evaluation e = objective.Evaluate(q);
+    ++*evaluations;
+    if (e.feasible && (!best || e.epsilon_rad_s < best_epsilon)) {
+      best = q;
+      best_epsilon = e.epsilon_rad_s;
+    }
+    return e.feasible ? e.epsilon_rad_s : std::numeric_limits<double>::infinity();
+  };
+  // One ridge point at t0 + dt0 with λ_lon re-fitted around `lon_center`; returns the λ_lon it chose.
+  auto ridge_point = [&](double dt0, double lon_center) {
+    ParameterSet q = at;
+    q[ParameterId::kT0].value = std::clamp(at.value(ParameterId::kT0) + dt0, t0.lower, t0.upper);
+    q[ParameterId::kAlpha].value = std::clamp(alpha0 - dt0 / dfall_dalpha, alpha.lower, alpha.upper);
+    if (!is_free(ParameterId::kLambdaLon)) {
+      evaluate(q);
+      return lon_center;
+    }
+    const double d = g.ridge_lambda_lon_step;
+    std::array<double, 3> x{}, f{};
+    for (int j = 0; j < 3; ++j) {
+      x[j] = std::clamp(lon_center + (j - 1) * d, lon.lower, lon.upper);
+      q[ParameterId::kLambdaLon].value = x[j];
+      f[j] = evaluate(q);
+    }
+    const int j_best = static_cast<int>(std::min_element(f.begin(), f.end()) - f.begin());
+    double chosen = x[j_best];
+    const double curvature = f[0] - 2.0 * f[1] + f[2];
+    if (std::isfinite(curvature) && curvature > 0.0) {
+      const double vertex = std::clamp(lon_center + 0.5 * d * (f[0] - f[2]) / curvature, lon_center - 2.0 * d,
+                                       lon_center + 2.0 * d);
+      q[ParameterId::kLambdaLon].value = std::clamp(vertex, lon.lower, lon.upper);
+      if (evaluate(q) < f[j_best]) chosen = q.value(ParameterId::kLambdaLon);
+    }
+    return chosen;
+  };
+  const int half = g.ridge_points / 2;
+  const double step_s = half > 0 ? g.ridge_t0_halfwidth_s / half : 0.0;
+  const double lon0 = at.value(ParameterId::kLambdaLon);
+  const double lon_at_center = ridge_point(0.0, lon0);
+  for (int direction : {+1, -1}) {
+    double lon_center = lon_at_center;
+    for (int k = 1; k <= half; ++k) lon_center = ridge_point(direction * k * step_s, lon_center);
+  }
+  return best;
+}
 }  // namespace
 
 void GlobalSamplingBox(const Objective& objective, const Eigen::VectorXd& estimate, const GlobalStageOptions& options,
@@ -338,6 +421,11 @@ GlobalStageResult RunGlobalStage(const Objective& objective, const Eigen::Vector
       // weakly seen there, are settled by the last search on the full window.
       ParameterSet at = ContinueToFullWindow(objective, candidates[i], t_first_end, t_release_ref, objective.free_ids(),
                                              0, options, step_options, &refine_evaluations[i], &ok);
+      const Evaluation continued_e = objective.Evaluate(at);
+      ++refine_evaluations[i];
+      const std::optional<ParameterSet> ridge = RidgeScan(objective, at, g, &refine_evaluations[i]);
+      if (ridge && objective.Evaluate(*ridge).epsilon_rad_s < continued_e.epsilon_rad_s) at = *ridge;
+      ++refine_evaluations[i];
       at = MinimizeIn(objective, at, step_options, &refine_evaluations[i], &ok);
       refined[i] = at;
       refined_e[i] = objective.Evaluate(at);
