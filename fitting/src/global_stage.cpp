@@ -405,7 +405,8 @@ GlobalStageResult RunGlobalStage(const Objective& objective, const Eigen::Vector
     }
   }
   // 4. Refinement of the best point (see the header): the best of a joint (λ, λ_lat) scan joins it as a
-  //    second candidate, and each is carried once more from the first window to the full window.
+  //    second candidate; each is carried once more from the first window to the full window, scanned along the
+  //    t0–α–λ_lon ridge and searched locally. Candidates are independent: deterministic in any thread count.
   if (g.refine && result.feasible) {
     const ParameterSet best_set = objective.WithFree(result.best_x);
     std::vector<ParameterSet> candidates = {best_set};
