@@ -75,6 +75,15 @@ void GlobalStageOptions::Validate() const {
   }
   RequireAtLeast(continuation_evaluations, 1, "global.continuation_evaluations");
   RequireAtLeast(scan_points, 1, "global.scan_points");
+  RequireAtLeast(joint_scan_lat_points, 0, "global.joint_scan_lat_points");
+  if (!(joint_scan_lat_fraction >= 0.0 && joint_scan_lat_fraction < 1.0)) {
+    throw InvalidArgument(
+        fmt::format("fit option global.joint_scan_lat_fraction must lie in [0, 1), got {}", joint_scan_lat_fraction));
+  }
+  RequireAtLeast(ridge_points, 0, "global.ridge_points");
+  RequirePositive(ridge_t0_halfwidth_s, "global.ridge_t0_halfwidth_s");
+  RequirePositive(ridge_lambda_lon_step, "global.ridge_lambda_lon_step");
+  RequirePositive(ridge_alpha_difference_rad, "global.ridge_alpha_difference_rad");
   if (!(continuation_step_fraction > 0.0 && continuation_step_fraction <= 1.0)) {
     throw InvalidArgument(fmt::format("fit option global.continuation_step_fraction must lie in (0, 1], got {}",
                                       continuation_step_fraction));

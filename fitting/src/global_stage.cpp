@@ -1,6 +1,9 @@
 #include "rockfit/fitting/global_stage.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
 #include <chrono>
 #include <numeric>
 #include <optional>
@@ -78,6 +81,147 @@ ParameterSet ScanParameter(const Objective& window, const ParameterSet& at, Para
   return best;
 }
 
+// Carries `from` through windows growing by `continuation_growth` after `t_release_ref` from `window_end` to the
+// full window, with a short Nelder–Mead run in each. A parameter not in `acting` that starts acting in a window
+// is first scanned over its bounds at `scan_points` values (0: no scans).
+ParameterSet ContinueToFullWindow(const Objective& objective, ParameterSet at, double window_end, double t_release_ref,
+                                  std::vector<ParameterId> acting, int scan_points, const FitOptions& options,
+                                  const NelderMeadOptions& step_options, std::int64_t* evaluations, bool* converged) {
+  const GlobalStageOptions& g = options.global;
+  while (window_end < objective.t_end_s()) {
+    window_end = std::min(objective.t_end_s(), t_release_ref + (window_end - t_release_ref) * g.continuation_growth);
+    *evaluations += 1 + 2 * static_cast<std::int64_t>(objective.num_free());
+    const std::optional<Objective> window =
+        ActingParameters(objective.WithWindowEnd(window_end), at, options.identifiability);
+    if (!window) continue;
+    // A parameter that starts acting in this window (λ at the first edge impact) has had no say so far:
+    // scan it over its bounds before the local search.
+    for (ParameterId id : window->free_ids()) {
+      if (std::find(acting.begin(), acting.end(), id) != acting.end()) continue;
+      acting.push_back(id);
+      if (scan_points > 0) at = ScanParameter(*window, at, id, scan_points, evaluations);
+    }
+    bool step_converged = false;
+    at = MinimizeIn(*window, at, step_options, evaluations, &step_converged);
+    *converged = step_converged;
+  }
+  return at;
+}
+
+// The joint scan of λ and λ_lat on the full window around `at`: λ at `scan_points` values over its bounds times
+// λ_lat at `joint_scan_lat_points` values within ±joint_scan_lat_fraction of its value at `at`, evaluated in
+// parallel. Returns the best grid point; nullopt when λ or λ_lat is not free, λ_lat is 0 or no point is feasible.
+std::optional<ParameterSet> JointLambdaScan(const Objective& objective, const ParameterSet& at,
+                                            const GlobalStageOptions& g, int num_threads, std::int64_t* evaluations) {
+  const auto& ids = objective.free_ids();
+  const bool both_free = std::find(ids.begin(), ids.end(), ParameterId::kLambda) != ids.end() &&
+                         std::find(ids.begin(), ids.end(), ParameterId::kLambdaLat) != ids.end();
+  const double lat0 = at.value(ParameterId::kLambdaLat);
+  if (!both_free || g.joint_scan_lat_points < 1 || lat0 == 0.0) return std::nullopt;
+  const Parameter& lambda = objective.parameters()[ParameterId::kLambda];
+  const Parameter& lat = objective.parameters()[ParameterId::kLambdaLat];
+  const int n_lat = g.joint_scan_lat_points;
+  std::vector<ParameterSet> grid;
+  for (int j = 0; j < g.scan_points; ++j) {
+    for (int k = 0; k < n_lat; ++k) {
+      ParameterSet q = at;
+      q[ParameterId::kLambda].value = lambda.lower + (lambda.upper - lambda.lower) * (j + 0.5) / g.scan_points;
+      const double f = n_lat > 1 ? g.joint_scan_lat_fraction * (2.0 * k / (n_lat - 1) - 1.0) : 0.0;
+      q[ParameterId::kLambdaLat].value = std::clamp(lat0 * (1.0 + f), lat.lower, lat.upper);
+      grid.push_back(std::move(q));
+    }
+  }
+  std::vector<Evaluation> values(grid.size());
+  ParallelFor(grid.size(), num_threads, [&](std::size_t i) { values[i] = objective.Evaluate(grid[i]); });
+  *evaluations += static_cast<std::int64_t>(grid.size());
+  std::optional<std::size_t> best;
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    if (values[i].feasible && (!best || values[i].epsilon_rad_s < values[*best].epsilon_rad_s)) best = i;
+  }
+  if (!best) return std::nullopt;
+  return grid[*best];
+}
+
+// The scan along the ridge of (28) in (t0, α, λ_lon). The data fix the first impact t1 = t0 + T(α) much better
+// than t0 and α apart (T the model's fall time), and the rate after it, which λ_lon scales, better than the rate
+// before it, which α sets; near θ_c the local searches barely move along this ridge. t0 is moved by
+// `ridge_points` equally spaced steps within ±ridge_t0_halfwidth_s and α with it so that t1 stays (to first
+// order: dα = −dt0 / T'(α), T' by a central difference of two model runs); at each point λ_lon (when free) is
+// re-fitted by a parabola through three values ridge_lambda_lon_step apart around its value at the previous
+// point, walking outwards from `at`. Returns the best point (nullopt when t0 or α is not free or the model has
+// no impact).
+std::optional<ParameterSet> RidgeScan(const Objective& objective, const ParameterSet& at, const GlobalStageOptions& g,
+                                      std::int64_t* evaluations) {
+  const auto& ids = objective.free_ids();
+  auto is_free = [&](ParameterId id) { return std::find(ids.begin(), ids.end(), id) != ids.end(); };
+  if (!is_free(ParameterId::kT0) || !is_free(ParameterId::kAlpha) || g.ridge_points < 1) return std::nullopt;
+  const Parameter& t0 = objective.parameters()[ParameterId::kT0];
+  const Parameter& alpha = objective.parameters()[ParameterId::kAlpha];
+  const Parameter& lon = objective.parameters()[ParameterId::kLambdaLon];
+  const double alpha0 = at.value(ParameterId::kAlpha);
+  const double h = g.ridge_alpha_difference_rad;
+  if (alpha0 - h < alpha.lower || alpha0 + h > alpha.upper) return std::nullopt;
+  auto fall_time = [&](double alpha_rad) -> std::optional<double> {
+    ParameterSet q = at;
+    q[ParameterId::kAlpha].value = alpha_rad;
+    ++*evaluations;
+    const std::optional<double> t1 = FirstImpactTime(objective, q);
+    if (!t1) return std::nullopt;
+    return *t1 - q.value(ParameterId::kT0);
+  };
+  const std::optional<double> fall_minus = fall_time(alpha0 - h);
+  const std::optional<double> fall_plus = fall_time(alpha0 + h);
+  if (!fall_minus || !fall_plus || !(*fall_plus > *fall_minus)) return std::nullopt;
+  const double dfall_dalpha = (*fall_plus - *fall_minus) / (2.0 * h);  // T'(α) > 0 [s/rad]
+
+  std::optional<ParameterSet> best;
+  double best_epsilon = 0.0;
+  auto evaluate = [&](const ParameterSet& q) {
+    const Evaluation e = objective.Evaluate(q);
+    ++*evaluations;
+    if (e.feasible && (!best || e.epsilon_rad_s < best_epsilon)) {
+      best = q;
+      best_epsilon = e.epsilon_rad_s;
+    }
+    return e.feasible ? e.epsilon_rad_s : std::numeric_limits<double>::infinity();
+  };
+  // One ridge point at t0 + dt0 with λ_lon re-fitted around `lon_center`; returns the λ_lon it chose.
+  auto ridge_point = [&](double dt0, double lon_center) {
+    ParameterSet q = at;
+    q[ParameterId::kT0].value = std::clamp(at.value(ParameterId::kT0) + dt0, t0.lower, t0.upper);
+    q[ParameterId::kAlpha].value = std::clamp(alpha0 - dt0 / dfall_dalpha, alpha.lower, alpha.upper);
+    if (!is_free(ParameterId::kLambdaLon)) {
+      evaluate(q);
+      return lon_center;
+    }
+    const double d = g.ridge_lambda_lon_step;
+    std::array<double, 3> x{}, f{};
+    for (int j = 0; j < 3; ++j) {
+      x[j] = std::clamp(lon_center + (j - 1) * d, lon.lower, lon.upper);
+      q[ParameterId::kLambdaLon].value = x[j];
+      f[j] = evaluate(q);
+    }
+    const int j_best = static_cast<int>(std::min_element(f.begin(), f.end()) - f.begin());
+    double chosen = x[j_best];
+    const double curvature = f[0] - 2.0 * f[1] + f[2];
+    if (std::isfinite(curvature) && curvature > 0.0) {
+      const double vertex = std::clamp(lon_center + 0.5 * d * (f[0] - f[2]) / curvature, lon_center - 2.0 * d,
+                                       lon_center + 2.0 * d);
+      q[ParameterId::kLambdaLon].value = std::clamp(vertex, lon.lower, lon.upper);
+      if (evaluate(q) < f[j_best]) chosen = q.value(ParameterId::kLambdaLon);
+    }
+    return chosen;
+  };
+  const int half = g.ridge_points / 2;
+  const double step_s = half > 0 ? g.ridge_t0_halfwidth_s / half : 0.0;
+  const double lon0 = at.value(ParameterId::kLambdaLon);
+  const double lon_at_center = ridge_point(0.0, lon0);
+  for (int direction : {+1, -1}) {
+    double lon_center = lon_at_center;
+    for (int k = 1; k <= half; ++k) lon_center = ridge_point(direction * k * step_s, lon_center);
+  }
+  return best;
+}
 }  // namespace
 
 void GlobalSamplingBox(const Objective& objective, const Eigen::VectorXd& estimate, const GlobalStageOptions& options,
@@ -219,28 +363,11 @@ GlobalStageResult RunGlobalStage(const Objective& objective, const Eigen::Vector
   step_options.max_evaluations = g.continuation_evaluations;
   // Each window refines the previous one: a smaller simplex keeps the search in the basin it tracks.
   for (double& step : step_options.initial_step) step *= g.continuation_step_fraction;
+  const std::vector<ParameterId> first_acting = first ? first->free_ids() : std::vector<ParameterId>{};
   ParallelFor(polished.size(), options.num_threads, [&](std::size_t i) {
-    ParameterSet at = polished[i];
-    double window_end = t_first_end;
     bool ok = true;
-    std::vector<ParameterId> acting = first ? first->free_ids() : std::vector<ParameterId>{};
-    while (window_end < objective.t_end_s()) {
-      window_end = std::min(objective.t_end_s(), t_release_ref + (window_end - t_release_ref) * g.continuation_growth);
-      evaluations[i] += 1 + 2 * static_cast<std::int64_t>(objective.num_free());
-      const std::optional<Objective> window =
-          ActingParameters(objective.WithWindowEnd(window_end), at, options.identifiability);
-      if (!window) continue;
-      // A parameter that starts acting in this window (λ at the first edge impact) has had no say so far:
-      // scan it over its bounds before the local search.
-      for (ParameterId id : window->free_ids()) {
-        if (std::find(acting.begin(), acting.end(), id) != acting.end()) continue;
-        acting.push_back(id);
-        at = ScanParameter(*window, at, id, g.scan_points, &evaluations[i]);
-      }
-      bool step_converged = false;
-      at = MinimizeIn(*window, at, step_options, &evaluations[i], &step_converged);
-      ok = step_converged;
-    }
+    ParameterSet at = ContinueToFullWindow(objective, polished[i], t_first_end, t_release_ref, first_acting, g.scan_points,
+                                           options, step_options, &evaluations[i], &ok);
     // On the full window, every parameter sampled over its whole bounds (not t0 and α, which phase 1 pins
     // down) is scanned once more: later impacts can make its landscape multimodal where the first windows
     // were not (e.g. λ with a long cascade of small lateral edge impacts). Then a last local search.
@@ -275,6 +402,44 @@ GlobalStageResult RunGlobalStage(const Objective& objective, const Eigen::Vector
       result.best_epsilon_rad_s = e.epsilon_rad_s;
       result.feasible = e.feasible;
       result.converged = converged[i] != 0;
+    }
+  }
+  // 4. Refinement of the best point (see the header): the best of a joint (λ, λ_lat) scan joins it as a
+  //    second candidate; each is carried once more from the first window to the full window, scanned along the
+  //    t0–α–λ_lon ridge and searched locally. Candidates are independent: deterministic in any thread count.
+  if (g.refine && result.feasible) {
+    const ParameterSet best_set = objective.WithFree(result.best_x);
+    std::vector<ParameterSet> candidates = {best_set};
+    std::optional<ParameterSet> joint = JointLambdaScan(objective, best_set, g, options.num_threads, &result.evaluations);
+    if (joint) candidates.push_back(*joint);
+    std::vector<ParameterSet> refined(candidates.size());
+    std::vector<Evaluation> refined_e(candidates.size());
+    std::vector<std::int64_t> refine_evaluations(candidates.size(), 0);
+    std::vector<char> refine_converged(candidates.size(), 0);
+    ParallelFor(candidates.size(), options.num_threads, [&](std::size_t i) {
+      bool ok = true;
+      // Every parameter acts already: no scans. The first windows see t0, α and λ_lon best; λ_lat and λ,
+      // weakly seen there, are settled by the last search on the full window.
+      ParameterSet at = ContinueToFullWindow(objective, candidates[i], t_first_end, t_release_ref, objective.free_ids(),
+                                             0, options, step_options, &refine_evaluations[i], &ok);
+      const Evaluation continued_e = objective.Evaluate(at);
+      ++refine_evaluations[i];
+      const std::optional<ParameterSet> ridge = RidgeScan(objective, at, g, &refine_evaluations[i]);
+      if (ridge && objective.Evaluate(*ridge).epsilon_rad_s < continued_e.epsilon_rad_s) at = *ridge;
+      ++refine_evaluations[i];
+      at = MinimizeIn(objective, at, step_options, &refine_evaluations[i], &ok);
+      refined[i] = at;
+      refined_e[i] = objective.Evaluate(at);
+      ++refine_evaluations[i];
+      refine_converged[i] = ok ? 1 : 0;
+    });
+    for (std::size_t i = 0; i < refined.size(); ++i) {
+      result.evaluations += refine_evaluations[i];
+      if (refined_e[i].feasible && refined_e[i].epsilon_rad_s < result.best_epsilon_rad_s) {
+        result.best_x = objective.FreeValues(refined[i]);
+        result.best_epsilon_rad_s = refined_e[i].epsilon_rad_s;
+        result.converged = refine_converged[i] != 0;
+      }
     }
   }
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();

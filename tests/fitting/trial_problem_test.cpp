@@ -131,6 +131,42 @@ TEST(FitSystem, BothBackEndsPolishTheDataEstimate) {
   }
 }
 
+TEST(FitSystem, WeakLateralMotionFindsTheJointBasinOfLambdaAndLambdaLat) {
+  ROCKFIT_REQUIRE_OPTIMISED_BUILD();
+  // A deep block with weak lateral motion (case 11 of `LLO=0.05 LHI=0.5 sweep.py … 16 12`): the continued
+  // starts end in a valley of (28) along which λ_lat and λ trade for each other (λ = 3.07, λ_lat = −0.342 at
+  // ε 1.2 × ε(truth) with `global.refine = false`); the refinement's joint (λ, λ_lat) scan finds the truth.
+  const core::Block block = core::Block::FromDensity(0.05, 0.03782592839333507, 0.175494159779338, 2692.0);
+  const double t0_s = 0.9660540691724219;
+  const auto trial = MakeSynthTrial(0.20584848006981443, 1.8270303924379572, -0.3011092591948558,
+                                    0.6658312054002498, 1011, t0_s, t0_s + 2.5,
+                                    Eigen::Vector3d(-0.1798389072629259, -0.01693756887550263, -0.2647271474006842),
+                                    block);
+  FitOptions options;
+  options.num_threads = 1;
+  const FitResult fit = FitSynth(trial, ParameterSet::Defaults(), options);
+  ASSERT_TRUE(fit.summary.feasible);
+  ExpectRecovered(trial, fit);
+}
+
+TEST(FitSystem, WeakLateralMotionDoesNotLeaveT0DriftedAlongTheRidge) {
+  ROCKFIT_REQUIRE_OPTIMISED_BUILD();
+  // Case 4 of the same sweep: in the intermediate windows λ is still wrong and the continuation makes up for it
+  // along the ridge t0 + T(α) = t1 (t0 2.2 ms early, α and λ_lon high, at ε 1.12 × ε(truth) with
+  // `global.refine = false`); the second pass from the first window and the ridge scan bring them back.
+  const core::Block block = core::Block::FromDensity(0.05, 0.05241833796580257, 0.20411491619832395, 2692.0);
+  const double t0_s = 1.2276142293908103;
+  const auto trial = MakeSynthTrial(0.1730527373621992, 0.481860483649444, -0.489336696299072, 1.0635960434493699,
+                                    1004, t0_s, t0_s + 2.5,
+                                    Eigen::Vector3d(-0.08212286591768944, 0.11406867825505512, 0.10426369298951005),
+                                    block);
+  FitOptions options;
+  options.num_threads = 1;
+  const FitResult fit = FitSynth(trial, ParameterSet::Defaults(), options);
+  ASSERT_TRUE(fit.summary.feasible);
+  ExpectRecovered(trial, fit);
+}
+
 TEST(FitSystem, LambdaIsNotIdentifiableWithoutLateralMotion) {
   // λ_lat fixed at 0, as the paper did for blocks 7 and 8: the motion stays planar, no edge impact happens.
   const auto trial = MakeSynthTrial(0.2, 0.8, 0.0, 0.6, 24);
@@ -174,6 +210,8 @@ TEST(FitSystem, EveryStageRunsOnTheSimulator) {
   g.num_continued = 2;
   g.continuation_evaluations = 8;
   g.scan_points = 3;
+  g.joint_scan_lat_points = 3;
+  g.ridge_points = 3;
   options.nelder_mead.max_evaluations = 20;
   options.nelder_mead.restarts = 0;
   options.ceres.max_iterations = 2;

@@ -65,6 +65,20 @@ struct GlobalStageOptions {
   int scan_points = 48;
   // On the full window, scan every parameter sampled over its whole bounds once more, then search locally.
   bool final_scan = true;
+  // Refinement of the best continued start: a joint scan of λ (scan_points values over its bounds) and λ_lat
+  // (joint_scan_lat_points values within ±joint_scan_lat_fraction of its value; 0 points: no joint scan)
+  // on the full window, then the best point and the best of the joint scan are each carried once more from
+  // the first window to the full window (global_stage.hpp).
+  bool refine = true;
+  int joint_scan_lat_points = 13;
+  double joint_scan_lat_fraction = 0.2;
+  // … and, after that pass, a scan along the ridge t0 + T(α) = const at ridge_points values of t0 within
+  // ±ridge_t0_halfwidth_s (fewer than 1: no ridge scan), λ_lon re-fitted at each from three values
+  // ridge_lambda_lon_step apart; T'(α) by central differences with the α step ridge_alpha_difference_rad.
+  int ridge_points = 41;
+  double ridge_t0_halfwidth_s = 0.01;
+  double ridge_lambda_lon_step = 0.01;
+  double ridge_alpha_difference_rad = 1e-4;
   std::uint64_t seed = 20211230;
   // Half-widths of the sampling box around the data estimate for the parameters that phase 1 determines
   // well; the other parameters are sampled over their whole bounds.

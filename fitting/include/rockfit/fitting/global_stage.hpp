@@ -15,7 +15,15 @@
 //     scanned over its bounds, because its first influence (the timing of the next lateral half-cycles) is
 //     again multimodal.
 //  3. On the full window, the impact parameters (everything but t0 and α) are scanned over their bounds once
-//     more, one at a time, followed by a last Nelder–Mead run; the best carried start by (28) is the result.
+//     more, one at a time, followed by a last Nelder–Mead run; the best carried start by (28) is kept.
+//  4. Refinement of that start, for what one-at-a-time scans and short local searches miss: (a) a joint scan
+//     of λ over its bounds and λ_lat within ±20 % of its value — with weak lateral motion the two trade for
+//     each other along a narrow, rippled valley of (28) —; its best point joins the kept start as a second
+//     candidate; (b) each candidate is carried once more from the first window to the full window, without
+//     scans: with the impact parameters now close, the short windows hold t0, α and λ_lon where phase 1 and the
+//     facet impact put them (in the first pass they drift along the t0–α–λ_lon ridge to make up for a λ that is
+//     still wrong); (c) a scan along that ridge (t0 + T(α) fixed, λ_lon re-fitted at each point) and a last
+//     Nelder–Mead run. The best by (28) of the kept start and the refined candidates is the result.
 #pragma once
 
 #include <cstdint>
