@@ -76,6 +76,28 @@ TEST_P(InitialGuessOnSynthetic, WindowEndIsTheImpactEndingPhase4) {
   EXPECT_NEAR(DetectWindowEnd(trial.signal, {}), t_phase4_end, kWindowEndToleranceS);
 }
 
+TEST(InitialGuess, WindowEndAfterStrongLateralRockingIsTheSideEdgeImpact) {
+  // A deep, squat block (b2 = 7 cm, h = 15 cm) with a strong lateral kick: after the facet impact it rocks on V4
+  // with ~19° of roll and spins (ω_z ≈ 1 rad/s), and phase 4 ends when it lands on V1, i.e. on the side edge
+  // V1V4. The base is flat about y there, but ∫ω_y dt is not (it drifts from the tilt by 0.03 rad under the
+  // roll and spin); the detector must follow the integrated attitude.
+  const core::Block block = core::Block::FromDensity(0.05, 0.0695, 0.1506, 2692.0);
+  const Truth truth{0.5, 0.1783, 0.986, 3.366, 0.491};
+  const testing::SyntheticSignal trial = MakeTrial(block, truth, 13);
+  core::ModelParameters p = ParameterSet::Defaults().ToModel();
+  p.alpha_rad = truth.alpha_rad;
+  p.lambda = truth.lambda;
+  p.lambda_lat = truth.lambda_lat;
+  p.lambda_lon = truth.lambda_lon;
+  core::SimulationOptions options;
+  options.stop = core::StopCondition::kPhase4;
+  const core::Trajectory phase4 = core::Simulate(block, p, options);
+  ASSERT_EQ(phase4.end_reason, core::EndReason::kPhase4);
+  ASSERT_FALSE(phase4.impacts.empty());
+  EXPECT_EQ(phase4.impacts.back().kind, "edge") << "a side-edge impact ends phase 4 here";
+  EXPECT_NEAR(DetectWindowEnd(trial.signal, {}), truth.t0_s + phase4.t_end_s, kWindowEndToleranceS);
+}
+
 INSTANTIATE_TEST_SUITE_P(Trials, InitialGuessOnSynthetic,
                          ::testing::Values(Truth{0.5, 0.197, 2.185, -2.032, 0.197}, Truth{0.7, 0.17, 1.3, 3.5, 1.2},
                                            Truth{0.43, 0.22, 1.9, 1.6, 1.0}));

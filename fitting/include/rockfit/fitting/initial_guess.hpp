@@ -37,8 +37,9 @@ struct InitialGuessOptions {
   // by at least this fraction from the peak sample to the next: an impact with a restitution of r < 0.97 does,
   // a smooth maximum (a change of ½·ω̈·Δt², below 1 % at 256 Hz) does not.
   double min_jump_fraction = 0.03;
-  // … and the base is back near flat: |∫ω_y dt| since the first impact is at most this fraction of its largest
-  // value in between (edge impacts between the far vertices V3, V4 happen at a large tilt about y).
+  // … and the base is back near flat: the tilt about y since the first impact (the elevation of the body x axis,
+  // from the attitude integrated from ω with the base flat at the first impact) is at most this fraction of its
+  // largest value in between (edge impacts between the far vertices V3, V4 happen at a large tilt about y).
   double flat_tilt_fraction = 0.25;
   // λ when the data do not determine it before the fit (no edge impact seen yet).
   double default_lambda = 1.0;
