@@ -16,6 +16,10 @@
 namespace rockfit::fitting {
 namespace {
 
+// A base impact on the release side can be recognised by the tilt about y passing through zero within this many
+// samples of an |ω_y| peak: one because the peak sample may be on either side of the impact, one more for the
+// drift of the integrated attitude (a gyro bias of 0.3 °/s tilts it by 2 mrad in 0.4 s).
+constexpr double kLandingSamples = 2.0;
 // Step of the RK4 integration of the planar phase 1 [s]: its error (~h⁴) is far below one gyro sample.
 constexpr double kPhase1StepS = 1e-4;
 // The planar fit searches α within this distance of the landing-rate estimate and of the swept angle [rad]:
@@ -160,8 +164,15 @@ std::vector<double> DetectBaseImpactTimes(const MeasuredSignal& signal, const In
       // large tilt.
       const double w = signal.w_B[p.index][1];
       const double drop = std::abs(w) - std::abs(signal.w_B[p.index + 1][1]);
-      const bool flat = std::abs(tilt_y[p.index]) <= options.flat_tilt_fraction * max_tilt_y[p.index];
-      if (w * first_sign < 0.0 && drop >= options.min_jump_fraction * std::abs(w) && flat) {
+      const std::size_t k = p.index;
+      const bool flat = std::abs(tilt_y[k]) <= options.flat_tilt_fraction * max_tilt_y[k];
+      // The base passes through flat about y at the peak itself: the release side touches down there, whatever
+      // the jump (an edge impact V3→V2 with λ < 1 changes ω_y by only a few per cent, and the sample after the
+      // impact can be higher than the one before). "At the peak": within the tilt swept in kLandingSamples
+      // samples, as the peak sample is the last before the impact or the first after it.
+      const double one_sample_tilt = std::max(std::abs(tilt_y[k] - tilt_y[k - 1]), std::abs(tilt_y[k + 1] - tilt_y[k]));
+      const bool lands_here = std::abs(tilt_y[k]) <= kLandingSamples * one_sample_tilt;
+      if (w * first_sign < 0.0 && ((drop >= options.min_jump_fraction * std::abs(w) && flat) || lands_here)) {
         times.push_back(signal.t_s[p.index]);
       }
     }
