@@ -98,6 +98,30 @@ TEST(InitialGuess, WindowEndAfterStrongLateralRockingIsTheSideEdgeImpact) {
   EXPECT_NEAR(DetectWindowEnd(trial.signal, {}), truth.t0_s + phase4.t_end_s, kWindowEndToleranceS);
 }
 
+TEST(InitialGuess, WindowEndIsALandingWithASmallJump) {
+  // A deep block (b2 = 6.8 cm, h = 24 cm) rocks on its far edge V3V4 and lands on the release side through an
+  // edge impact V3→V2 with λ = 0.5: ω_y changes by about 3 %, less than one sample of its rise before the
+  // impact. The landing shows as the tilt about y passing through zero at the |ω_y| peak.
+  const core::Block block = core::Block::FromDensity(0.05, 0.0681, 0.2406, 2692.0);
+  // t0 puts the impact just before a sample, so that the sample after it is not lower than the one before.
+  const Truth truth{0.602, 0.0957, 0.509, -1.247, 1.042};
+  const testing::SyntheticSignal trial = MakeTrial(block, truth, 14);
+  core::ModelParameters p = ParameterSet::Defaults().ToModel();
+  p.alpha_rad = truth.alpha_rad;
+  p.lambda = truth.lambda;
+  p.lambda_lat = truth.lambda_lat;
+  p.lambda_lon = truth.lambda_lon;
+  core::SimulationOptions options;
+  options.stop = core::StopCondition::kPhase4;
+  const core::Trajectory phase4 = core::Simulate(block, p, options);
+  ASSERT_EQ(phase4.end_reason, core::EndReason::kPhase4);
+  ASSERT_FALSE(phase4.impacts.empty());
+  const core::ImpactRecord& last = phase4.impacts.back();
+  EXPECT_EQ(last.kind, "edge");
+  EXPECT_LT(std::abs(last.w_plus_B.y() - last.w_minus_B.y()), 0.05 * std::abs(last.w_minus_B.y())) << "a small jump";
+  EXPECT_NEAR(DetectWindowEnd(trial.signal, {}), truth.t0_s + phase4.t_end_s, kWindowEndToleranceS);
+}
+
 INSTANTIATE_TEST_SUITE_P(Trials, InitialGuessOnSynthetic,
                          ::testing::Values(Truth{0.5, 0.197, 2.185, -2.032, 0.197}, Truth{0.7, 0.17, 1.3, 3.5, 1.2},
                                            Truth{0.43, 0.22, 1.9, 1.6, 1.0}));
