@@ -194,7 +194,7 @@ std::vector<std::string> WriteXimuGuiCsv(const std::string& prefix, const Device
 
   // Start-up: the clock, every register, then the first periodic housekeeping packets.
   write_date_time(0.0);
-  XimuRegisterSettings register_settings;
+  XimuDeviceRates register_settings;
   register_settings.inertial_rate_hz = rate_hz;
   register_settings.quaternion_rate_hz = options.quaternion_rate_hz;
   register_settings.date_time_rate_hz = options.date_time_rate_hz;

@@ -148,7 +148,7 @@ std::uint16_t XimuRateRegisterValue(double rate_hz, const std::string& what) {
                         std::to_string(rate_hz) + " Hz");
 }
 
-std::vector<XimuRegister> XimuRegisters(const XimuRegisterSettings& settings) {
+std::vector<XimuRegister> XimuRegisters(const XimuDeviceRates& settings) {
   std::vector<XimuRegister> registers;
   registers.reserve(kXimuRegisterCount);
   for (int address = 0; address < kXimuRegisterCount; ++address) {

@@ -32,7 +32,7 @@ TEST(XimuRegisterMap, RateThatIsNotAPowerOfTwoIsRejectedWithTheAllowedRates) {
 }
 
 TEST(XimuRegisterMap, AllRegistersInAddressOrderWithTheRatesGiven) {
-  XimuRegisterSettings settings;
+  XimuDeviceRates settings;
   settings.inertial_rate_hz = 256.0;
   settings.quaternion_rate_hz = 128.0;
   settings.date_time_rate_hz = 2.0;

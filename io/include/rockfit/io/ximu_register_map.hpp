@@ -30,7 +30,8 @@ struct XimuRegister {
 // Throws InvalidArgument for any other rate, naming `what`.
 std::uint16_t XimuRateRegisterValue(double rate_hz, const std::string& what);
 
-struct XimuRegisterSettings {
+// The rates the synthetic device reports in its rate registers.
+struct XimuDeviceRates {
   double inertial_rate_hz = 256.0;    // register 69
   double quaternion_rate_hz = 256.0;  // register 70
   double date_time_rate_hz = 1.0;     // register 67
@@ -39,6 +40,6 @@ struct XimuRegisterSettings {
 
 // All 110 registers of the synthetic device in address order: IMU algorithm mode (the paper's setting), ±2000
 // deg/s gyroscope, ±8 g accelerometer, plausible calibration values, and the given rates.
-std::vector<XimuRegister> XimuRegisters(const XimuRegisterSettings& settings);
+std::vector<XimuRegister> XimuRegisters(const XimuDeviceRates& settings);
 
 }  // namespace rockfit::io
