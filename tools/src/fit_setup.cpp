@@ -144,7 +144,9 @@ PreparedFit PrepareFit(const io::Recording& recording, const core::Block& block,
 std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   const fitting::ParameterSet set = MakeParameterSet(args);
   // v2: the gyro bias at rest is subtracted unless --keep-bias, and a detected window ends just before its impact.
-  std::string settings = fmt::format("rockfit-fit v2; method={}; bounds={}; t_end={}; max_evaluations={}; global={}; "
+  // v3: the window-end detector follows the integrated attitude and recognises landings with a small jump; the
+  // values of fixed parameters are part of the settings.
+  std::string settings = fmt::format("rockfit-fit v3; method={}; bounds={}; t_end={}; max_evaluations={}; global={}; "
                                      "keep_bias={}; block=({:.17g},{:.17g},{:.17g},{:.17g})",
                                      fitting::ToString(fitting::ParseFitMethod(args.method)), args.bounds,
                                      args.t_end_s ? fmt::format("{:.17g}", *args.t_end_s) : "auto",
