@@ -25,5 +25,10 @@ echo "== 4. fit t0, α, λ, λ_lat, λ_lon of one trial with no starting point (
 "$rockfit" fit "$manifest" --trial block2-A-1 -o "$out/fits.h5" --plot "$out/fit_block2-A-1.png"
 
 echo
+echo "== 5. the whole campaign in parallel (resumable), then its fitted parameters per block and position (Fig. 15)"
+"$rockfit" batch "$manifest" -o "$out/fits.h5" --resume
+"$rockfit" plot parameters "$out/fits.h5" -o "$out/parameters.png"
+
+echo
 echo "outputs in $out:"
 ls -1 "$out"
