@@ -24,15 +24,19 @@ core::Block PaperBlock(double b2_m) { return core::Block::FromDensity(0.05, b2_m
 
 struct Truth {
   double t0_s, alpha_rad, lambda, lambda_lat, lambda_lon;
+
+  core::ModelParameters Model() const {
+    core::ModelParameters p = ParameterSet::Defaults().ToModel();
+    p.alpha_rad = alpha_rad;
+    p.lambda = lambda;
+    p.lambda_lat = lambda_lat;
+    p.lambda_lon = lambda_lon;
+    return p;
+  }
 };
 
 testing::SyntheticSignal MakeTrial(const core::Block& block, const Truth& truth, std::uint64_t seed) {
   const SimulatorModel model(block);
-  core::ModelParameters p = ParameterSet::Defaults().ToModel();
-  p.alpha_rad = truth.alpha_rad;
-  p.lambda = truth.lambda;
-  p.lambda_lat = truth.lambda_lat;
-  p.lambda_lon = truth.lambda_lon;
   testing::SyntheticSignalOptions options;
   options.t0_s = truth.t0_s;
   options.duration_s = truth.t0_s + 1.5;
@@ -40,7 +44,14 @@ testing::SyntheticSignal MakeTrial(const core::Block& block, const Truth& truth,
   options.ringing_fraction = 0.2;
   options.bias_rad_s = Eigen::Vector3d(0.0002, 0.0009, -0.0005);
   options.seed = seed;
-  return testing::MakeSyntheticSignal(model, p, options);
+  return testing::MakeSyntheticSignal(model, truth.Model(), options);
+}
+
+// The simulator's phase-4 stop: the first impact on the release side after the first facet impact (DESIGN §4).
+core::Trajectory SimulateToPhase4End(const core::Block& block, const Truth& truth) {
+  core::SimulationOptions options;
+  options.stop = core::StopCondition::kPhase4;
+  return core::Simulate(block, truth.Model(), options);
 }
 
 class InitialGuessOnSynthetic : public ::testing::TestWithParam<Truth> {};
@@ -62,15 +73,7 @@ TEST_P(InitialGuessOnSynthetic, WindowEndIsTheImpactEndingPhase4) {
   const Truth truth = GetParam();
   const core::Block block = PaperBlock(0.035);
   const testing::SyntheticSignal trial = MakeTrial(block, truth, 12);
-  // The simulator's phase-4 stop: the first impact on the release side after the first facet impact (DESIGN §4).
-  core::ModelParameters p = ParameterSet::Defaults().ToModel();
-  p.alpha_rad = truth.alpha_rad;
-  p.lambda = truth.lambda;
-  p.lambda_lat = truth.lambda_lat;
-  p.lambda_lon = truth.lambda_lon;
-  core::SimulationOptions options;
-  options.stop = core::StopCondition::kPhase4;
-  const core::Trajectory phase4 = core::Simulate(block, p, options);
+  const core::Trajectory phase4 = SimulateToPhase4End(block, truth);
   ASSERT_EQ(phase4.end_reason, core::EndReason::kPhase4);
   const double t_phase4_end = truth.t0_s + phase4.t_end_s;
   EXPECT_NEAR(DetectWindowEnd(trial.signal, {}), t_phase4_end, kWindowEndToleranceS);
@@ -84,14 +87,7 @@ TEST(InitialGuess, WindowEndAfterStrongLateralRockingIsTheSideEdgeImpact) {
   const core::Block block = core::Block::FromDensity(0.05, 0.0695, 0.1506, 2692.0);
   const Truth truth{0.5, 0.1783, 0.986, 3.366, 0.491};
   const testing::SyntheticSignal trial = MakeTrial(block, truth, 13);
-  core::ModelParameters p = ParameterSet::Defaults().ToModel();
-  p.alpha_rad = truth.alpha_rad;
-  p.lambda = truth.lambda;
-  p.lambda_lat = truth.lambda_lat;
-  p.lambda_lon = truth.lambda_lon;
-  core::SimulationOptions options;
-  options.stop = core::StopCondition::kPhase4;
-  const core::Trajectory phase4 = core::Simulate(block, p, options);
+  const core::Trajectory phase4 = SimulateToPhase4End(block, truth);
   ASSERT_EQ(phase4.end_reason, core::EndReason::kPhase4);
   ASSERT_FALSE(phase4.impacts.empty());
   EXPECT_EQ(phase4.impacts.back().kind, "edge") << "a side-edge impact ends phase 4 here";
@@ -106,14 +102,7 @@ TEST(InitialGuess, WindowEndIsALandingWithASmallJump) {
   // t0 puts the impact just before a sample, so that the sample after it is not lower than the one before.
   const Truth truth{0.602, 0.0957, 0.509, -1.247, 1.042};
   const testing::SyntheticSignal trial = MakeTrial(block, truth, 14);
-  core::ModelParameters p = ParameterSet::Defaults().ToModel();
-  p.alpha_rad = truth.alpha_rad;
-  p.lambda = truth.lambda;
-  p.lambda_lat = truth.lambda_lat;
-  p.lambda_lon = truth.lambda_lon;
-  core::SimulationOptions options;
-  options.stop = core::StopCondition::kPhase4;
-  const core::Trajectory phase4 = core::Simulate(block, p, options);
+  const core::Trajectory phase4 = SimulateToPhase4End(block, truth);
   ASSERT_EQ(phase4.end_reason, core::EndReason::kPhase4);
   ASSERT_FALSE(phase4.impacts.empty());
   const core::ImpactRecord& last = phase4.impacts.back();
