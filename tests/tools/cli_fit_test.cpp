@@ -130,7 +130,12 @@ TEST(CliFit, PlotsOfTheFitAndOfTheParameters) {
   const auto params = dir / "params.png";
   const CommandResult p = RunRockfit({"plot", "parameters", out, "-o", params.string(), "--json"});
   ASSERT_EQ(p.exit_code, 0) << p.err;
-  EXPECT_EQ(nlohmann::json::parse(p.out)["fits"], 1);
+  const nlohmann::json j = nlohmann::json::parse(p.out);
+  EXPECT_EQ(j["fits"], 1);
+  // The keys every plot kind prints, and the picture really has the size it reports.
+  EXPECT_EQ(j["kind"], "parameters");
+  EXPECT_EQ(j["format"], "png");
+  EXPECT_EQ(PngSize(params), std::make_pair(j["width_px"].get<unsigned>(), j["height_px"].get<unsigned>()));
   EXPECT_EQ(PngSize(params), std::make_pair(1200u, 1200u));
   // A trial that is not in the file: bad input with its name.
   const CommandResult missing = RunRockfit({"plot", "fit", out, "--trial", "nope", "-o", (dir / "x.png").string()});

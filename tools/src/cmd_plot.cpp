@@ -175,15 +175,12 @@ int RunPlotEuler(const EulerCommand& cmd) {
   figure.Render(body, cmd.picture.output, cmd.picture.width_px, cmd.picture.height_px);
 
   if (cmd.picture.json) {
-    PrintJson({{"kind", "euler"},
-               {"output", cmd.picture.output},
-               {"format", ImageFormatFor(cmd.picture.output) == ImageFormat::kPng ? "png" : "svg"},
-               {"width_px", cmd.picture.width_px},
-               {"height_px", cmd.picture.height_px},
-               {"trial", d.trial_id},
+    nlohmann::json j = PictureJson("euler", cmd.picture);
+    j.update({{"trial", d.trial_id},
                {"from_s", from},
                {"to_s", to},
                {"impacts", marks[0].size()}});
+    PrintJson(j);
   } else {
     std::cout << "written " << cmd.picture.output << "\n";
   }
@@ -283,13 +280,10 @@ int RunPlotSummary(const SummaryPlotCommand& cmd) {
   figure.Render(body, cmd.picture.output, cmd.picture.width_px, cmd.picture.height_px);
 
   if (cmd.picture.json) {
-    PrintJson({{"kind", "summary"},
-               {"output", cmd.picture.output},
-               {"format", ImageFormatFor(cmd.picture.output) == ImageFormat::kPng ? "png" : "svg"},
-               {"width_px", cmd.picture.width_px},
-               {"height_px", cmd.picture.height_px},
-               {"groups", summary.groups.size()},
+    nlohmann::json j = PictureJson("summary", cmd.picture);
+    j.update({{"groups", summary.groups.size()},
                {"positions", positions}});
+    PrintJson(j);
   } else {
     std::cout << "written " << cmd.picture.output << "\n";
   }

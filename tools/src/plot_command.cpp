@@ -1,5 +1,7 @@
 #include "plot_command.hpp"
 
+#include "gnuplot.hpp"
+
 namespace rockfit::tools {
 
 CLI::App& PlotApp(CLI::App& root) {
@@ -20,6 +22,14 @@ void AddPictureOptions(CLI::App& app, PictureArgs& args, int default_width_px, i
   app.add_option("--width", args.width_px, "Width [px]")->capture_default_str()->group("Output");
   app.add_option("--height", args.height_px, "Height [px]")->capture_default_str()->group("Output");
   app.add_flag("--json", args.json, "Print one JSON object: kind, output, format, width_px, height_px")->group("Output");
+}
+
+nlohmann::json PictureJson(const std::string& kind, const PictureArgs& args) {
+  return {{"kind", kind},
+          {"output", args.output},
+          {"format", ImageFormatFor(args.output) == ImageFormat::kPng ? "png" : "svg"},
+          {"width_px", args.width_px},
+          {"height_px", args.height_px}};
 }
 
 }  // namespace rockfit::tools

@@ -6,6 +6,7 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 namespace rockfit::tools {
 
@@ -20,5 +21,9 @@ struct PictureArgs {
   bool json = false;
 };
 void AddPictureOptions(CLI::App& app, PictureArgs& args, int default_width_px, int default_height_px);
+
+// The keys every `rockfit plot KIND --json` prints: kind, output, format ("png" or "svg"), width_px, height_px.
+// Each kind adds its own.
+nlohmann::json PictureJson(const std::string& kind, const PictureArgs& args);
 
 }  // namespace rockfit::tools

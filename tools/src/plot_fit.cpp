@@ -65,9 +65,11 @@ int RunPlotFit(const PlotFitCommand& cmd) {
   const FitPlotData d = ReadFitPlotData(cmd.path, cmd.trial);
   RenderFitPlot(d, cmd.picture.output, cmd.picture.width_px, cmd.picture.height_px);
   if (cmd.picture.json) {
-    PrintJson({{"kind", "fit"}, {"trial", d.trial}, {"output", cmd.picture.output}, {"epsilon", d.epsilon_rad_s}});
+    nlohmann::json j = PictureJson("fit", cmd.picture);
+    j.update({{"trial", d.trial}, {"epsilon", d.epsilon_rad_s}});
+    PrintJson(j);
   } else {
-    std::cout << "wrote " << cmd.picture.output << "\n";
+    std::cout << "written " << cmd.picture.output << "\n";
   }
   return kExitOk;
 }
@@ -129,9 +131,11 @@ int RunPlotParameters(const PlotParametersCommand& cmd) {
   body += "unset multiplot\n";
   figure.Render(body, cmd.picture.output, cmd.picture.width_px, cmd.picture.height_px);
   if (cmd.picture.json) {
-    PrintJson({{"kind", "parameters"}, {"output", cmd.picture.output}, {"fits", rows.size()}});
+    nlohmann::json j = PictureJson("parameters", cmd.picture);
+    j["fits"] = rows.size();
+    PrintJson(j);
   } else {
-    std::cout << "wrote " << cmd.picture.output << " (" << rows.size() << " fits)\n";
+    std::cout << "written " << cmd.picture.output << " (" << rows.size() << " fits)\n";
   }
   return kExitOk;
 }

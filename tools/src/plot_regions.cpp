@@ -185,12 +185,8 @@ int RunPlotRegions(const RegionsCommand& cmd) {
   nlohmann::json cells = nlohmann::json::object();
   for (const auto& [label, n] : counts) cells[label] = n;
   if (cmd.picture.json) {
-    PrintJson({{"kind", "regions"},
-               {"output", cmd.picture.output},
-               {"format", ImageFormatFor(cmd.picture.output) == ImageFormat::kPng ? "png" : "svg"},
-               {"width_px", cmd.picture.width_px},
-               {"height_px", cmd.picture.height_px},
-               {"pivot_edge", fmt::format("V{}V{}", core::Block::WrapVertex(b - 1), b)},
+    nlohmann::json j = PictureJson("regions", cmd.picture);
+    j.update({{"pivot_edge", fmt::format("V{}V{}", core::Block::WrapVertex(b - 1), b)},
                {"omega_minus", ToJson(w)},
                {"tau_rule", core::ToString(options.tau_rule)},
                {"tau", cmd.tau ? nlohmann::json(*cmd.tau) : nlohmann::json(nullptr)},
@@ -201,6 +197,7 @@ int RunPlotRegions(const RegionsCommand& cmd) {
                {"cells_energy_gain", energy_gain},
                {"energy_zero_segments", grid.energy_zero.size()},
                {"singular_segments", grid.singular.size()}});
+    PrintJson(j);
   } else {
     std::cout << "written " << cmd.picture.output << "\n";
     for (const auto& [label, n] : counts) std::cout << fmt::format("  {:<11} {:>7} cells\n", label, n);
