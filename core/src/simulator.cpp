@@ -6,6 +6,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -20,6 +21,7 @@ namespace {
 
 using detail::EdgeMode;
 using detail::RunSegment;
+using detail::SegmentOutcome;
 using detail::SegmentEnd;
 using detail::SegmentSettings;
 using detail::VertexMode;
@@ -142,6 +144,10 @@ class HybridRun {
                 int pivot, int vertex_off_ground_first, int vertex_off_ground_second);
   Next Rest(double t, const Eigen::Quaterniond& q_flat, const ImpactRecord& trigger);
   Next Stop(EndReason reason, double t, const EndState& state, std::string message = {});
+  // The end of a segment of `mode` (rocking about `what`) that did not stop at a guard event: t_max or an
+  // integrator failure; nullopt when it ended at an event.
+  template <typename ModeT>
+  std::optional<Next> StopUnlessEvent(const ModeT& mode, const SegmentOutcome<ModeT>& outcome);
   // Books an impact; false (and the run has failed) when impacts no longer advance time or the kinetic
   // energy after it, `kinetic_after_J`, shows that impacts keep adding energy without bound.
   bool BookImpact(const ImpactRecord& record, const EndState& state, double kinetic_after_J);
@@ -227,24 +233,37 @@ void HybridRun::Run() {
   }
 }
 
-HybridRun::Next HybridRun::RunVertex() {
-  const VertexMode mode(block_, vertex_start_.vertex, gravity_);
-  out_->segments.emplace_back();
-  const auto outcome = RunSegment(mode, t_start_, vertex_start_.y, vertex_start_.on_surface, settings_, step_hint_s_,
-                                  polisher_, sampler_, &out_->segments.back());
-  AddCounts(outcome);
+// What a mode rocks about, for messages.
+std::string Pivot(const VertexMode& mode) { return "V" + std::to_string(mode.vertex()); }
+std::string Pivot(const EdgeMode& mode) { return "edge " + mode.mode().ToString(); }
+
+template <typename ModeT>
+std::optional<HybridRun::Next> HybridRun::StopUnlessEvent(const ModeT& mode, const SegmentOutcome<ModeT>& outcome) {
   const EndState end{mode.mode(), mode.Attitude(outcome.y), mode.AngularVelocity_B(outcome.y)};
   switch (outcome.end) {
     case SegmentEnd::kTimeLimit:
       return Stop(EndReason::kTMax, outcome.t_s, end);
     case SegmentEnd::kStepFailure:
       return Stop(EndReason::kFailed, outcome.t_s, end,
-                  "the integrator could not continue rocking about V" + std::to_string(mode.vertex()) + " at t = " +
-                      FormatTime(outcome.t_s) + " (step size below round-off)");
+                  "the integrator could not continue rocking about " + Pivot(mode) + " at t = " + FormatTime(outcome.t_s) +
+                      " (step size below round-off)");
     case SegmentEnd::kEvent:
       break;
   }
-  if (!VertexMode::IsTouchdown(outcome.guard)) return Stop(EndReason::kOverturned, outcome.t_s, end);
+  return std::nullopt;
+}
+
+HybridRun::Next HybridRun::RunVertex() {
+  const VertexMode mode(block_, vertex_start_.vertex, gravity_);
+  out_->segments.emplace_back();
+  const auto outcome = RunSegment(mode, t_start_, vertex_start_.y, vertex_start_.on_surface, settings_, step_hint_s_,
+                                  polisher_, sampler_, &out_->segments.back());
+  AddCounts(outcome);
+  if (const auto stopped = StopUnlessEvent(mode, outcome)) return *stopped;
+  if (!VertexMode::IsTouchdown(outcome.guard)) {
+    return Stop(EndReason::kOverturned, outcome.t_s,
+                {mode.mode(), mode.Attitude(outcome.y), mode.AngularVelocity_B(outcome.y)});
+  }
   return AfterEdgeImpact(mode, outcome.t_s, outcome.y, mode.GuardVertex(outcome.guard));
 }
 
@@ -255,18 +274,11 @@ HybridRun::Next HybridRun::RunEdge() {
   const auto outcome = RunSegment(mode, t_start_, edge_start_.y, on_surface, settings_, step_hint_s_, polisher_,
                                   sampler_, &out_->segments.back());
   AddCounts(outcome);
-  const EndState end{mode.mode(), mode.Attitude(outcome.y), mode.AngularVelocity_B(outcome.y)};
-  switch (outcome.end) {
-    case SegmentEnd::kTimeLimit:
-      return Stop(EndReason::kTMax, outcome.t_s, end);
-    case SegmentEnd::kStepFailure:
-      return Stop(EndReason::kFailed, outcome.t_s, end,
-                  "the integrator could not continue rocking about edge " + mode.mode().ToString() + " at t = " +
-                      FormatTime(outcome.t_s) + " (step size below round-off)");
-    case SegmentEnd::kEvent:
-      break;
+  if (const auto stopped = StopUnlessEvent(mode, outcome)) return *stopped;
+  if (!EdgeMode::IsTouchdown(outcome.guard)) {
+    return Stop(EndReason::kOverturned, outcome.t_s,
+                {mode.mode(), mode.Attitude(outcome.y), mode.AngularVelocity_B(outcome.y)});
   }
-  if (!EdgeMode::IsTouchdown(outcome.guard)) return Stop(EndReason::kOverturned, outcome.t_s, end);
   return AfterFacetImpact(mode, outcome.t_s, outcome.y);
 }
 
