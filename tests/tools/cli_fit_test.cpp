@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
+#include "png_header.hpp"
 #include "python_h5py.hpp"
 #include "scratch_dir.hpp"
 #include "test_paths.hpp"
@@ -104,16 +105,10 @@ print('ok')
   EXPECT_EQ(check.exit_code, 0) << check.out;
 }
 
-// The PNG signature and the image size from the IHDR chunk that follows it (big-endian).
+// The size of the PNG at `path` ({0, 0} when it is not a PNG).
 std::pair<unsigned, unsigned> PngSize(const std::filesystem::path& path) {
-  const std::string bytes = ReadWholeFile(path);
-  if (bytes.size() < 24 || bytes.compare(0, 8, std::string("\x89PNG\r\n\x1a\n", 8)) != 0) return {0, 0};
-  auto be32 = [&](std::size_t at) {
-    unsigned v = 0;
-    for (std::size_t i = 0; i < 4; ++i) v = (v << 8) | static_cast<unsigned char>(bytes[at + i]);
-    return v;
-  };
-  return {be32(16), be32(20)};
+  const PngHeader header = ReadPngHeader(path);
+  return header.valid ? std::make_pair(header.width, header.height) : std::make_pair(0u, 0u);
 }
 
 TEST(CliFit, PlotsOfTheFitAndOfTheParameters) {
