@@ -5,32 +5,12 @@
 #include <gtest/gtest.h>
 
 #include "cli_runner.hpp"
+#include "png_header.hpp"
 #include "synthetic_campaign.hpp"
 #include "scratch_dir.hpp"
 
 namespace rockfit::testing {
 namespace {
-
-struct PngSize {
-  bool valid = false;
-  std::uint32_t width = 0, height = 0;
-};
-
-// The PNG signature and the IHDR chunk that must follow it (width and height, big-endian).
-PngSize ReadPngHeader(const std::filesystem::path& path) {
-  const std::string bytes = ReadWholeFile(path);
-  PngSize size;
-  const std::string signature("\x89PNG\r\n\x1a\n", 8);
-  if (bytes.size() < 33 || bytes.compare(0, 8, signature) != 0 || bytes.compare(12, 4, "IHDR") != 0) return size;
-  const auto u32 = [&](std::size_t at) {
-    return (std::uint32_t(std::uint8_t(bytes[at])) << 24) | (std::uint32_t(std::uint8_t(bytes[at + 1])) << 16) |
-           (std::uint32_t(std::uint8_t(bytes[at + 2])) << 8) | std::uint32_t(std::uint8_t(bytes[at + 3]));
-  };
-  size.valid = true;
-  size.width = u32(16);
-  size.height = u32(20);
-  return size;
-}
 
 class CliPlot : public ::testing::Test {
  protected:
@@ -54,7 +34,7 @@ TEST_F(CliPlot, EulerFigureIsARealPngOfTheRequestedSize) {
   const CommandResult r = RunRockfit({"plot", "euler", Manifest(), "--trial", "B1-A-1", "-o", out.string(), "--width",
                                       "1000", "--height", "900", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const PngSize png = ReadPngHeader(out);
+  const PngHeader png = ReadPngHeader(out);
   ASSERT_TRUE(png.valid);
   EXPECT_EQ(png.width, 1000u);
   EXPECT_EQ(png.height, 900u);
@@ -70,7 +50,7 @@ TEST_F(CliPlot, SummaryFigureFromTheManifestAndFromHdf5) {
   const CommandResult from_manifest = RunRockfit({"plot", "summary", Manifest(), "-o", png.string(), "--width", "1200",
                                                   "--height", "520"});
   ASSERT_EQ(from_manifest.exit_code, 0) << from_manifest.err;
-  const PngSize size = ReadPngHeader(png);
+  const PngHeader size = ReadPngHeader(png);
   ASSERT_TRUE(size.valid);
   EXPECT_EQ(size.width, 1200u);
   EXPECT_EQ(size.height, 520u);
