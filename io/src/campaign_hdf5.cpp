@@ -5,6 +5,7 @@
 #include <limits>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "rockfit/core/errors.hpp"
 
@@ -19,12 +20,6 @@ const char* kEulerColumns = "phi_z, phi_y, phi_x";
 double OrMissing(const std::optional<double>& value) { return value ? *value : kMissing; }
 std::optional<double> FromStored(double value) { return std::isnan(value) ? std::nullopt : std::optional<double>(value); }
 
-std::string Join(const std::vector<std::string>& items) {
-  std::string out;
-  for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
-  return out;
-}
-
 // Opens /trials/<id>, or the only trial when id is empty.
 hdf5::Group OpenTrial(const hdf5::Group& root, const std::filesystem::path& path, const std::string& trial_id,
                       std::string* resolved_id) {
@@ -33,13 +28,13 @@ hdf5::Group OpenTrial(const hdf5::Group& root, const std::filesystem::path& path
   if (trial_id.empty()) {
     if (ids.size() != 1) {
       throw BadInput(fmt::format("{}: holds {} trials ({}); say which one with --trial ID", path.string(), ids.size(),
-                                 ids.empty() ? "none" : Join(ids)));
+                                 ids.empty() ? "none" : fmt::format("{}", fmt::join(ids, ", "))));
     }
     *resolved_id = ids.front();
   } else {
     if (std::find(ids.begin(), ids.end(), trial_id) == ids.end()) {
       throw BadInput(fmt::format("{}: no trial '{}'; the file holds: {}", path.string(), trial_id,
-                                 ids.empty() ? "no trials" : Join(ids)));
+                                 ids.empty() ? "no trials" : fmt::format("{}", fmt::join(ids, ", "))));
     }
     *resolved_id = trial_id;
   }

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <toml++/toml.h>
 
 #include "rockfit/core/errors.hpp"
@@ -48,12 +49,6 @@ std::size_t EditDistance(const std::string& a, const std::string& b) {
   return row[b.size()];
 }
 
-std::string Join(const std::vector<std::string>& items) {
-  std::string out;
-  for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
-  return out;
-}
-
 // Builds messages "manifest.toml:LINE:COLUMN: what; what to do".
 class Reporter {
  public:
@@ -81,7 +76,7 @@ void CheckKeys(const Reporter& report, const toml::table& table, const std::stri
       }
     }
     report.Fail(PositionOf(key.source()),
-                fmt::format("unknown key '{}' in {}{}; allowed keys: {}", name, what, hint, Join(allowed)));
+                fmt::format("unknown key '{}' in {}{}; allowed keys: {}", name, what, hint, fmt::join(allowed, ", ")));
   }
 }
 
@@ -198,7 +193,7 @@ TrialSpec ParseTrial(const Reporter& report, const toml::table& table, std::size
   trial.format = OptionalString(report, table, "format", what, "auto");
   if (!ParseFormatName(trial.format)) {
     report.Fail(PositionOf(table.get("format")->source()),
-                fmt::format("{}: unknown format '{}'; use one of {}", what, trial.format, Join(ManifestFormats())));
+                fmt::format("{}: unknown format '{}'; use one of {}", what, trial.format, fmt::join(ManifestFormats(), ", ")));
   }
   trial.rate_hz = OptionalPositive(report, table, "rate", what, "Hz");
   if (trial.rate_hz && *trial.rate_hz > kMaxRate_hz) {
@@ -268,7 +263,7 @@ Manifest ParseManifest(std::string_view text, const std::filesystem::path& path)
         for (const auto& b : manifest.blocks) known.push_back(b.id);
         report.Fail(PositionOf(table.get("block")->source()),
                     fmt::format("[[trials]] '{}' names block '{}', which no [[blocks]] entry defines; known blocks: {}",
-                                trial.id, trial.block_id, known.empty() ? "none" : Join(known)));
+                                trial.id, trial.block_id, known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
       }
       trial_ids[trial.id] = id_where;
       manifest.trials.push_back(std::move(trial));
@@ -298,7 +293,7 @@ const BlockSpec& Manifest::FindBlock(const std::string& id) const {
   std::vector<std::string> known;
   for (const auto& block : blocks) known.push_back(block.id);
   throw BadInput(fmt::format("{}: no block '{}'; known blocks: {}", path.string(), id,
-                             known.empty() ? "none" : Join(known)));
+                             known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
 }
 
 const TrialSpec& Manifest::FindTrial(const std::string& id) const {
@@ -308,7 +303,7 @@ const TrialSpec& Manifest::FindTrial(const std::string& id) const {
   std::vector<std::string> known;
   for (const auto& trial : trials) known.push_back(trial.id);
   throw BadInput(fmt::format("{}: no trial '{}'; known trials: {}", path.string(), id,
-                             known.empty() ? "none" : Join(known)));
+                             known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
 }
 
 }  // namespace rockfit::io
