@@ -74,6 +74,9 @@ Eigen::Vector3d ParseVector3(const std::string& text, const std::string& option)
 
 nlohmann::json ToJson(const Eigen::Vector3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
 
+nlohmann::json OrNull(const std::optional<double>& value) { return value ? OrNull(*value) : nlohmann::json(); }
+nlohmann::json OrNull(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
+
 void PrintJson(const nlohmann::json& object) { std::cout << object.dump(2) << std::endl; }
 
 // "I,J" with I, J cyclic neighbours → b of the pivot edge V_{b−1}V_b (either order names the same edge).

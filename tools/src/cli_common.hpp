@@ -48,6 +48,9 @@ Eigen::Vector3d ParseVector3(const std::string& text, const std::string& option)
 int ParsePivotEdge(const std::string& text);
 
 nlohmann::json ToJson(const Eigen::Vector3d& v);
+// null for a missing value (JSON has no NaN or infinity): an empty optional, or a value that is not finite.
+nlohmann::json OrNull(const std::optional<double>& value);
+nlohmann::json OrNull(double value);
 // Prints one JSON object on stdout (pretty, 2 spaces).
 void PrintJson(const nlohmann::json& object);
 

@@ -19,7 +19,6 @@ struct MetricsCommand {
   bool json = false;
 };
 
-nlohmann::json OrNull(const std::optional<double>& value) { return value ? nlohmann::json(*value) : nlohmann::json(); }
 nlohmann::json ValueOrNull(bool present, double value) { return present ? nlohmann::json(value) : nlohmann::json(); }
 
 std::string List(const std::vector<double>& values, const char* format) {

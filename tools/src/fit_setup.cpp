@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "cli_common.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/fitting/simulator_model.hpp"
 
@@ -50,7 +51,6 @@ void ApplyBound(const std::string& entry, const std::string& option, bool lower,
   (lower ? (*set)[id].lower : (*set)[id].upper) = value;
 }
 
-nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
 
 }  // namespace
 
@@ -177,10 +177,10 @@ nlohmann::json FitResultJson(const std::string& trial, const fitting::FitSummary
   for (fitting::ParameterId id : fitting::kAllParameters) {
     const fitting::Parameter& p = s.parameters[id];
     params[fitting::Name(id)] = {{"value", p.value},
-                                 {"lower", NumberOrNull(p.lower)},
-                                 {"upper", NumberOrNull(p.upper)},
+                                 {"lower", OrNull(p.lower)},
+                                 {"upper", OrNull(p.upper)},
                                  {"fixed", p.fixed},
-                                 {"std_error", NumberOrNull(s.std_error[static_cast<std::size_t>(id)])}};
+                                 {"std_error", OrNull(s.std_error[static_cast<std::size_t>(id)])}};
   }
   nlohmann::json warnings = nlohmann::json::array();
   for (const fitting::FitWarning& w : s.warnings) {
