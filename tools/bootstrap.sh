@@ -18,7 +18,7 @@ packages=(
   libeigen3-dev libceres-dev libnlopt-cxx-dev libgsl-dev libhdf5-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libfmt-dev libtomlplusplus-dev nlohmann-json3-dev libtbb-dev
-  gnuplot-nox python3 python3-h5py python3-numpy
+  gnuplot-nox python3 python3-h5py python3-numpy ccache
 )
 
 missing=()
@@ -37,7 +37,14 @@ if [ ${#missing[@]} -gt 0 ]; then
   $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-cmake -S "$here" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release ${CMAKE_ARGS:-}
+# ccache makes repeated builds cheap; paths are hashed relative to the checkout so that two clones share hits.
+launcher=()
+if command -v ccache >/dev/null; then
+  export CCACHE_BASEDIR="$here" CCACHE_NOHASHDIR=true
+  launcher=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+fi
+
+cmake -S "$here" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" ${CMAKE_ARGS:-}
 cmake --build "$build_dir" -j "$jobs"
 
 case "$mode" in
