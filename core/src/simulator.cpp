@@ -38,6 +38,9 @@ constexpr double kZenoFloorFactor = 100.0;
 constexpr double kBlowUpEnergyFactor = 1e3;
 // A given initial state may have its base vertices below the ground by at most this [m].
 constexpr double kInitialPenetrationTol_m = 1e-9;
+// A given edge-contact attitude may differ from one with that edge on the ground by at most this angle [rad]
+// (1e-9 rad lifts a vertex 1 m away by 1 nm, the same order as kInitialPenetrationTol_m).
+constexpr double kInitialEdgeAttitudeTol_rad = 1e-9;
 // A given edge-contact state may have an angular velocity off the edge axis of at most this [rad/s].
 constexpr double kInitialOffAxisTol_rad_s = 1e-9;
 
@@ -217,7 +220,7 @@ void HybridRun::Run() {
       }
       edge_start_ = MakeEdgeStart(edge, s.q_WB.normalized(), s.w_B, dynamics.p_BP_B());
       const Eigen::Quaterniond back = edge_start_.q_yaw * dynamics.Tilt(edge_start_.y[0]);
-      if (back.angularDistance(s.q_WB.normalized()) > kInitialPenetrationTol_m) {
+      if (back.angularDistance(s.q_WB.normalized()) > kInitialEdgeAttitudeTol_rad) {
         throw InvalidArgument("the initial attitude does not have edge " + edge.ToString() + " on the ground");
       }
       next = Next::kEdge;
