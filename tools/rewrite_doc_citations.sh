@@ -53,6 +53,7 @@ perl -CSD -Mutf8 -i -pe '
 
   # --- wording that does not survive the generic rules -----------------------------------------------------
   $n += s{\Qboth names exist because DESIGN lists them.\E}{both names exist because docs/design.md §4 lists them.}g;
+  $n += s{\Q`DESIGN.md` is the contract. This file records what it does not settle\E}{[docs/design.md](../docs/design.md) is the design. This file records what it leaves open}g;
 
   # --- generic forms ----------------------------------------------------------------------------------------
   $n += s{\(DESIGN §([0-9]+[a-z]?); reference ximu-formats\.md}{(docs/design.md §$1; docs/file-formats.md}g;
