@@ -229,7 +229,16 @@ py::object FitRecord(FitOutcome& o) {
   d["w_B_simulated"] = simulated ? py::object(OwnedArray(std::move(o.output.w_B))) : py::none();
   d["impact_times"] = OwnedArray(std::move(impact_times));
   d["impact_kinds"] = impact_kinds;
-  return MakeRecord("FitResult", d);
+  // The program's keys first, in the order of its table; then the rest as the summary has them.
+  py::dict ordered;
+  for (const char* key : {"trial", "values", "epsilon", "epsilon_initial", "t_end", "feasible", "termination",
+                          "warnings", "parameters", "simulations", "wall_s"}) {
+    if (d.contains(key)) ordered[key] = d[key];
+  }
+  for (const auto& [key, value] : d) {
+    if (!ordered.contains(key)) ordered[key] = value;
+  }
+  return MakeRecord("FitResult", ordered);
 }
 
 py::object Fit(const TrialRecording& r, const std::optional<core::Block>& given, const std::string& method,

@@ -14,7 +14,8 @@ constexpr const char* kRecordSource = R"PY(
 class Record:
     """A rockfit result: named fields readable as attributes and as a mapping.
 
-    r.epsilon, r["epsilon"], "epsilon" in r, r.keys(), r.items(), r.get(name, default), r.to_dict().
+    r.epsilon, r["epsilon"], "epsilon" in r, r.keys(), r.items(), r.get(name, default), r.to_dict(),
+    r.type_name.
     The fields of each result are listed in the docstring of the function that returns it; arrays are
     numpy arrays in SI units (s, rad, rad/s, m, kg, J, N*m*s). Records are read-only.
     """
@@ -48,7 +49,7 @@ class Record:
         return len(self._fields)
 
     def __dir__(self):
-        return sorted(set(self._fields) | {"keys", "items", "values", "get", "to_dict"})
+        return sorted(set(self._fields) | {"keys", "items", "get", "to_dict", "type_name"})
 
     def __eq__(self, other):
         return NotImplemented
@@ -60,9 +61,6 @@ class Record:
 
     def items(self):
         return self._fields.items()
-
-    def values(self):
-        return self._fields.values()
 
     def get(self, key, default=None):
         return self._fields.get(key, default)

@@ -53,7 +53,7 @@ TrialRecording FromArrays(const py::handle& t, const py::handle& w_B, const py::
 
 std::string Repr(const TrialRecording& r) {
   const io::Recording& rec = r.recording;
-  return fmt::format("Recording(trial={!r}, format={!r}, samples={}, rate_hz={:g}, duration_s={:.6g}, euler={}, "
+  return fmt::format("Recording(trial='{}', format='{}', samples={}, rate_hz={:g}, duration_s={:.6g}, euler={}, "
                      "block={})",
                      r.trial, rec.format, rec.size(), rec.rate_hz, rec.duration_s(), rec.has_euler() ? "yes" : "no",
                      r.block ? "yes" : "no");

@@ -103,8 +103,8 @@ py::object Synth(const std::string& prefix, const core::Block& block, const Synt
   o.files.seed = k.seed;
   o.measurement = Measurement(k);
   o.command_line = fmt::format(
-      "python3: rockfit.synth({!r}, Block(b1={}, b2={}, h={}, mass={}), alpha={}, lambda_={}, lambda_lat={}, "
-      "lambda_lon={}, tau_edge={}, facet_tau={!r}, t0={}, duration={}, rate={}, mounting={!r}, seed={}, noise={})",
+      "python3: rockfit.synth('{}', Block(b1={}, b2={}, h={}, mass={}), alpha={}, lambda_={}, lambda_lat={}, "
+      "lambda_lon={}, tau_edge={}, facet_tau='{}', t0={}, duration={}, rate={}, mounting='{}', seed={}, noise={})",
       prefix, block.b1(), block.b2(), block.h(), block.mass(), k.alpha, k.lambda, k.lambda_lat, k.lambda_lon,
       k.tau_edge, k.facet_tau, k.t0, k.duration, k.rate, o.mounting_text, k.seed, k.noise ? "True" : "False");
 

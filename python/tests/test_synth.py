@@ -17,9 +17,9 @@ def block(rockfit):
 
 
 def test_synth_writes_the_same_files_as_the_program(rockfit, block, tmp_path):
-    truth = rockfit.synth(str(tmp_path / "py" / "trial"), block, **ARGS)
-    (tmp_path / "py").mkdir(exist_ok=True)
+    (tmp_path / "py").mkdir()
     (tmp_path / "cli").mkdir()
+    truth = rockfit.synth(str(tmp_path / "py" / "trial"), block, **ARGS)
     cli = run_cli("synth", *CLI, "-o", tmp_path / "cli" / "trial")
     for key in ("samples", "rate_hz", "duration_s", "t0_s", "seed", "impacts", "first_impact_s", "phase4_end_s",
                 "rest_s"):
@@ -62,4 +62,4 @@ def test_bad_synth_arguments(rockfit, block, tmp_path):
     with pytest.raises(ValueError, match="facet_tau"):
         rockfit.synth(str(tmp_path / "x"), block, facet_tau="x")
     with pytest.raises(rockfit.NumericalError):
-        rockfit.synth(str(tmp_path / "x"), block, alpha=0.6, duration=2)  # beyond the critical tilt: overturns
+        rockfit.synth(str(tmp_path / "x"), block, alpha=0.6, t0=0.5, duration=2)  # beyond the critical tilt: overturns
