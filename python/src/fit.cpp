@@ -200,9 +200,11 @@ py::object FitRecord(FitOutcome& o) {
   py::dict d = FromJson(merged).cast<py::dict>();
   py::dict parameters;
   py::dict values;
-  for (const auto& [name, fields] : d["parameters"].cast<py::dict>()) {
-    parameters[name] = MakeRecord("Parameter", fields.cast<py::dict>());
-    values[name] = fields.cast<py::dict>()["value"];
+  const py::dict all = d["parameters"].cast<py::dict>();
+  for (fitting::ParameterId id : fitting::kAllParameters) {  // t0, alpha, lambda, lambda_lat, lambda_lon, tau_edge
+    const py::dict fields = all[fitting::Name(id)].cast<py::dict>();
+    parameters[fitting::Name(id)] = MakeRecord("Parameter", fields);
+    values[fitting::Name(id)] = fields["value"];
   }
   d["parameters"] = parameters;
   d["values"] = values;

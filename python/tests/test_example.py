@@ -1,0 +1,17 @@
+"""python/examples/fit_sample.py runs and writes its picture."""
+import os
+import pathlib
+import subprocess
+import sys
+
+from conftest import SOURCE_DIR
+
+
+def test_fit_sample_example_writes_a_png(tmp_path):
+    picture = tmp_path / "fit.png"
+    result = subprocess.run([sys.executable, str(SOURCE_DIR / "python" / "examples" / "fit_sample.py"), "-o",
+                             str(picture)], capture_output=True, text=True, env=dict(os.environ, MPLBACKEND="Agg"),
+                            cwd=tmp_path, check=False)
+    assert result.returncode == 0, result.stderr
+    assert picture.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "ε (28)" in result.stdout and "alpha" in result.stdout
