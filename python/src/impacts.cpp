@@ -53,7 +53,7 @@ py::dict OutcomeFields(const char* kind, const core::ImpactOutcome& out) {
   return d;
 }
 
-py::object EdgeImpact(const core::Block& block, int pivot, int landing, const py::handle& omega_minus, double tilt,
+py::object EdgeImpact(const core::Block& block, int pivot, int landing, const py::object& omega_minus, double tilt,
                       double lambda, double tau) {
   RequireVertex(pivot, "pivot");
   RequireVertex(landing, "landing");
@@ -89,7 +89,7 @@ py::object EdgeImpact(const core::Block& block, int pivot, int landing, const py
   return MakeRecord("EdgeImpact", d);
 }
 
-py::object FacetImpact(const core::Block& block, const py::handle& omega_minus, std::pair<int, int> pivot_edge,
+py::object FacetImpact(const core::Block& block, const py::object& omega_minus, std::pair<int, int> pivot_edge,
                        double lambda_lat, double lambda_lon, std::optional<double> tau) {
   const int b = tools::ParsePivotEdge(fmt::format("{},{}", pivot_edge.first, pivot_edge.second));
   RequireFinite(lambda_lat, "lambda_lat", "(21)");

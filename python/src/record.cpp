@@ -86,6 +86,8 @@ class Record:
         if isinstance(v, Record):
             return repr(v) if depth < 1 else f"{v._type}(…)"
         if hasattr(v, "shape") and hasattr(v, "dtype"):
+            if v.ndim == 1 and v.size <= 4:
+                return "array([" + ", ".join(f"{x:.6g}" for x in v.tolist()) + "])"
             return f"array{tuple(v.shape)}"
         if isinstance(v, float):
             return f"{v:.6g}"

@@ -22,8 +22,8 @@ namespace {
 
 using RecordingPtr = std::shared_ptr<TrialRecording>;
 
-TrialRecording FromArrays(const py::handle& t, const py::handle& w_B, const py::handle& euler,
-                          const py::handle& accel_B, std::optional<double> rate_hz, const std::string& trial) {
+TrialRecording FromArrays(const py::object& t, const py::object& w_B, const py::object& euler,
+                          const py::object& accel_B, std::optional<double> rate_hz, const std::string& trial) {
   TrialRecording r;
   io::Recording& rec = r.recording;
   rec.t_s = ToDoubles(t, "t");
@@ -75,7 +75,7 @@ void RegisterRecording(py::module_& m) {
       "columns, gaps, warnings; block, block_id, position, notes for a trial of a manifest.\n\n"
       "Recording(t, w_B, euler=None, accel_B=None, rate=None, trial='python') makes one from arrays (copied once);\n"
       "rate defaults to (N − 1)/(t[-1] − t[0]).")
-      .def(py::init([](const py::handle& t, const py::handle& w_B, const py::handle& euler, const py::handle& accel_B,
+      .def(py::init([](const py::object& t, const py::object& w_B, const py::object& euler, const py::object& accel_B,
                        std::optional<double> rate, const std::string& trial) {
              return std::make_shared<TrialRecording>(FromArrays(t, w_B, euler, accel_B, rate, trial));
            }),

@@ -15,6 +15,13 @@ BINARY = pathlib.Path(os.environ.get("ROCKFIT_BINARY", SOURCE_DIR / "build" / "t
 SAMPLES = SOURCE_DIR / "data-samples"
 MANIFEST = SAMPLES / "manifest.toml"
 
+# Whole fits and long loops of simulations run in optimised builds only: in a Debug build the simulator is about
+# 150 times slower (tests/support/build_type.hpp does the same for the C++ suites).
+OPTIMISED_BUILD = os.environ.get("ROCKFIT_OPTIMISED_BUILD", "1") == "1"
+requires_optimised_build = pytest.mark.skipif(
+    not OPTIMISED_BUILD, reason="whole fits and 1000-call loops run in optimised builds only (Debug simulates ~150x "
+                                "slower); the cheaper tests cover the same code there")
+
 # The sample trial the README fits: block2 (b2 = 3.5 cm), made with the paper's Fig. 14 parameters.
 SAMPLE_TRIAL = "block2-A-1"
 

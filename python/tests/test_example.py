@@ -4,9 +4,10 @@ import pathlib
 import subprocess
 import sys
 
-from conftest import SOURCE_DIR
+from conftest import SOURCE_DIR, requires_optimised_build
 
 
+@requires_optimised_build
 def test_fit_sample_example_writes_a_png(tmp_path):
     picture = tmp_path / "fit.png"
     result = subprocess.run([sys.executable, str(SOURCE_DIR / "python" / "examples" / "fit_sample.py"), "-o",

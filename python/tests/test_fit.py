@@ -9,7 +9,9 @@ import time
 import numpy as np
 import pytest
 
-from conftest import MANIFEST, SAMPLE_TRIAL, SAMPLES, run_cli
+from conftest import MANIFEST, SAMPLE_TRIAL, SAMPLES, requires_optimised_build, run_cli
+
+pytestmark = requires_optimised_build
 
 OTHER_TRIAL = "block2-A-2"
 

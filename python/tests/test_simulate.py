@@ -7,7 +7,7 @@ import threading
 import numpy as np
 import pytest
 
-from conftest import run_cli
+from conftest import requires_optimised_build, run_cli
 
 FIG14 = dict(alpha=0.197, lambda_=2.185, lambda_lat=-2.032, lambda_lon=0.197)
 FIG14_CLI = ["--b1", "0.05000453", "--b2", "0.04", "--h", "0.2", "--density", "2692", "--alpha", "0.197",
@@ -72,6 +72,7 @@ def test_returned_arrays_own_their_memory(rockfit, fig14_block):
     assert w.shape == (269, 3) and w.flags.c_contiguous
 
 
+@requires_optimised_build
 def test_no_leak_over_1000_simulations(rockfit, fig14_block):
     def rss_kb():
         with open("/proc/self/status") as status:
