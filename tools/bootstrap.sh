@@ -19,6 +19,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libfmt-dev libtomlplusplus-dev nlohmann-json3-dev libtbb-dev
   gnuplot-nox python3 python3-h5py python3-numpy ccache
+  python3-dev python3-pybind11 pybind11-dev python3-pytest python3-matplotlib
 )
 
 missing=()
