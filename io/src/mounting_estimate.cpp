@@ -116,6 +116,21 @@ std::string AngleList(const Eigen::Vector3d& angles_deg) {
   return fmt::format("x {:+.2f}°, y {:+.2f}°, z {:+.2f}°", angles_deg.x(), angles_deg.y(), angles_deg.z());
 }
 
+// The signed axis permutation nearest to R_BS ("-x,-y,z"), when R_BS is within `within_deg` of one.
+std::optional<std::string> NearPermutation(const Eigen::Matrix3d& R_BS, double within_deg) {
+  Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
+  std::string text;
+  for (int i = 0; i < 3; ++i) {
+    Eigen::Index j = 0;
+    R_BS.row(i).cwiseAbs().maxCoeff(&j);
+    P(i, j) = R_BS(i, j) < 0.0 ? -1.0 : 1.0;
+    text += fmt::format("{}{}{}", i ? "," : "", P(i, j) < 0.0 ? "-" : "", kAxisNames[j]);
+  }
+  if (!(P.transpose() * P).isIdentity(1e-12) || P.determinant() < 0.0) return std::nullopt;
+  if (Eigen::AngleAxisd(R_BS * P.transpose()).angle() * kDegPerRad > within_deg) return std::nullopt;
+  return text;
+}
+
 }  // namespace
 
 void MountingEstimateOptions::Validate() const {
@@ -337,12 +352,15 @@ std::string MountingWarning(const MountingCheck& check, const Mounting& suggeste
     if (check.determined[static_cast<std::size_t>(i)]) std_deg = std::max(std_deg, check.std_error_deg[i]);
   }
   const std::string start = check.given == "identity" ? "auto" : "auto:" + check.given;
+  // A sensor mounted on another face (a permutation) is told the permutation, not a quaternion.
+  const std::optional<std::string> permutation = NearPermutation(suggested.R_BS(), kMountingWarningDeg);
   return fmt::format(
       "the data disagree with the mounting '{}' by {:.2f}° (rotation about block {}, each ±{:.2f}°{}): the sensor "
       "is turned on the block. Estimate the mounting with --mounting {} (manifest: mounting = \"{}\"), or give it "
       "as --mounting={}",
       check.given, off_deg, AngleList(check.angles_deg), std_deg,
-      check.status == "partial" ? "; " + check.message : std::string(), start, start, suggested.text());
+      check.status == "partial" ? "; " + check.message : std::string(), start, start,
+      permutation ? *permutation + " (the data agree with it within 1°)" : suggested.text());
 }
 
 }  // namespace rockfit::io

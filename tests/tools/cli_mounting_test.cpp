@@ -10,6 +10,7 @@
 // without rest at the end, and the warning for a wrong mounting given without `auto`. Whole fits run the
 // simulator thousands of times: optimised builds only (tests/io/mounting_estimate_test.cpp covers the estimate
 // in every build).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -137,12 +138,19 @@ void ExpectOpmfClose(double opmf, double aligned, const std::string& what) {
 }
 
 // Every fitted parameter within the aligned fit's value ± 1.96·std_error; ε within 2 %. Returns the largest
-// |Δ| / (1.96·std_error).
-double ExpectFitLikeAligned(const nlohmann::json& fit, const nlohmann::json& aligned, const std::string& what) {
+// |Δ| / (1.96·std_error). A parameter the aligned fit itself flags as not identifiable has no interval to meet.
+double ExpectFitLikeAligned(const nlohmann::json& fit, const nlohmann::json& aligned, const std::string& what,
+                            const std::vector<std::string>& without = {}) {
   double worst = 0.0;
   for (const char* name : {"t0", "alpha", "lambda", "lambda_lat", "lambda_lon"}) {
+    if (std::find(without.begin(), without.end(), name) != without.end()) continue;
     const nlohmann::json& a = aligned["parameters"][name];
     if (a["fixed"].get<bool>() || a["std_error"].is_null()) continue;
+    bool identifiable = true;
+    for (const nlohmann::json& w : aligned["warnings"]) {
+      if (w["kind"] == "not_identifiable" && w["parameter"] == name) identifiable = false;
+    }
+    if (!identifiable) continue;
     const double half_width = kIntervalZ * a["std_error"].get<double>();
     const double delta = fit["parameters"][name]["value"].get<double>() - a["value"].get<double>();
     EXPECT_LE(std::abs(delta), half_width) << what << ": " << name << " " << fit["parameters"][name]["value"]
@@ -167,7 +175,7 @@ TEST(CliMounting, AutoUndoesTwentyRandomMisalignmentsOfUpToFiveDegrees) {
   ROCKFIT_REQUIRE_OPTIMISED_BUILD();
   const ScratchDir dir("cli_mounting_sweep");
   std::mt19937_64 rng(20261125);
-  constexpr int kPerTrial = 5;
+  constexpr int kPerTrial = 5;  // 4 blocks × 5 = 20 misalignments
   std::cout << "trial  truth x y z [deg]        estimate x y z [deg]        err [deg]  OPMF aligned/auto/identity"
                "        ε aligned/auto [rad/s]   max |Δp|/(1.96 se)\n";
   int index = 0;
@@ -186,6 +194,13 @@ TEST(CliMounting, AutoUndoesTwentyRandomMisalignmentsOfUpToFiveDegrees) {
       EXPECT_LT(error_deg, kEstimateTolerance_deg) << what << "\n" << m["mounting"].dump(1);
       ExpectOpmfClose(m["opmf"].get<double>(), aligned_opmf, what);
       const double identity_opmf = Metrics(prefix, t, "identity")["opmf"].get<double>();
+      // Whole fits for two of the five (the suite's time budget); all twenty are in the io README's table.
+      if (k % 3 != 0) {
+        std::cout << fmt::format("{:>5}  {:+.3f} {:+.3f} {:+.3f}   estimate error {:.3f}°, OPMF {:.4f}/{:.4f}/{:.4f}\n",
+                                 index, truth_deg.x(), truth_deg.y(), truth_deg.z(), error_deg, aligned_opmf,
+                                 m["opmf"].get<double>(), identity_opmf);
+        continue;
+      }
       const nlohmann::json fit = Fit(prefix, t, "auto");
       const double worst = ExpectFitLikeAligned(fit, aligned.fit, what);
       const Eigen::Vector3d est(m["mounting"]["angles_deg"][0].get<double>(), m["mounting"]["angles_deg"][1].get<double>(),
@@ -230,6 +245,8 @@ TEST(CliMounting, PlanarTrialsFixTheMountingWhenTheyEndAtRestAndNameTheOpenAngle
   const ScratchDir dir("cli_mounting_planar");
   Trial planar = kTrials[0];
   planar.lambda_lat = 0.0;  // no lateral motion after the facet impact
+  planar.lambda_lon = 0.8;  // loses energy fast enough to come to rest 5.4 s after the release
+  planar.rocking_s = 6.0;
   const Eigen::Vector3d truth_deg(-2.0, 1.5, 3.5);
   const Eigen::Matrix3d R_small = Eigen::AngleAxisd(truth_deg.norm() / kDegPerRad, truth_deg.normalized()).toRotationMatrix();
   const Reference aligned = Aligned(dir, "aligned", planar, "x,y,z");
@@ -238,20 +255,22 @@ TEST(CliMounting, PlanarTrialsFixTheMountingWhenTheyEndAtRestAndNameTheOpenAngle
   ASSERT_EQ(m["mounting"]["status"], "ok") << m["mounting"].dump(1);
   EXPECT_LT(AngleBetweenDeg(EstimatedRotation(m["mounting"]), R_small), kEstimateTolerance_deg) << m["mounting"].dump(1);
   ExpectOpmfClose(m["opmf"].get<double>(), aligned.metrics["opmf"].get<double>(), "planar");
-  ExpectFitLikeAligned(Fit(prefix, planar, "auto"), aligned.fit, "planar");
+  // Planar rocking has facet impacts only: λ of edge impacts (19) does not act in the window, and neither fit
+  // determines it (as in cli_fit_recovery_test, λ is compared only when edge impacts happen).
+  ExpectFitLikeAligned(Fit(prefix, planar, "auto"), aligned.fit, "planar", {"lambda"});
 
   // Cut 1.2 s after the release, while the block still rocks: the turn about y cannot be told from α.
   Trial cut = planar;
   cut.rocking_s = 1.2;
   const std::string cut_prefix = Synthesize(dir, "cut", cut, QuaternionText(R_small));
-  std::string err;
-  const nlohmann::json c = Metrics(cut_prefix, cut, "auto", &err);
-  ASSERT_EQ(c["mounting"]["status"], "partial") << c["mounting"].dump(1);
-  EXPECT_EQ(c["mounting"]["determined"], nlohmann::json::array({true, false, true}));
-  EXPECT_THAT(c["mounting"]["message"].get<std::string>(), HasSubstr("about block y"));
-  EXPECT_THAT(err, HasSubstr("does not end at rest"));
-  EXPECT_NEAR(c["mounting"]["angles_deg"][0].get<double>(), truth_deg.x(), kEstimateTolerance_deg);
-  EXPECT_NEAR(c["mounting"]["angles_deg"][2].get<double>(), truth_deg.z(), kEstimateTolerance_deg);
+  const nlohmann::json c = RunJson({"inspect", cut_prefix, "--mounting", "auto"});
+  const nlohmann::json& check = c["mounting_check"];
+  ASSERT_EQ(check["status"], "partial") << check.dump(1);
+  EXPECT_EQ(check["determined"], nlohmann::json::array({true, false, true}));
+  EXPECT_THAT(check["message"].get<std::string>(), HasSubstr("about block y"));
+  EXPECT_THAT(c["warnings"].dump(), HasSubstr("does not end at rest"));
+  EXPECT_NEAR(check["angles_deg"][0].get<double>(), truth_deg.x(), kEstimateTolerance_deg);
+  EXPECT_NEAR(check["angles_deg"][2].get<double>(), truth_deg.z(), kEstimateTolerance_deg);
 }
 
 TEST(CliMounting, AWrongMountingGivenWithoutAutoIsWarnedAboutWithTheRightSize) {
