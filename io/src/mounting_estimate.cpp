@@ -200,8 +200,8 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
   while (before.begin > 0 && still(before.begin - 1)) --before.begin;
   if (before.size() < min_rest) {
     return Fail(e, "no_rest",
-                fmt::format("the block is still for only {:.3f} s before its release at {:.3f} s; the tilt at rest "
-                            "needs at least {:.2f} s",
+                fmt::format("the block is still for only {:.3f} s before the motion that ends in the first impact "
+                            "(from {:.3f} s); the tilt at rest needs at least {:.2f} s",
                             static_cast<double>(before.size()) / rate_hz, r.t_s[release], o.min_rest_s));
   }
   bias.setZero();
