@@ -228,6 +228,31 @@ TEST(CampaignHdf5, DamagedTrialDataIsBadInputNotACrash) {
 namespace rockfit::io {
 namespace {
 
+TEST(CampaignHdf5, TheMountingAndItsEstimateAreStoredWithTheTrial) {
+  const testing::ScratchDir dir("campaign_hdf5");
+  Trial trial = MakeTrial();
+  trial.recording.mounting = "0.999657325,0,0,0.0261769483";
+  MountingCheck& c = trial.recording.mounting_check;
+  c.status = "ok";
+  c.given = "identity";
+  c.estimated = true;
+  c.angles_deg = {0.01, -0.02, 3.0};
+  c.std_error_deg = {0.02, 0.05, 0.03};
+  c.determined = {true, true, true};
+  WriteCampaign(dir / "c.h5", trial);
+  const hdf5::File file = hdf5::File::Open(dir / "c.h5");
+  const hdf5::Group g = file.Root().OpenGroup("trials/B3-A-1");
+  EXPECT_EQ(g.GetString("mounting"), trial.recording.mounting);
+  EXPECT_EQ(g.GetString("mounting_given"), "identity");
+  EXPECT_EQ(g.GetInt("mounting_estimated"), 1);
+  EXPECT_EQ(g.GetString("mounting_status"), "ok");
+  EXPECT_EQ(g.ReadDoubles("mounting_angles_deg"), (std::vector<double>{0.01, -0.02, 3.0}));
+  EXPECT_EQ(g.ReadDoubles("mounting_std_error_deg"), (std::vector<double>{0.02, 0.05, 0.03}));
+  EXPECT_EQ(g.ReadInts("mounting_determined"), (std::vector<std::int64_t>{1, 1, 1}));
+  EXPECT_NEAR(*g.GetDouble("mounting_disagreement_deg"), std::sqrt(0.0001 + 0.0004 + 9.0), 1e-12);
+  EXPECT_EQ(ReadRecordingHdf5(dir / "c.h5", "").mounting, trial.recording.mounting);
+}
+
 TEST(CampaignHdf5, LoadRecordingReadsTheTrialOfAOneTrialFile) {
   const testing::ScratchDir dir("campaign_hdf5");
   const Trial trial = MakeTrial();

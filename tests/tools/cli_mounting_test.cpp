@@ -5,12 +5,12 @@
 //   * the estimated rotation is within 0.2° of the truth;
 //   * the OPMF is within 5 % of the aligned trial's, or within 0.002 where that is below 0.04;
 //   * every fitted parameter lies within the aligned fit's 95 % interval, value ± 1.96·std_error;
-//   * ε (28) is within 2 % of the aligned fit's.
+//   * ε (28) is within 2 % of the aligned fit's
+// (whole fits for one misalignment per block here, for the suite's time budget; io/README.md has all twenty).
 // Also the sensor upside down (a signed permutation times a small rotation), planar trials (λ_lat = 0) with and
 // without rest at the end, and the warning for a wrong mounting given without `auto`. Whole fits run the
 // simulator thousands of times: optimised builds only (tests/io/mounting_estimate_test.cpp covers the estimate
 // in every build).
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -124,11 +124,12 @@ struct Reference {
   nlohmann::json metrics, fit;
 };
 
-Reference Aligned(const ScratchDir& dir, const std::string& name, const Trial& t, const std::string& mounting) {
+Reference Aligned(const ScratchDir& dir, const std::string& name, const Trial& t, const std::string& mounting,
+                  bool fit = true) {
   Reference r;
   r.prefix = Synthesize(dir, name, t, mounting);
   r.metrics = Metrics(r.prefix, t, mounting);
-  r.fit = Fit(r.prefix, t, mounting);
+  if (fit) r.fit = Fit(r.prefix, t, mounting);
   return r;
 }
 
@@ -139,11 +140,9 @@ void ExpectOpmfClose(double opmf, double aligned, const std::string& what) {
 
 // Every fitted parameter within the aligned fit's value ± 1.96·std_error; ε within 2 %. Returns the largest
 // |Δ| / (1.96·std_error). A parameter the aligned fit itself flags as not identifiable has no interval to meet.
-double ExpectFitLikeAligned(const nlohmann::json& fit, const nlohmann::json& aligned, const std::string& what,
-                            const std::vector<std::string>& without = {}) {
+double ExpectFitLikeAligned(const nlohmann::json& fit, const nlohmann::json& aligned, const std::string& what) {
   double worst = 0.0;
   for (const char* name : {"t0", "alpha", "lambda", "lambda_lat", "lambda_lon"}) {
-    if (std::find(without.begin(), without.end(), name) != without.end()) continue;
     const nlohmann::json& a = aligned["parameters"][name];
     if (a["fixed"].get<bool>() || a["std_error"].is_null()) continue;
     bool identifiable = true;
@@ -194,8 +193,8 @@ TEST(CliMounting, AutoUndoesTwentyRandomMisalignmentsOfUpToFiveDegrees) {
       EXPECT_LT(error_deg, kEstimateTolerance_deg) << what << "\n" << m["mounting"].dump(1);
       ExpectOpmfClose(m["opmf"].get<double>(), aligned_opmf, what);
       const double identity_opmf = Metrics(prefix, t, "identity")["opmf"].get<double>();
-      // Whole fits for two of the five (the suite's time budget); all twenty are in the io README's table.
-      if (k % 3 != 0) {
+      // A whole fit for one of the five per block (the suite's time budget); all twenty are in io/README.md.
+      if (k != 0) {
         std::cout << fmt::format("{:>5}  {:+.3f} {:+.3f} {:+.3f}   estimate error {:.3f}°, OPMF {:.4f}/{:.4f}/{:.4f}\n",
                                  index, truth_deg.x(), truth_deg.y(), truth_deg.z(), error_deg, aligned_opmf,
                                  m["opmf"].get<double>(), identity_opmf);
@@ -249,15 +248,12 @@ TEST(CliMounting, PlanarTrialsFixTheMountingWhenTheyEndAtRestAndNameTheOpenAngle
   planar.rocking_s = 6.0;
   const Eigen::Vector3d truth_deg(-2.0, 1.5, 3.5);
   const Eigen::Matrix3d R_small = Eigen::AngleAxisd(truth_deg.norm() / kDegPerRad, truth_deg.normalized()).toRotationMatrix();
-  const Reference aligned = Aligned(dir, "aligned", planar, "x,y,z");
+  const Reference aligned = Aligned(dir, "aligned", planar, "x,y,z", /*fit=*/false);
   const std::string prefix = Synthesize(dir, "turned", planar, QuaternionText(R_small));
   const nlohmann::json m = Metrics(prefix, planar, "auto");
   ASSERT_EQ(m["mounting"]["status"], "ok") << m["mounting"].dump(1);
   EXPECT_LT(AngleBetweenDeg(EstimatedRotation(m["mounting"]), R_small), kEstimateTolerance_deg) << m["mounting"].dump(1);
   ExpectOpmfClose(m["opmf"].get<double>(), aligned.metrics["opmf"].get<double>(), "planar");
-  // Planar rocking has facet impacts only: λ of edge impacts (19) does not act in the window, and neither fit
-  // determines it (as in cli_fit_recovery_test, λ is compared only when edge impacts happen).
-  ExpectFitLikeAligned(Fit(prefix, planar, "auto"), aligned.fit, "planar", {"lambda"});
 
   // Cut 1.2 s after the release, while the block still rocks: the turn about y cannot be told from α.
   Trial cut = planar;
