@@ -130,6 +130,9 @@ TEST(CampaignHdf5, SummaryTablesRoundTripWithMissingValuesAsNaN) {
   a.opmf = 0.05, a.avrf = 0.93, a.lambda_equivalent = 0.8, a.avrf_peaks_used = 10, a.impacts = 30;
   TrialRow b = a;
   b.trial_id = "T2", b.status = "too_few_peaks", b.message = "only 2 peaks", b.avrf.reset(), b.lambda_equivalent.reset();
+  b.mounting = "-x,-y,z";
+  b.mounting_check.status = "ok";
+  b.mounting_check.angles_deg = {0.1, -0.2, 1.5};
   summary.trials = {a, b};
   summary.groups = GroupTrials(summary.trials);
   {
@@ -143,6 +146,10 @@ TEST(CampaignHdf5, SummaryTablesRoundTripWithMissingValuesAsNaN) {
   EXPECT_EQ(back.trials[1].message, "only 2 peaks");
   EXPECT_FALSE(back.trials[1].avrf.has_value());
   EXPECT_DOUBLE_EQ(*back.trials[0].avrf, 0.93);
+  EXPECT_EQ(back.trials[0].mounting, "identity");
+  EXPECT_TRUE(std::isnan(back.trials[0].mounting_check.angles_deg.z()));
+  EXPECT_EQ(back.trials[1].mounting, "-x,-y,z");
+  EXPECT_EQ(back.trials[1].mounting_check.angles_deg, Eigen::Vector3d(0.1, -0.2, 1.5));
   ASSERT_EQ(back.groups.size(), 1u);
   EXPECT_EQ(back.groups[0].n_avrf, 1u);
   EXPECT_FALSE(back.groups[0].avrf_std.has_value());
