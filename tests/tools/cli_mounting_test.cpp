@@ -36,7 +36,7 @@ using ::testing::HasSubstr;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegPerRad = 180.0 / kPi;
-// The criteria of the mounting issue.
+// The acceptance criteria of `--mounting auto`.
 constexpr double kEstimateTolerance_deg = 0.2;
 constexpr double kOpmfRelative = 0.05;
 constexpr double kOpmfAbsolute = 0.002;  // where the aligned OPMF is below kSmallOpmf
@@ -273,7 +273,7 @@ TEST(CliMounting, AWrongMountingGivenWithoutAutoIsWarnedAboutWithTheRightSize) {
   ROCKFIT_REQUIRE_OPTIMISED_BUILD();
   const ScratchDir dir("cli_mounting_warning");
   const Trial& t = kTrials[0];
-  const Eigen::Vector3d truth_deg(0.4, -0.7, 3.0);  // mostly yaw, as in the issue
+  const Eigen::Vector3d truth_deg(0.4, -0.7, 3.0);  // mostly yaw, the turn that mixes φy into φx
   const Eigen::Matrix3d R_small = Eigen::AngleAxisd(truth_deg.norm() / kDegPerRad, truth_deg.normalized()).toRotationMatrix();
   const std::string prefix = Synthesize(dir, "turned", t, QuaternionText(R_small));
   const CommandResult r = RunRockfit(Join({"metrics", prefix, "--mounting", "x,y,z"}, BlockArgs(t)));
