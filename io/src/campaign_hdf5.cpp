@@ -8,6 +8,7 @@
 #include <fmt/ranges.h>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/io/mounting_estimate.hpp"
 
 namespace rockfit::io {
 
@@ -79,6 +80,20 @@ void WriteBlockHdf5(const hdf5::Group& root, const std::string& block_id, const 
   g.WriteMatrix("inertia_com_B_kg_m2", flat, 3, 3, "kg*m^2");
 }
 
+void WriteMountingHdf5(const hdf5::Group& g, const Recording& recording) {
+  const MountingCheck& c = recording.mounting_check;
+  g.SetString("mounting", recording.mounting);
+  g.SetString("mounting_given", c.given);
+  g.SetInt("mounting_estimated", c.estimated ? 1 : 0);
+  g.SetString("mounting_status", c.status);
+  g.SetString("mounting_message", c.message);
+  g.SetString("mounting_warning", c.warning);
+  g.SetDouble("mounting_disagreement_deg", MountingDisagreementDeg(c));
+  g.WriteDoubles("mounting_angles_deg", {c.angles_deg.x(), c.angles_deg.y(), c.angles_deg.z()}, "deg");
+  g.WriteDoubles("mounting_std_error_deg", {c.std_error_deg.x(), c.std_error_deg.y(), c.std_error_deg.z()}, "deg");
+  g.WriteInts("mounting_determined", {c.determined[0] ? 1 : 0, c.determined[1] ? 1 : 0, c.determined[2] ? 1 : 0}, "1");
+}
+
 void WriteTrialHdf5(const hdf5::Group& root, const std::string& trial_id, const TrialLabels& labels,
                     const Recording& recording, const MetricsSummary& metrics, const MetricsOptions& options) {
   const std::string name = "trials/" + trial_id;
@@ -105,6 +120,7 @@ void WriteTrialHdf5(const hdf5::Group& root, const std::string& trial_id, const 
   }
   g.WriteStrings("source_columns", recording.columns);
   g.WriteStrings("warnings", recording.warnings);
+  WriteMountingHdf5(g, recording);
 
   const hdf5::Group gaps = g.CreateGroup("gaps");
   std::vector<std::int64_t> gap_index, gap_missing;
@@ -194,6 +210,7 @@ StoredTrial ReadTrialHdf5(const std::filesystem::path& path, const std::string& 
   if (g.Exists("accel_B_m_s2")) rec.accel_B = g.ReadVectors("accel_B_m_s2");
   if (g.Exists("source_columns")) rec.columns = g.ReadStrings("source_columns");
   if (g.Exists("warnings")) rec.warnings = g.ReadStrings("warnings");
+  rec.mounting = g.GetString("mounting").value_or("identity");
   if (g.IsGroup("gaps")) {
     const hdf5::Group gaps = g.OpenGroup("gaps");
     const auto index = gaps.ReadInts("sample_index");
@@ -259,8 +276,14 @@ void WriteSummaryHdf5(const hdf5::Group& root, const CampaignSummary& summary) {
   const hdf5::Group t = s.CreateGroup("trials");
   std::vector<std::string> trial_id, block_id, position, status, message;
   std::vector<double> b1, b2, h, opmf, avrf, lambda;
-  std::vector<std::int64_t> peaks, impacts;
+  std::vector<std::int64_t> peaks, impacts, mounting_estimated;
+  std::vector<std::string> mounting, mounting_status;
+  std::vector<double> mounting_x, mounting_y, mounting_z;
   for (const TrialRow& r : summary.trials) {
+    mounting.push_back(r.mounting), mounting_status.push_back(r.mounting_check.status);
+    mounting_estimated.push_back(r.mounting_check.estimated ? 1 : 0);
+    mounting_x.push_back(r.mounting_check.angles_deg.x()), mounting_y.push_back(r.mounting_check.angles_deg.y());
+    mounting_z.push_back(r.mounting_check.angles_deg.z());
     trial_id.push_back(r.trial_id), block_id.push_back(r.block_id), position.push_back(r.position);
     status.push_back(r.status), message.push_back(r.message);
     b1.push_back(r.b1_m), b2.push_back(r.b2_m), h.push_back(r.h_m);
@@ -280,8 +303,15 @@ void WriteSummaryHdf5(const hdf5::Group& root, const CampaignSummary& summary) {
   t.WriteInts("impacts", impacts, "1");
   t.WriteStrings("status", status);
   t.WriteStrings("message", message);
+  t.WriteStrings("mounting", mounting);
+  t.WriteInts("mounting_estimated", mounting_estimated, "1");
+  t.WriteStrings("mounting_status", mounting_status);
+  t.WriteDoubles("mounting_angle_x_deg", mounting_x, "deg");
+  t.WriteDoubles("mounting_angle_y_deg", mounting_y, "deg");
+  t.WriteDoubles("mounting_angle_z_deg", mounting_z, "deg");
   t.SetString("columns", "trial_id, block_id, position, b1_m, b2_m, h_m, opmf, avrf, lambda_equivalent, "
-                         "avrf_peaks_used, impacts, status, message");
+                         "avrf_peaks_used, impacts, status, message, mounting, mounting_estimated, mounting_status, "
+                         "mounting_angle_x_deg, mounting_angle_y_deg, mounting_angle_z_deg");
 
   const hdf5::Group gr = s.CreateGroup("groups");
   std::vector<std::string> g_block, g_position;
@@ -328,6 +358,12 @@ CampaignSummary ReadSummaryHdf5(const std::filesystem::path& path) {
     const auto b1 = t.ReadDoubles("b1_m"), b2 = t.ReadDoubles("b2_m"), h = t.ReadDoubles("h_m");
     const auto opmf = t.ReadDoubles("opmf"), avrf = t.ReadDoubles("avrf"), lambda = t.ReadDoubles("lambda_equivalent");
     const auto peaks = t.ReadInts("avrf_peaks_used"), impacts = t.ReadInts("impacts");
+    // Files written before the mounting columns existed have none.
+    const auto mounting = t.Exists("mounting") ? t.ReadStrings("mounting") : std::vector<std::string>{};
+    std::vector<std::vector<double>> mounting_angles;
+    for (const char* name : {"mounting_angle_x_deg", "mounting_angle_y_deg", "mounting_angle_z_deg"}) {
+      if (t.Exists(name)) mounting_angles.push_back(t.ReadDoubles(name));
+    }
     const std::size_t n = trial_id.size();
     for (std::size_t size : {block_id.size(), position.size(), status.size(), message.size(), b1.size(), b2.size(),
                              h.size(), opmf.size(), avrf.size(), lambda.size(), peaks.size(), impacts.size()}) {
@@ -341,6 +377,11 @@ CampaignSummary ReadSummaryHdf5(const std::filesystem::path& path) {
       r.opmf = FromStored(opmf[i]), r.avrf = FromStored(avrf[i]), r.lambda_equivalent = FromStored(lambda[i]);
       r.avrf_peaks_used = static_cast<std::size_t>(std::max<std::int64_t>(0, peaks[i]));
       r.impacts = static_cast<std::size_t>(std::max<std::int64_t>(0, impacts[i]));
+      if (mounting.size() == n) r.mounting = mounting[i];
+      if (mounting_angles.size() == 3 && mounting_angles[0].size() == n && mounting_angles[1].size() == n &&
+          mounting_angles[2].size() == n) {
+        r.mounting_check.angles_deg = {mounting_angles[0][i], mounting_angles[1][i], mounting_angles[2][i]};
+      }
       summary.trials.push_back(r);
     }
   }
@@ -372,3 +413,4 @@ CampaignSummary ReadSummaryHdf5(const std::filesystem::path& path) {
 }
 
 }  // namespace rockfit::io
+

@@ -1,5 +1,6 @@
 #include "rockfit/io/csv_export.hpp"
 
+#include <cmath>
 #include <optional>
 #include <set>
 
@@ -66,11 +67,15 @@ void WriteSummaryCsv(const std::filesystem::path& groups_path, const std::filesy
   });
   WriteFileAtomically(trials_path, [&](std::ostream& out) {
     out << "trial_id,block_id,position,b1_m,b2_m,h_m,status,opmf,avrf,lambda_equivalent,avrf_peaks_used,impacts,"
-           "message\n";
+           "message,mounting,mounting_estimated,mounting_angle_x_deg,mounting_angle_y_deg,mounting_angle_z_deg\n";
     for (const TrialRow& t : summary.trials) {
-      out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", Text(t.trial_id), Text(t.block_id),
+      const Eigen::Vector3d& a = t.mounting_check.angles_deg;
+      const auto angle = [](double v) { return std::isfinite(v) ? std::optional<double>(v) : std::nullopt; };
+      out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", Text(t.trial_id), Text(t.block_id),
                          Text(t.position), t.b1_m, t.b2_m, t.h_m, Text(t.status), Number(t.opmf), Number(t.avrf),
-                         Number(t.lambda_equivalent), t.avrf_peaks_used, t.impacts, Text(t.message));
+                         Number(t.lambda_equivalent), t.avrf_peaks_used, t.impacts, Text(t.message), Text(t.mounting),
+                         t.mounting_check.estimated ? 1 : 0, Number(angle(a.x())), Number(angle(a.y())),
+                         Number(angle(a.z())));
     }
   });
 }

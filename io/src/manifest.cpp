@@ -204,7 +204,7 @@ TrialSpec ParseTrial(const Reporter& report, const toml::table& table, std::size
   trial.mounting = OptionalString(report, table, "mounting", what);
   if (!trial.mounting.empty()) {
     try {
-      (void)Mounting::Parse(trial.mounting);
+      (void)MountingOption::Parse(trial.mounting);
     } catch (const InvalidArgument& e) {
       report.Fail(PositionOf(table.get("mounting")->source()), fmt::format("{}: {}", what, e.what()));
     }

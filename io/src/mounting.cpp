@@ -134,4 +134,27 @@ Mounting Mounting::FromRotation(const Eigen::Matrix3d& R_BS) {
   return Mounting(unit, fmt::format("{:.9g},{:.9g},{:.9g},{:.9g}", unit.w(), unit.x(), unit.y(), unit.z()));
 }
 
+MountingOption MountingOption::Parse(std::string_view text) {
+  const std::string_view trimmed = TrimSpaces(text);
+  constexpr std::string_view kAuto = "auto";
+  MountingOption option;
+  if (trimmed.size() >= kAuto.size() && NormalizeHeader(trimmed.substr(0, kAuto.size())) == kAuto) {
+    std::string_view rest = TrimSpaces(trimmed.substr(kAuto.size()));
+    if (!rest.empty() && rest.front() != ':') {
+      Refuse(text, "expected 'auto' or 'auto:SPEC' with SPEC the starting mounting, e.g. 'auto:x,-y,-z'");
+    }
+    if (!rest.empty()) rest.remove_prefix(1);
+    option.estimate = true;
+    option.given = Mounting::Parse(TrimSpaces(rest));
+    return option;
+  }
+  option.given = Mounting::Parse(trimmed);
+  return option;
+}
+
+std::string MountingOption::text() const {
+  if (!estimate) return given.text();
+  return given.is_identity() ? "auto" : "auto:" + given.text();
+}
+
 }  // namespace rockfit::io

@@ -9,6 +9,7 @@
 
 #include "../support/imu_test_files.hpp"
 #include "rockfit/io/load_recording.hpp"
+#include "rockfit/io/mounting_estimate.hpp"
 
 namespace {
 
@@ -51,6 +52,20 @@ void BM_LoadXimuGuiSet(benchmark::State& state, rockfit::io::OrientationChoice o
 BENCHMARK_CAPTURE(BM_LoadXimuGuiSet, euler_45s_256Hz, rockfit::io::OrientationChoice::kEulerAngles)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_LoadXimuGuiSet, quaternion_45s_256Hz, rockfit::io::OrientationChoice::kQuaternion)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_LoadXimuGuiSet, gyro_only_45s_256Hz, rockfit::io::OrientationChoice::kNone)->Unit(benchmark::kMillisecond);
+
+// The mounting estimate alone (run by every load of an IMU recording with an accelerometer) on a bundled 6 s
+// synthetic trial: rest, release, rocking, rest.
+void BM_EstimateMounting(benchmark::State& state) {
+  const rockfit::io::Recording recording =
+      rockfit::io::LoadRecording(std::filesystem::path(ROCKFIT_SOURCE_DIR) / "data-samples/recordings/block2-A-1");
+  for (auto _ : state) {
+    const rockfit::io::MountingEstimate e = rockfit::io::EstimateMounting(recording);
+    benchmark::DoNotOptimize(e.check.angles_deg.data());
+  }
+  state.counters["samples"] = static_cast<double>(recording.size());
+}
+
+BENCHMARK(BM_EstimateMounting)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

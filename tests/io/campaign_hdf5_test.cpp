@@ -130,6 +130,9 @@ TEST(CampaignHdf5, SummaryTablesRoundTripWithMissingValuesAsNaN) {
   a.opmf = 0.05, a.avrf = 0.93, a.lambda_equivalent = 0.8, a.avrf_peaks_used = 10, a.impacts = 30;
   TrialRow b = a;
   b.trial_id = "T2", b.status = "too_few_peaks", b.message = "only 2 peaks", b.avrf.reset(), b.lambda_equivalent.reset();
+  b.mounting = "-x,-y,z";
+  b.mounting_check.status = "ok";
+  b.mounting_check.angles_deg = {0.1, -0.2, 1.5};
   summary.trials = {a, b};
   summary.groups = GroupTrials(summary.trials);
   {
@@ -143,6 +146,10 @@ TEST(CampaignHdf5, SummaryTablesRoundTripWithMissingValuesAsNaN) {
   EXPECT_EQ(back.trials[1].message, "only 2 peaks");
   EXPECT_FALSE(back.trials[1].avrf.has_value());
   EXPECT_DOUBLE_EQ(*back.trials[0].avrf, 0.93);
+  EXPECT_EQ(back.trials[0].mounting, "identity");
+  EXPECT_TRUE(std::isnan(back.trials[0].mounting_check.angles_deg.z()));
+  EXPECT_EQ(back.trials[1].mounting, "-x,-y,z");
+  EXPECT_EQ(back.trials[1].mounting_check.angles_deg, Eigen::Vector3d(0.1, -0.2, 1.5));
   ASSERT_EQ(back.groups.size(), 1u);
   EXPECT_EQ(back.groups[0].n_avrf, 1u);
   EXPECT_FALSE(back.groups[0].avrf_std.has_value());
@@ -227,6 +234,31 @@ TEST(CampaignHdf5, DamagedTrialDataIsBadInputNotACrash) {
 
 namespace rockfit::io {
 namespace {
+
+TEST(CampaignHdf5, TheMountingAndItsEstimateAreStoredWithTheTrial) {
+  const testing::ScratchDir dir("campaign_hdf5");
+  Trial trial = MakeTrial();
+  trial.recording.mounting = "0.999657325,0,0,0.0261769483";
+  MountingCheck& c = trial.recording.mounting_check;
+  c.status = "ok";
+  c.given = "identity";
+  c.estimated = true;
+  c.angles_deg = {0.01, -0.02, 3.0};
+  c.std_error_deg = {0.02, 0.05, 0.03};
+  c.determined = {true, true, true};
+  WriteCampaign(dir / "c.h5", trial);
+  const hdf5::File file = hdf5::File::Open(dir / "c.h5");
+  const hdf5::Group g = file.Root().OpenGroup("trials/B3-A-1");
+  EXPECT_EQ(g.GetString("mounting"), trial.recording.mounting);
+  EXPECT_EQ(g.GetString("mounting_given"), "identity");
+  EXPECT_EQ(g.GetInt("mounting_estimated"), 1);
+  EXPECT_EQ(g.GetString("mounting_status"), "ok");
+  EXPECT_EQ(g.ReadDoubles("mounting_angles_deg"), (std::vector<double>{0.01, -0.02, 3.0}));
+  EXPECT_EQ(g.ReadDoubles("mounting_std_error_deg"), (std::vector<double>{0.02, 0.05, 0.03}));
+  EXPECT_EQ(g.ReadInts("mounting_determined"), (std::vector<std::int64_t>{1, 1, 1}));
+  EXPECT_NEAR(*g.GetDouble("mounting_disagreement_deg"), std::sqrt(0.0001 + 0.0004 + 9.0), 1e-12);
+  EXPECT_EQ(ReadRecordingHdf5(dir / "c.h5", "").mounting, trial.recording.mounting);
+}
 
 TEST(CampaignHdf5, LoadRecordingReadsTheTrialOfAOneTrialFile) {
   const testing::ScratchDir dir("campaign_hdf5");

@@ -68,7 +68,7 @@ TEST(CsvExport, SummaryCsvLeavesMissingValuesEmptyAndQuotesText) {
   std::string header, row;
   std::getline(in, header);
   std::getline(in, row);
-  EXPECT_EQ(row, "T1,B1,A,0,0,0,too_few_peaks,0.05,,,0,0,\"only 2 peaks, need 3\"");
+  EXPECT_EQ(row, "T1,B1,A,0,0,0,too_few_peaks,0.05,,,0,0,\"only 2 peaks, need 3\",identity,0,,,");
   const auto groups = ReadCsv(dir / "g.csv");
   ASSERT_EQ(groups.size(), 2u);
   EXPECT_EQ(groups[1][7], "0.05");  // opmf_mean

@@ -160,6 +160,17 @@ TEST(Manifest, BadMountingIsReportedAtItsPosition) {
   EXPECT_NE(message.find("x,y,-z"), std::string::npos) << message;
 }
 
+TEST(Manifest, AutoMountingIsAcceptedAloneOrWithAStart) {
+  for (const std::string mounting : {"auto", "auto:x,-y,-z"}) {
+    std::string text = kGood;
+    text.replace(text.find("mounting = \"x,-y,-z\""), 20, "mounting = \"" + mounting + "\"");
+    EXPECT_EQ(ParseManifest(text, "/campaign/m.toml").FindTrial("B3-A-1").mounting, mounting);
+  }
+  std::string mirrored = kGood;
+  mirrored.replace(mirrored.find("mounting = \"x,-y,-z\""), 20, "mounting = \"auto:x,y,-z\"");
+  EXPECT_NE(ErrorOf(mirrored).find("m.toml:22:12:"), std::string::npos) << ErrorOf(mirrored);
+}
+
 TEST(Manifest, CsvIsAcceptedAsTheGenericCsvFormat) {
   std::string text = kGood;
   text.replace(text.find("format = \"ximu3\""), 16, "format = \"csv\"");

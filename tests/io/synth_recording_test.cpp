@@ -164,7 +164,8 @@ TEST(SynthRecording, ReadersUndoTheMountingOfAnUpsideDownAndATurnedSensor) {
 
 TEST(SynthRecording, ReadersAcceptAHalfRateOrientationStream) { ExpectReadBackEqualsTruth("x,y,z", 128.0); }
 
-// The bundled campaign: every trial loads as the device's files do, rate from the registers, no repair.
+// The bundled campaign: every trial loads as the device's files do, rate from the registers, no repair, and its
+// mounting agrees with the data.
 TEST(SynthRecording, EveryBundledSampleLoadsWithoutWarningWithTheRegisterRate) {
   const fs::path recordings = rockfit::testing::SourceDir() / "data-samples" / "recordings";
   std::size_t trials = 0;
@@ -175,7 +176,9 @@ TEST(SynthRecording, EveryBundledSampleLoadsWithoutWarningWithTheRegisterRate) {
     const fs::path prefix = recordings / name.substr(0, name.size() - suffix.size());
     std::ifstream in(entry.path());
     const nlohmann::json truth = nlohmann::json::parse(in);
-    const Recording rec = LoadRecording(prefix);
+    LoadOptions options;  // the mounting the trial was made with, as the manifest gives it
+    options.mounting = Mounting::Parse(truth["mounting"]["text"].get<std::string>());
+    const Recording rec = LoadRecording(prefix, options);
     EXPECT_EQ(rec.rate_source, "registers") << prefix;
     EXPECT_EQ(rec.rate_hz, 256.0) << prefix;
     EXPECT_TRUE(rec.warnings.empty()) << prefix << ": " << rec.warnings.front();

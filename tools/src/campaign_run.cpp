@@ -20,7 +20,10 @@ CampaignRun RunCampaign(const io::Manifest& manifest, const io::MetricsOptions& 
       ++run.load_errors;
       continue;
     }
-    run.summary.trials.push_back(io::MakeTrialRow(trial, block, metrics));
+    io::TrialRow row = io::MakeTrialRow(trial, block, metrics);
+    row.mounting = recording.mounting;
+    row.mounting_check = recording.mounting_check;
+    run.summary.trials.push_back(std::move(row));
     if (on_trial) on_trial(trial, block, recording, metrics);
   }
   run.summary.groups = io::GroupTrials(run.summary.trials);

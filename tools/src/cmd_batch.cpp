@@ -20,12 +20,14 @@
 #include "cli_common.hpp"
 #include "command_registry.hpp"
 #include "fit_setup.hpp"
+#include "mounting_report.hpp"
 #include "recording_input.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/fitting/fitter.hpp"
 #include "rockfit/io/campaign_hdf5.hpp"
 #include "rockfit/io/hdf5_transaction.hpp"
 #include "rockfit/io/manifest.hpp"
+#include "rockfit/io/mounting_estimate.hpp"
 
 namespace rockfit::tools {
 namespace {
@@ -47,6 +49,9 @@ struct TrialOutcome {
   std::string message;
   double epsilon_rad_s = std::nan("");
   double wall_s = 0.0;
+  std::string mounting;  // applied
+  double mounting_disagreement_deg = std::nan("");
+  std::string mounting_warning;
 };
 
 const char* const kSummaryParameters[] = {"t0", "alpha", "lambda", "lambda_lat", "lambda_lon", "tau_edge"};
@@ -56,7 +61,8 @@ const char* const kSummaryParameters[] = {"t0", "alpha", "lambda", "lambda_lat",
 void WriteFitSummaryTables(const io::hdf5::Group& root) {
   std::vector<std::string> trials, blocks, positions;
   std::map<std::string, std::vector<double>> columns;
-  std::vector<double> epsilon, wall;
+  std::vector<double> epsilon, wall, mounting_x, mounting_y, mounting_z;
+  std::vector<std::string> mounting;
   std::vector<std::int64_t> simulations;
   const io::hdf5::Group fits = root.OpenGroup("fits");
   for (const std::string& id : fits.Children()) {
@@ -73,6 +79,12 @@ void WriteFitSummaryTables(const io::hdf5::Group& root) {
     epsilon.push_back(g.GetDouble("epsilon_rad_s").value_or(std::nan("")));
     wall.push_back(g.GetDouble("wall_s").value_or(std::nan("")));
     simulations.push_back(g.GetInt("simulations").value_or(0));
+    mounting.push_back(g.GetString("mounting").value_or(""));
+    const std::vector<double> angles =
+        g.Exists("mounting_angles_deg") ? g.ReadDoubles("mounting_angles_deg") : std::vector<double>{};
+    mounting_x.push_back(angles.size() == 3 ? angles[0] : std::nan(""));
+    mounting_y.push_back(angles.size() == 3 ? angles[1] : std::nan(""));
+    mounting_z.push_back(angles.size() == 3 ? angles[2] : std::nan(""));
   }
   const io::hdf5::Group t = root.CreateGroup("summary/fits/per_trial");
   t.WriteStrings("trial", trials);
@@ -84,6 +96,10 @@ void WriteFitSummaryTables(const io::hdf5::Group& root) {
   t.WriteDoubles("epsilon_rad_s", epsilon, "rad/s");
   t.WriteDoubles("wall_s", wall, "s");
   t.WriteInts("simulations", simulations, "1");
+  t.WriteStrings("mounting", mounting);
+  t.WriteDoubles("mounting_angle_x_deg", mounting_x, "deg");
+  t.WriteDoubles("mounting_angle_y_deg", mounting_y, "deg");
+  t.WriteDoubles("mounting_angle_z_deg", mounting_z, "deg");
 
   std::map<std::pair<std::string, std::string>, std::vector<std::size_t>> groups;
   for (std::size_t i = 0; i < trials.size(); ++i) groups[{blocks[i], positions[i]}].push_back(i);
@@ -190,6 +206,9 @@ int RunBatch(const BatchCommand& cmd) {
           o.ok = o.skipped = true;
         } else {
           const io::Recording recording = LoadManifestTrial(spec);
+          o.mounting = recording.mounting;
+          o.mounting_disagreement_deg = io::MountingDisagreementDeg(recording.mounting_check);
+          o.mounting_warning = recording.mounting_check.warning;
           const PreparedFit prepared = PrepareFit(recording, block, fit_args);
           const fitting::FitSummary summary = fitting::Fit(prepared.objective, prepared.start, prepared.options);
           o.epsilon_rad_s = summary.epsilon_rad_s;
@@ -203,6 +222,7 @@ int RunBatch(const BatchCommand& cmd) {
           io::hdf5::Transaction tx(cmd.output, {"/fits/" + o.trial, "/summary/fits"});
           io::WriteFileAttributes(tx.Root(), ROCKFIT_VERSION);
           WriteFitGroup(tx.Root(), o.trial, {spec.block_id, spec.position, spec.notes}, prepared, summary);
+          io::WriteMountingHdf5(tx.Root().OpenGroup("fits/" + o.trial), recording);
           WriteFitSummaryTables(tx.Root());
           tx.Commit();
         }
@@ -244,6 +264,8 @@ int RunBatch(const BatchCommand& cmd) {
                       {"skipped", o.skipped},
                       {"epsilon", std::isfinite(o.epsilon_rad_s) ? nlohmann::json(o.epsilon_rad_s) : nlohmann::json()},
                       {"wall_s", o.wall_s},
+                      {"mounting", o.mounting},
+                      {"mounting_disagreement_deg", OrNull(o.mounting_disagreement_deg)},
                       {"message", o.message}});
   }
   if (cmd.json) {
@@ -252,6 +274,9 @@ int RunBatch(const BatchCommand& cmd) {
   } else {
     std::cout << fmt::format("{} trials: {} fitted, {} skipped (already in {} with the same settings), {} failed\n", n,
                              n - failed - skipped, skipped, cmd.output, failed);
+  }
+  for (const TrialOutcome& o : outcomes) {
+    if (!o.mounting_warning.empty()) std::cerr << "rockfit: warning: " << o.trial << ": " << o.mounting_warning << "\n";
   }
   if (failed > 0) {
     std::cerr << fmt::format("rockfit: {} trial(s) failed:\n", failed);

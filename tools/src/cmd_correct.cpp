@@ -10,6 +10,7 @@
 #include "command_registry.hpp"
 #include "metrics_options.hpp"
 #include "output_kind.hpp"
+#include "mounting_report.hpp"
 #include "recording_input.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/campaign_hdf5.hpp"
@@ -37,6 +38,7 @@ int RunCorrect(const CorrectCommand& cmd) {
   const OutputKind kind = OutputKindFor(cmd.output);
   const io::MetricsOptions options = MakeMetricsOptions(cmd.metrics);
   const TrialInput input = LoadTrialInput(cmd.input);
+  PrintMountingWarning(input.recording);
   std::optional<core::Block> block = MakeOptionalBlock(cmd.block);
   std::string block_id = cmd.block.block_id;
   if (!block && input.manifest_block) {

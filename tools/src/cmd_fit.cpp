@@ -7,6 +7,7 @@
 #include "cli_common.hpp"
 #include "command_registry.hpp"
 #include "fit_setup.hpp"
+#include "mounting_report.hpp"
 #include "plot_fit.hpp"
 #include "recording_input.hpp"
 #include "rockfit/core/errors.hpp"
@@ -81,6 +82,7 @@ int RunEvaluate(const FitCommand& cmd, const TrialInput& input, const PreparedFi
 int RunFit(const FitCommand& cmd) {
   MakeParameterSet(cmd.fit);  // option errors (exit 1) before reading the recording
   const TrialInput input = LoadTrialInput(cmd.input);
+  PrintMountingWarning(input.recording);
   const core::Block block = BlockFor(cmd, input);
   const PreparedFit prepared = PrepareFit(input.recording, block, cmd.fit);
   if (cmd.evaluate) return RunEvaluate(cmd, input, prepared);
@@ -91,6 +93,7 @@ int RunFit(const FitCommand& cmd) {
     io::hdf5::Transaction tx(cmd.output, {"/fits/" + trial});
     io::WriteFileAttributes(tx.Root(), ROCKFIT_VERSION);
     WriteFitGroup(tx.Root(), trial, input.labels, prepared, summary);
+    io::WriteMountingHdf5(tx.Root().OpenGroup("fits/" + trial), input.recording);
     tx.Commit();
   }
   if (!cmd.plot.empty()) {
@@ -110,8 +113,11 @@ int RunFit(const FitCommand& cmd) {
     RenderFitPlot(data, cmd.plot, 1200, 900);
   }
   if (cmd.json) {
-    PrintJson(FitResultJson(trial, summary));
+    nlohmann::json out = FitResultJson(trial, summary);
+    out["mounting"] = MountingJson(input.recording);
+    PrintJson(out);
   } else {
+    std::cout << "mounting     " << MountingText(input.recording) << "\n";
     for (const std::string& note : prepared.notes) std::cout << "estimate     " << note << "\n";
     std::cout << FitResultTable(trial, summary);
   }

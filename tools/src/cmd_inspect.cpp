@@ -9,6 +9,8 @@
 
 #include "cli_common.hpp"
 #include "command_registry.hpp"
+#include "mounting_report.hpp"
+#include "recording_input.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/load_recording.hpp"
 #include "rockfit/io/units.hpp"
@@ -60,7 +62,11 @@ std::string RateSourceText(const std::string& source) {
 io::LoadOptions MakeOptions(const InspectCommand& cmd) {
   io::LoadOptions options;
   options.rate_hz = cmd.rate_hz;
-  if (!cmd.mounting.empty()) options.mounting = io::Mounting::Parse(cmd.mounting);
+  if (!cmd.mounting.empty()) {
+    const io::MountingOption option = io::MountingOption::Parse(cmd.mounting);
+    options.mounting = option.given;
+    options.estimate_mounting = option.estimate;
+  }
   const auto orientation = io::ParseOrientationChoice(cmd.orientation);
   if (!orientation) throw InvalidArgument("--orientation must be auto, euler, quaternion, matrix or none, got '" + cmd.orientation + "'");
   options.orientation = *orientation;
@@ -91,6 +97,7 @@ void PrintJsonSummary(const io::Recording& r) {
   out["orientation_source"] = r.orientation_source;
   out["orientation_rate_hz"] = r.orientation_rate_hz;
   out["mounting"] = r.mounting;
+  out["mounting_check"] = MountingJson(r);
   nlohmann::json ranges = nlohmann::json::object();
   ranges["w_B_rad_s"] = RangesJson(r.w_B, {"x", "y", "z"});
   if (r.has_euler()) ranges["euler_zyx_rad"] = RangesJson(r.euler_zyx, {"phi_z", "phi_y", "phi_x"});
@@ -110,7 +117,7 @@ void PrintText(const io::Recording& r) {
   } else {
     std::cout << "attitude     none\n";
   }
-  std::cout << fmt::format("mounting     {}\n", r.mounting);
+  std::cout << fmt::format("mounting     {}\n", MountingText(r));
   if (r.gaps.empty()) {
     std::cout << "gaps         none\n";
   } else {
@@ -179,8 +186,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   app->add_option("PATH", cmd->path, "Recording: x-IMU prefix or file, x-IMU3 directory, or CSV file")->required();
   app->add_option("--rate", cmd->rate_hz, "Gyro sample rate [Hz] when the files do not state it (x-IMU without _Registers.csv)");
   app->add_option("--mounting", cmd->mounting,
-                  "Sensor axes on the block: a permutation with signs 'x,-y,-z' (entry i = sensor axis along block "
-                  "axis i) or a unit quaternion 'w,x,y,z' (q_BS). Default: identity");
+                  kMountingHelp);
   app->add_option("--orientation", cmd->orientation, "Attitude source: auto, euler, quaternion, matrix or none")
       ->capture_default_str();
   app->add_option("--format", cmd->format, "Force a format: auto, ximu-gui, ximu3, csv, rockfit-hdf5")->capture_default_str();
@@ -189,7 +195,9 @@ const CommandRegistration kRegistration([](CLI::App& root) {
                   "(units: s|ms|us, deg/s|rad/s, deg|rad, g|m/s^2; '@unit' may be left out when the header ends in '(unit)')");
   app->add_flag("--json", cmd->json,
                 "Print one JSON object: format, source, rate_hz, rate_source, samples, duration_s, columns, gaps, "
-                "warnings, orientation_source, orientation_rate_hz, mounting, ranges (min/max per channel, SI units)");
+                "warnings, orientation_source, orientation_rate_hz, mounting, mounting_check (applied, given, estimated, status, "
+                "message, angles_deg, std_error_deg, determined, disagreement_deg, release_tilt_rad, warning), ranges "
+                "(min/max per channel, SI units)");
   app->callback([cmd] { SetExitCode(RunInspect(*cmd)); });
 });
 

@@ -6,6 +6,7 @@
 #include "cli_common.hpp"
 #include "command_registry.hpp"
 #include "metrics_options.hpp"
+#include "mounting_report.hpp"
 #include "recording_input.hpp"
 #include "rockfit/core/errors.hpp"
 
@@ -68,6 +69,7 @@ int RunMetrics(const MetricsCommand& cmd) {
     out["phi_x_anchor_times"] = x_anchor_times;
     out["uplift_formula"] = io::ToString(options.avrf.uplift);
     out["anchor_method"] = io::ToString(options.correction.anchor_method);
+    out["mounting"] = MountingJson(rec);
     out["block"] = {{"b1", block->b1()}, {"b2", block->b2()}, {"h", block->h()}, {"mass", block->mass()}};
     out["warnings"] = m.correction.warnings;
     out["units"] = {{"rate_hz", "Hz"},         {"max_abs_phi_x", "rad"},   {"max_abs_phi_y", "rad"},
@@ -78,6 +80,7 @@ int RunMetrics(const MetricsCommand& cmd) {
   } else {
     std::cout << fmt::format("trial      {}  ({}, {} Hz, {} samples, {:.2f} s)\n", input.trial_id, rec.source,
                              rec.rate_hz, rec.size(), rec.duration_s());
+    std::cout << "mounting   " << MountingText(rec) << "\n";
     if (!impact_times.empty()) {
       std::cout << fmt::format("impacts    {} (first {:.3f} s, last {:.3f} s); φx anchored at {} ({} from |ω_x| peaks)\n",
                                impact_times.size(), impact_times.front(), impact_times.back(), x_anchor_times.size(),
@@ -101,6 +104,7 @@ int RunMetrics(const MetricsCommand& cmd) {
     }
     std::cout << "status     " << m.status << (m.message.empty() ? "" : ": " + m.message) << "\n";
   }
+  PrintMountingWarning(rec);
   for (const std::string& w : m.correction.warnings) std::cerr << "rockfit: warning: " << w << "\n";
   if (exit_code != kExitOk) {
     std::cerr << "rockfit: " << m.message
@@ -124,7 +128,8 @@ const CommandRegistration kRegistration([](CLI::App& root) {
                 "Print one JSON object: opmf, avrf, avrf_ratios, avrf_peaks_used, lambda_equivalent, impact_times, "
                 "status (ok, no_impact, no_in_plane_motion, too_few_peaks, invalid_uplift), message, opmf_status, "
                 "avrf_status, max_abs_phi_x, max_abs_phi_y, avrf_peak_times, avrf_peak_angles, phi_x_anchor_times, "
-                "trial, source, format, rate_hz, samples, uplift_formula, anchor_method, block, warnings, units; "
+                "trial, source, format, rate_hz, samples, uplift_formula, anchor_method, block, mounting (as `inspect --json` "
+                "mounting_check), warnings, units; "
                 "missing values are null");
   app->footer("Exit codes: 0 both metrics computed; 1 bad arguments; 2 unreadable recording or manifest; 3 a metric "
               "has no value (the status says why; the output is still printed).");

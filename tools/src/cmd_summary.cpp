@@ -35,13 +35,22 @@ std::string MeanStd(const std::optional<double>& mean, const std::optional<doubl
   return fmt::format("{:.4f} ± {} ({})", *mean, stdev ? fmt::format("{:.4f}", *stdev) : std::string("—"), n);
 }
 
+// "x,y,z  +0.01 -0.02 +3.00", "auto  +0.01 -0.02 +3.00" (the estimate applied), "x,y,z  —" without an estimate.
+std::string MountingCell(const io::TrialRow& t) {
+  const io::MountingCheck& c = t.mounting_check;
+  const std::string name = c.estimated ? std::string("auto") : t.mounting;
+  if (!c.has_estimate()) return name + "  —";
+  return fmt::format("{}  {:+.2f} {:+.2f} {:+.2f}{}", name, c.angles_deg.x(), c.angles_deg.y(), c.angles_deg.z(),
+                     c.warning.empty() ? "" : "  !");
+}
+
 void PrintTables(const io::CampaignSummary& s) {
-  std::cout << fmt::format("{:<16} {:<8} {:<4} {:<15} {:>7} {:>7} {:>7} {:>5}\n", "trial", "block", "pos", "status",
-                           "OPMF", "AVRF", "λ (6)", "peaks");
+  std::cout << fmt::format("{:<16} {:<8} {:<4} {:<15} {:>7} {:>7} {:>7} {:>5}  {}\n", "trial", "block", "pos",
+                           "status", "OPMF", "AVRF", "λ (6)", "peaks", "mounting (data vs given: x, y, z [°])");
   for (const io::TrialRow& t : s.trials) {
-    std::cout << fmt::format("{:<16} {:<8} {:<4} {:<15} {:>7} {:>7} {:>7} {:>5}\n", t.trial_id, t.block_id,
+    std::cout << fmt::format("{:<16} {:<8} {:<4} {:<15} {:>7} {:>7} {:>7} {:>5}  {}\n", t.trial_id, t.block_id,
                              t.position, t.status, Cell(t.opmf, 4), Cell(t.avrf, 4), Cell(t.lambda_equivalent, 3),
-                             t.avrf_peaks_used);
+                             t.avrf_peaks_used, MountingCell(t));
   }
   std::cout << "\n"
             << fmt::format("{:<8} {:<4} {:>7} {:>3}  {:<26} {:<26}\n", "block", "pos", "b2 [m]", "n",
@@ -99,7 +108,13 @@ int RunSummary(const SummaryCommand& cmd) {
                                {"b1", t.b1_m}, {"b2", t.b2_m}, {"h", t.h_m}, {"status", t.status},
                                {"message", t.message}, {"opmf", OrNull(t.opmf)}, {"avrf", OrNull(t.avrf)},
                                {"lambda_equivalent", OrNull(t.lambda_equivalent)},
-                               {"avrf_peaks_used", t.avrf_peaks_used}, {"impacts", t.impacts}});
+                               {"avrf_peaks_used", t.avrf_peaks_used}, {"impacts", t.impacts},
+                               {"mounting", t.mounting}, {"mounting_estimated", t.mounting_check.estimated},
+                               {"mounting_status", t.mounting_check.status},
+                               {"mounting_angles_deg",
+                                {OrNull(t.mounting_check.angles_deg.x()), OrNull(t.mounting_check.angles_deg.y()),
+                                 OrNull(t.mounting_check.angles_deg.z())}},
+                               {"mounting_warning", t.mounting_check.warning}});
     }
     out["groups"] = nlohmann::json::array();
     for (const io::GroupRow& g : run.summary.groups) {
@@ -114,6 +129,11 @@ int RunSummary(const SummaryCommand& cmd) {
   } else {
     PrintTables(run.summary);
     for (const auto& path : written) std::cout << "written " << path << "\n";
+  }
+  for (const io::TrialRow& t : run.summary.trials) {
+    if (!t.mounting_check.warning.empty()) {
+      std::cerr << "rockfit: warning: trial " << t.trial_id << ": " << t.mounting_check.warning << "\n";
+    }
   }
   if (run.load_errors > 0) {
     for (const io::TrialRow& t : run.summary.trials) {
@@ -141,7 +161,8 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   AddMetricsOptions(*app, cmd->metrics);
   app->add_flag("--json", cmd->json,
                 "Print one JSON object: manifest, outputs, load_errors, trials (trial_id, block_id, position, b1, b2, h, "
-                "status, message, opmf, avrf, lambda_equivalent, avrf_peaks_used, impacts), groups (block_id, "
+                "status, message, opmf, avrf, lambda_equivalent, avrf_peaks_used, impacts, mounting, mounting_estimated, "
+                "mounting_status, mounting_angles_deg, mounting_warning), groups (block_id, "
                 "position, b1, b2, h, n_trials, n_opmf, opmf_mean, opmf_std, n_avrf, avrf_mean, avrf_std), units; "
                 "missing values are null");
   app->footer("Exit codes: 0 every trial was read (their metric statuses are in the table); 1 bad arguments; 2 bad "

@@ -38,7 +38,11 @@ io::LoadOptions MakeLoadOptions(const std::string& format, const std::optional<d
   options.format = *parsed_format;
   options.rate_hz = rate_hz;
   options.rate_origin = rate_origin;
-  if (!mounting.empty()) options.mounting = io::Mounting::Parse(mounting);
+  if (!mounting.empty()) {
+    const io::MountingOption option = io::MountingOption::Parse(mounting);
+    options.mounting = option.given;
+    options.estimate_mounting = option.estimate;
+  }
   if (!columns.empty()) options.columns = io::ColumnMap::Parse(columns);
   const auto parsed_orientation = io::ParseOrientationChoice(orientation);
   if (!parsed_orientation || *parsed_orientation == io::OrientationChoice::kNone) {
@@ -65,8 +69,7 @@ void AddRecordingOptions(CLI::App& app, RecordingArgs& args) {
   app.add_option("--rate", args.rate_hz, "Gyro sample rate [Hz] when the files do not state it (x-IMU without "
                  "_Registers.csv, CSV without time)")->group("Input");
   app.add_option("--mounting", args.mounting,
-                 "Sensor axes on the block: a permutation with signs 'x,-y,-z' (entry i = sensor axis along block axis "
-                 "i) or a unit quaternion 'w,x,y,z' (q_BS). Default: identity")
+                 kMountingHelp)
       ->group("Input");
   app.add_option("--columns", args.columns,
                  "Generic CSV column map, e.g. 'time=NAME@s;gyro=X,Y,Z@deg/s;euler=ROLL,PITCH,YAW@deg' (see `rockfit "

@@ -14,6 +14,13 @@
 
 namespace rockfit::tools {
 
+// Help text of --mounting (inspect, metrics, correct, fit, plot euler).
+inline constexpr const char* kMountingHelp =
+    "Sensor axes on the block: a permutation with signs 'x,-y,-z' (entry i = sensor axis along block axis i), a "
+    "unit quaternion 'w,x,y,z' (q_BS), or 'auto' / 'auto:SPEC' to estimate the mounting from the recording (rest "
+    "before the release, phase 1, rest after the rocking) starting at SPEC. Default: identity, checked against the "
+    "data (a warning beyond 1°)";
+
 struct RecordingArgs {
   std::string path;
   std::string trial_id;  // --trial: a trial of a manifest (PATH.toml) or of a rockfit HDF5 file

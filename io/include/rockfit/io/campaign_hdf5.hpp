@@ -44,6 +44,13 @@ struct TrialLabels {
 void WriteTrialHdf5(const hdf5::Group& root, const std::string& trial_id, const TrialLabels& labels,
                     const Recording& recording, const MetricsSummary& metrics, const MetricsOptions& options);
 
+// The mounting of a recording on `group` (/trials/<id> and /fits/<id>): attributes mounting (applied, text),
+// mounting_given, mounting_estimated (1 for --mounting auto), mounting_status, mounting_message,
+// mounting_warning, mounting_disagreement_deg; datasets mounting_angles_deg and mounting_std_error_deg (3: about
+// block x, y, z, the rotation from the given mounting to the data's, NaN without an estimate) and
+// mounting_determined (3, 1 where the data fix that angle).
+void WriteMountingHdf5(const hdf5::Group& group, const Recording& recording);
+
 // A trial read back.
 struct StoredTrial {
   std::string id;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "rockfit/io/manifest.hpp"
+#include "rockfit/io/recording.hpp"
 #include "rockfit/io/trial_metrics.hpp"
 
 namespace rockfit::io {
@@ -24,6 +25,8 @@ struct TrialRow {
   std::optional<double> lambda_equivalent;
   std::size_t avrf_peaks_used = 0;
   std::size_t impacts = 0;
+  std::string mounting = "identity";  // the mounting applied (Recording::mounting)
+  MountingCheck mounting_check;       // what the data say about it (Recording::mounting_check)
 };
 
 struct GroupRow {

@@ -41,6 +41,10 @@ struct LoadOptions {
   // How rate_hz was given: "option" (--rate) or "manifest"; reported as Recording::rate_source.
   std::string rate_origin = "option";
   Mounting mounting;                 // sensor → block; identity by default
+  // "--mounting auto": estimate the mounting from the recording (mounting_estimate.hpp), starting at `mounting`,
+  // and read the recording again with the estimate. Without it the estimate only checks `mounting` (a warning
+  // beyond kMountingWarningDeg).
+  bool estimate_mounting = false;
   std::optional<ColumnMap> columns;  // generic CSV; detected from x-io style headers when absent
   OrientationChoice orientation = OrientationChoice::kAuto;
   RecordingFormat format = RecordingFormat::kAuto;

@@ -9,6 +9,8 @@
 //  * a unit quaternion "w,x,y,z" = q_BS (scalar first, Hamilton); a norm within 1e-3 of 1 is
 //    normalised, anything else is refused.
 //  * "identity" or "" (the default): sensor axes are block axes.
+// A mounting *option* (MountingOption) may also be "auto" or "auto:SPEC": estimate the mounting from the
+// recording (mounting_estimate.hpp), starting at SPEC (identity without it).
 #pragma once
 
 #include <string>
@@ -45,6 +47,18 @@ class Mounting {
 
   Eigen::Quaterniond q_BS_ = Eigen::Quaterniond::Identity();
   std::string text_ = "identity";
+};
+
+// What --mounting and the manifest's `mounting` say: a mounting, and whether to estimate it from the data
+// starting there ("auto", "auto:x,-y,-z", "auto:0.999,0,0,0.0436").
+struct MountingOption {
+  Mounting given;         // the mounting as given (identity for plain "auto")
+  bool estimate = false;  // "auto": the readers estimate the mounting from the recording, starting at `given`
+
+  // Throws InvalidArgument like Mounting::Parse.
+  static MountingOption Parse(std::string_view text);
+  // "auto", "auto:SPEC" or the mounting's canonical text.
+  std::string text() const;
 };
 
 }  // namespace rockfit::io

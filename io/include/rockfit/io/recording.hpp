@@ -1,7 +1,9 @@
 // A Recording: uniform-time IMU samples of one trial, in SI units and the block frame (DESIGN §5).
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,23 @@ struct Gap {
   double t_s = 0.0;          // time of that sample [s]
   double duration_s = 0.0;   // time to the next sample [s]
   std::size_t missing = 0;   // samples missing at the nominal rate
+};
+
+// What the recording says about the mounting (mounting_estimate.hpp), filled by LoadRecording for IMU files
+// with an accelerometer. The angles are the rotation vector, in degrees and block axes, that turns the given
+// mounting into the one the data show (R_BS = Rot(angles)·R_BS,given): zero when they agree.
+struct MountingCheck {
+  std::string status = "not_checked";  // "ok", "partial", "no_accelerometer", "no_release", "no_rest", "not_checked"
+  std::string message;                 // what the data could not fix, or why there is no estimate
+  std::string given = "identity";      // the mounting given (Mounting::text()), the estimate's starting point
+  bool estimated = false;              // --mounting auto: Recording::mounting is the estimate
+  Eigen::Vector3d angles_deg = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Vector3d std_error_deg = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  std::array<bool, 3> determined{false, false, false};  // per block axis: the data fix that angle
+  double release_tilt_rad = std::numeric_limits<double>::quiet_NaN();  // α at rest from the accelerometer
+  std::string warning;  // set when the data disagree with a mounting that was given (not estimated)
+
+  bool has_estimate() const { return status == "ok" || status == "partial"; }
 };
 
 struct Recording {
@@ -31,6 +50,7 @@ struct Recording {
   std::string orientation_source;  // file(s) the attitude was read from; empty without attitude
   double orientation_rate_hz = 0.0;  // rate of those files before resampling onto t_s; 0 without attitude
   std::string mounting = "identity";  // the sensor→block mounting R_BS that was applied (Mounting::text())
+  MountingCheck mounting_check;       // the data's view of the mounting
 
   std::vector<std::string> columns;   // source columns that were read, as "file: header"
   std::vector<Gap> gaps;              // dropped samples

@@ -1,0 +1,77 @@
+// The sensor's mounting on the block estimated from the recording itself (io/README.md, "Mounting estimate").
+// A hand-glued IMU sits a few degrees off the block's axes; three facts of every release fix how much:
+//
+//  * rest before the release: the block leans on its release edge V1V2 at the tilt α about y (φy = −α), so
+//    the accelerometer reads g·(sin α, 0, cos α) in block axes: no y component;
+//  * phase 1 (release to the first impact): the block turns about the release edge, w_B = (0, ω, 0), ω > 0;
+//  * rest after the rocking: the block stands flat, the accelerometer reads g·(0, 0, 1).
+//
+// The recording is in the axes B' of the given mounting. With R = R_B'B (block axes → given axes) the three
+// clues are R·(sin α, 0, cos α) = a_rest, R·e_y = axis of phase 1, R·e_z = a_final (directions). They are
+// solved by weighted least squares over R and α (Gauss–Newton on R = R0·Exp(θ)), each clue weighted by its
+// measured scatter, with a weak prior on θ. Rest before the release and phase 1 fix the rotations about x and
+// z; the rotation about y looks like a change of α there and is fixed only by the final rest (or stays at
+// the given mounting, status "partial", with the reason in the message).
+#pragma once
+
+#include <cstddef>
+
+#include <Eigen/Core>
+
+#include "rockfit/io/mounting.hpp"
+#include "rockfit/io/recording.hpp"
+
+namespace rockfit::io {
+
+struct MountingEstimateOptions {
+  // At rest when |ω − bias| stays below this. 0.03 rad/s ≈ 1.7 °/s: ten times the gyro noise of an x-IMU at
+  // rest; a block of the paper (b1 = 5 cm, h = 20 cm, α = 0.8 θc) passes it about 20 ms after its release.
+  double rest_rate_rad_s = 0.03;
+  // Samples this close to the release or to the last motion are not counted as rest (hand, ringing).
+  double rest_margin_s = 0.05;
+  // Shortest usable rest before the release or after the rocking: 50 samples at 256 Hz.
+  double min_rest_s = 0.2;
+  // Phase 1 is the samples before the first impact with |ω| ≥ this fraction of the landing rate (smaller rates
+  // are dominated by noise in their direction).
+  double phase1_min_fraction = 0.2;
+  // The first impact is the first local maximum of |ω| of at least this fraction of the largest.
+  double first_impact_fraction = 0.5;
+  // σ of the prior on each angle about the starting mounting [deg]: weak against any data clue.
+  double prior_deg = 10.0;
+  // An angle whose standard error exceeds this [deg] is not determined by the data.
+  double undetermined_std_deg = 1.0;
+  // Per-clue floor on the direction uncertainty [deg]: accelerometer calibration and the gyro's axis
+  // alignment are good to about this on the x-IMU.
+  double direction_floor_deg = 0.02;
+  // Throws InvalidArgument naming the bad option.
+  void Validate() const;
+};
+
+struct MountingEstimate {
+  MountingCheck check;         // status, angles, standard errors, which angles are determined, α at rest
+  Eigen::Matrix3d R_BBg = Eigen::Matrix3d::Identity();  // block axes from the given mounting's axes
+  std::size_t rest_before_samples = 0;
+  std::size_t phase1_samples = 0;
+  std::size_t rest_after_samples = 0;
+  Eigen::Vector3d gyro_bias_rad_s = Eigen::Vector3d::Zero();  // measured at rest before the release (given axes)
+};
+
+// The estimate from a recording read with the given mounting (its accel_B and w_B are in the given axes).
+// Never throws for data it cannot use: the status says why ("no_accelerometer", "no_release", "no_rest").
+MountingEstimate EstimateMounting(const Recording& recording, const MountingEstimateOptions& options = {});
+
+// The mounting the estimate shows: R_BS = R_BBg·R_BS,given.
+Mounting CorrectedMounting(const Mounting& given, const MountingEstimate& estimate);
+
+// Total disagreement [deg] between the data and the given mounting over the determined angles (the norm of
+// those rotation-vector components); NaN without an estimate.
+double MountingDisagreementDeg(const MountingCheck& check);
+
+// The data disagree with a given mounting by more than this: the warning says by how much and how to fix it.
+// 1° of yaw mixes 1.7 % of φy into φx, a tenth of the smallest OPMF of the paper's blocks.
+inline constexpr double kMountingWarningDeg = 1.0;
+
+// The warning for a given (not estimated) mounting, or "" when the data agree within kMountingWarningDeg.
+std::string MountingWarning(const MountingCheck& check, const Mounting& suggested);
+
+}  // namespace rockfit::io

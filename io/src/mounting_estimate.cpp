@@ -1,0 +1,366 @@
+#include "rockfit/io/mounting_estimate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include "rockfit/core/errors.hpp"
+#include "rockfit/io/units.hpp"
+
+namespace rockfit::io {
+namespace {
+
+constexpr double kDegPerRad = 1.0 / kRadPerDeg;
+constexpr const char* kAxisNames[3] = {"x", "y", "z"};
+
+Eigen::Matrix3d Exp(const Eigen::Vector3d& theta) {
+  const double angle = theta.norm();
+  if (angle == 0.0) return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(angle, theta / angle).toRotationMatrix();
+}
+
+Eigen::Vector3d Log(const Eigen::Matrix3d& R) {
+  const Eigen::AngleAxisd aa(R);
+  return aa.angle() * aa.axis();
+}
+
+Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d S;
+  S << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return S;
+}
+
+// A direction measured in the given axes with its standard error [rad].
+struct Clue {
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();
+  double sigma_rad = 0.0;
+};
+
+// Samples [begin, end).
+struct Stretch {
+  std::size_t begin = 0;
+  std::size_t end = 0;
+  std::size_t size() const { return end > begin ? end - begin : 0; }
+};
+
+double Median(std::vector<double> values) {
+  const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), mid, values.end());
+  return *mid;
+}
+
+// The mean specific force over a stretch at rest as a direction, its scatter giving the standard error.
+Clue RestClue(const std::vector<Eigen::Vector3d>& accel, const Stretch& s, double floor_rad) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (std::size_t k = s.begin; k < s.end; ++k) mean += accel[k];
+  const double n = static_cast<double>(s.size());
+  mean /= n;
+  double variance = 0.0;  // per axis, averaged over the three axes
+  for (std::size_t k = s.begin; k < s.end; ++k) variance += (accel[k] - mean).squaredNorm();
+  variance /= 3.0 * std::max(1.0, n - 1.0);
+  const double sigma_stat = std::sqrt(variance / n) / mean.norm();
+  return {mean.normalized(), std::hypot(sigma_stat, floor_rad)};
+}
+
+// The rotation axis of phase 1: the principal axis of Σ w wᵀ, signed along Σ w; its standard error from the
+// scatter of w across that axis.
+Clue AxisClue(const std::vector<Eigen::Vector3d>& w, double floor_rad) {
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& v : w) {
+    scatter += v * v.transpose();
+    sum += v;
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter);
+  Eigen::Vector3d axis = eig.eigenvectors().col(2);
+  if (axis.dot(sum) < 0.0) axis = -axis;
+  double across = 0.0, along = 0.0;
+  for (const Eigen::Vector3d& v : w) {
+    const double a = v.dot(axis);
+    along += a * a;
+    across += (v - a * axis).squaredNorm();
+  }
+  const double n = static_cast<double>(w.size());
+  const double sigma_across = std::sqrt(across / (2.0 * std::max(1.0, n - 2.0)));  // per transverse axis
+  return {axis, std::hypot(sigma_across / std::sqrt(along), floor_rad)};
+}
+
+// Rotation with R·e_y = y_image and R·e_z as close to z_image as that allows (TRIAD).
+Eigen::Matrix3d Triad(const Eigen::Vector3d& y_image, const Eigen::Vector3d& z_image) {
+  const Eigen::Vector3d y = y_image.normalized();
+  const Eigen::Vector3d x = y.cross(z_image).normalized();
+  Eigen::Matrix3d R;
+  R.col(0) = x;
+  R.col(1) = y;
+  R.col(2) = x.cross(y);
+  return R;
+}
+
+double AngleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+MountingEstimate Fail(MountingEstimate e, const std::string& status, const std::string& message) {
+  e.check.status = status;
+  e.check.message = message;
+  return e;
+}
+
+std::string AngleList(const Eigen::Vector3d& angles_deg) {
+  return fmt::format("x {:+.2f}°, y {:+.2f}°, z {:+.2f}°", angles_deg.x(), angles_deg.y(), angles_deg.z());
+}
+
+// The signed axis permutation nearest to R_BS ("-x,-y,z"), when R_BS is within `within_deg` of one.
+std::optional<std::string> NearPermutation(const Eigen::Matrix3d& R_BS, double within_deg) {
+  Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
+  std::string text;
+  for (int i = 0; i < 3; ++i) {
+    Eigen::Index j = 0;
+    R_BS.row(i).cwiseAbs().maxCoeff(&j);
+    P(i, j) = R_BS(i, j) < 0.0 ? -1.0 : 1.0;
+    text += fmt::format("{}{}{}", i ? "," : "", P(i, j) < 0.0 ? "-" : "", kAxisNames[j]);
+  }
+  if (!(P.transpose() * P).isIdentity(1e-12) || P.determinant() < 0.0) return std::nullopt;
+  if (Eigen::AngleAxisd(R_BS * P.transpose()).angle() * kDegPerRad > within_deg) return std::nullopt;
+  return text;
+}
+
+}  // namespace
+
+void MountingEstimateOptions::Validate() const {
+  const auto positive = [](double v, const char* name) {
+    if (!(v > 0.0) || !std::isfinite(v)) throw InvalidArgument(fmt::format("mounting estimate: {} must be positive", name));
+  };
+  positive(rest_rate_rad_s, "rest_rate_rad_s");
+  positive(min_rest_s, "min_rest_s");
+  positive(prior_deg, "prior_deg");
+  positive(undetermined_std_deg, "undetermined_std_deg");
+  positive(direction_floor_deg, "direction_floor_deg");
+  if (!(rest_margin_s >= 0.0) || !std::isfinite(rest_margin_s)) {
+    throw InvalidArgument("mounting estimate: rest_margin_s must be ≥ 0");
+  }
+  if (!(phase1_min_fraction > 0.0 && phase1_min_fraction < 1.0) ||
+      !(first_impact_fraction > 0.0 && first_impact_fraction <= 1.0)) {
+    throw InvalidArgument("mounting estimate: phase1_min_fraction must lie in (0, 1), first_impact_fraction in (0, 1]");
+  }
+}
+
+MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOptions& o) {
+  o.Validate();
+  MountingEstimate e;
+  e.check.given = r.mounting;
+  if (!r.has_accel()) {
+    return Fail(e, "no_accelerometer", "the recording has no accelerometer, which shows the block's tilt at rest");
+  }
+  const std::size_t n = r.size();
+  const double rate_hz = r.rate_hz > 0.0 ? r.rate_hz : 1.0;
+  const auto samples = [&](double seconds) { return static_cast<std::size_t>(std::ceil(seconds * rate_hz)); };
+  const std::size_t min_rest = samples(o.min_rest_s);
+  const std::size_t margin = samples(o.rest_margin_s);
+  if (n < 2 * min_rest + 3) return Fail(e, "no_release", fmt::format("the recording has only {} samples", n));
+
+  // First impact: the first local maximum of |ω| of at least a fraction of the largest.
+  std::vector<double> rate(n);
+  for (std::size_t k = 0; k < n; ++k) rate[k] = r.w_B[k].norm();
+  const double max_rate = *std::max_element(rate.begin(), rate.end());
+  if (!(max_rate > 5.0 * o.rest_rate_rad_s)) {
+    return Fail(e, "no_release",
+                fmt::format("|ω| never exceeds {:.3g} rad/s: the recording shows no release", 5.0 * o.rest_rate_rad_s));
+  }
+  std::size_t k_impact = n;
+  for (std::size_t k = 1; k + 1 < n; ++k) {
+    if (rate[k] >= o.first_impact_fraction * max_rate && rate[k] >= rate[k - 1] && rate[k] >= rate[k + 1]) {
+      k_impact = k;
+      break;
+    }
+  }
+  if (k_impact == n || k_impact < min_rest) {
+    return Fail(e, "no_release", "the first impact comes too early in the recording to see the block at rest before it");
+  }
+
+  // Rest before the release: the bias first from the median over everything before the impact, then the
+  // stretch of small |ω − bias| that ends a margin before the motion leading to the impact.
+  Eigen::Vector3d bias;
+  for (int i = 0; i < 3; ++i) {
+    std::vector<double> c(k_impact);
+    for (std::size_t k = 0; k < k_impact; ++k) c[k] = r.w_B[k][i];
+    bias[i] = Median(std::move(c));
+  }
+  const auto still = [&](std::size_t k) { return (r.w_B[k] - bias).norm() < o.rest_rate_rad_s; };
+  std::size_t release = k_impact;
+  while (release > 0 && !still(release - 1)) --release;
+  Stretch before{0, release > margin ? release - margin : 0};
+  before.begin = before.end;
+  while (before.begin > 0 && still(before.begin - 1)) --before.begin;
+  if (before.size() < min_rest) {
+    return Fail(e, "no_rest",
+                fmt::format("the block is still for only {:.3f} s before the motion that ends in the first impact "
+                            "(from {:.3f} s); the tilt at rest needs at least {:.2f} s",
+                            static_cast<double>(before.size()) / rate_hz, r.t_s[release], o.min_rest_s));
+  }
+  bias.setZero();
+  for (std::size_t k = before.begin; k < before.end; ++k) bias += r.w_B[k];
+  bias /= static_cast<double>(before.size());
+  e.gyro_bias_rad_s = bias;
+  e.rest_before_samples = before.size();
+
+  // Phase 1: from the release to the sample before the first impact's peak, where |ω| is large enough.
+  const double landing = (r.w_B[k_impact] - bias).norm();
+  std::vector<Eigen::Vector3d> phase1;
+  for (std::size_t k = release; k < k_impact; ++k) {
+    const Eigen::Vector3d w = r.w_B[k] - bias;
+    if (w.norm() >= o.phase1_min_fraction * landing) phase1.push_back(w);
+  }
+  constexpr std::size_t kMinPhase1Samples = 5;  // a direction from fewer is noise
+  if (phase1.size() < kMinPhase1Samples) {
+    return Fail(e, "no_release", fmt::format("phase 1 before the first impact at {:.3f} s has only {} samples",
+                                             r.t_s[k_impact], phase1.size()));
+  }
+  e.phase1_samples = phase1.size();
+
+  // Rest after the rocking: the trailing stretch of small |ω − bias|, after the first impact.
+  Stretch after{n, n};
+  while (after.begin > k_impact + 1 && still(after.begin - 1)) --after.begin;
+  after.begin = std::min(n, after.begin + margin);
+  const bool has_after = after.size() >= min_rest;
+  if (has_after) e.rest_after_samples = after.size();
+
+  const double floor_rad = o.direction_floor_deg * kRadPerDeg;
+  const Clue rest_before = RestClue(r.accel_B, before, floor_rad);
+  const Clue axis = AxisClue(phase1, floor_rad);
+  const std::optional<Clue> rest_after =
+      has_after ? std::optional<Clue>(RestClue(r.accel_B, after, floor_rad)) : std::nullopt;
+
+  // Starting rotation R0 = R_B'B: the given mounting when it is roughly right, else TRIAD from the clues.
+  const Eigen::Vector3d& up = rest_after ? rest_after->direction : rest_before.direction;
+  constexpr double kRoughlyRight_rad = 0.5;  // ~30°: beyond this the small-angle start is not trusted
+  Eigen::Matrix3d R0 = Eigen::Matrix3d::Identity();
+  if (AngleBetween(axis.direction, Eigen::Vector3d::UnitY()) > kRoughlyRight_rad ||
+      AngleBetween(up, Eigen::Vector3d::UnitZ()) > kRoughlyRight_rad) {
+    R0 = Triad(axis.direction, up);
+  }
+
+  // Gauss–Newton over x = (δ (3), α) with R = R0·Exp(θ), θ ← Log(Exp(θ)·Exp(δ)).
+  Eigen::Vector3d theta = Eigen::Vector3d::Zero();
+  const Eigen::Vector3d v0 = R0.transpose() * rest_before.direction;
+  double alpha = std::atan2(v0.x(), v0.z());
+  const double sigma_prior = o.prior_deg * kRadPerDeg;
+  Eigen::Matrix4d H = Eigen::Matrix4d::Zero();
+  constexpr int kMaxIterations = 30;
+  constexpr double kStepTolerance_rad = 1e-12;  // far below any measurable angle
+  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+    const Eigen::Matrix3d R = R0 * Exp(theta);
+    H.setZero();
+    Eigen::Vector4d g = Eigen::Vector4d::Zero();
+    const auto add = [&](const Eigen::Vector3d& residual, const Eigen::Matrix<double, 3, 4>& J, double sigma) {
+      const double w = 1.0 / (sigma * sigma);
+      H += w * J.transpose() * J;
+      g += w * J.transpose() * residual;
+    };
+    {  // rest before the release: Rᵀ·a = (sin α, 0, cos α)
+      const Eigen::Vector3d v = R.transpose() * rest_before.direction;
+      Eigen::Matrix<double, 3, 4> J;
+      J.leftCols<3>() = Skew(v);
+      J.col(3) = -Eigen::Vector3d(std::cos(alpha), 0.0, -std::sin(alpha));
+      add(v - Eigen::Vector3d(std::sin(alpha), 0.0, std::cos(alpha)), J, rest_before.sigma_rad);
+    }
+    {  // phase 1: Rᵀ·axis = e_y
+      const Eigen::Vector3d v = R.transpose() * axis.direction;
+      Eigen::Matrix<double, 3, 4> J = Eigen::Matrix<double, 3, 4>::Zero();
+      J.leftCols<3>() = Skew(v);
+      add(v - Eigen::Vector3d::UnitY(), J, axis.sigma_rad);
+    }
+    if (rest_after) {  // rest after the rocking: Rᵀ·a = e_z
+      const Eigen::Vector3d v = R.transpose() * rest_after->direction;
+      Eigen::Matrix<double, 3, 4> J = Eigen::Matrix<double, 3, 4>::Zero();
+      J.leftCols<3>() = Skew(v);
+      add(v - Eigen::Vector3d::UnitZ(), J, rest_after->sigma_rad);
+    }
+    {  // weak prior: θ ≈ 0
+      Eigen::Matrix<double, 3, 4> J = Eigen::Matrix<double, 3, 4>::Zero();
+      J.leftCols<3>() = Eigen::Matrix3d::Identity();
+      add(theta, J, sigma_prior);
+    }
+    const Eigen::Vector4d step = H.ldlt().solve(-g);
+    theta = Log(Exp(theta) * Exp(step.head<3>()));
+    alpha += step(3);
+    if (step.norm() < kStepTolerance_rad) break;
+  }
+  const Eigen::Matrix4d covariance = H.inverse();
+
+  const Eigen::Matrix3d R_BgB = R0 * Exp(theta);
+  e.R_BBg = R_BgB.transpose();
+  MountingCheck& c = e.check;
+  c.angles_deg = Log(e.R_BBg) * kDegPerRad;
+  for (int i = 0; i < 3; ++i) {
+    c.std_error_deg[i] = std::sqrt(covariance(i, i)) * kDegPerRad;
+    c.determined[static_cast<std::size_t>(i)] = c.std_error_deg[i] < o.undetermined_std_deg;
+  }
+  c.release_tilt_rad = alpha;
+  std::vector<std::string> free_axes;
+  for (int i = 0; i < 3; ++i) {
+    if (!c.determined[static_cast<std::size_t>(i)]) free_axes.emplace_back(kAxisNames[i]);
+  }
+  if (free_axes.empty()) {
+    c.status = "ok";
+    c.message = fmt::format("from {:.2f} s at rest before the release, {} samples of phase 1{}", 
+                            static_cast<double>(before.size()) / rate_hz, phase1.size(),
+                            has_after ? fmt::format(" and {:.2f} s at rest after the rocking",
+                                                    static_cast<double>(after.size()) / rate_hz)
+                                      : std::string());
+  } else {
+    c.status = "partial";
+    std::string which;
+    for (const std::string& a : free_axes) which += (which.empty() ? "" : ", ") + a;
+    c.message = fmt::format(
+        "the data do not fix the rotation about block {} (kept at the given mounting){}", which,
+        has_after ? std::string()
+                  : fmt::format(": the recording does not end at rest (at least {:.2f} s with |ω| < {:.3g} rad/s), "
+                                "and before the release a turn about y looks like a different tilt α; record until "
+                                "the block stands still",
+                                o.min_rest_s, o.rest_rate_rad_s));
+  }
+  return e;
+}
+
+Mounting CorrectedMounting(const Mounting& given, const MountingEstimate& estimate) {
+  const Eigen::Matrix3d R_BS = estimate.R_BBg * given.R_BS();
+  // Re-orthonormalise (products of rotations drift by ~1e-16 per step; FromRotation checks 1e-9).
+  return Mounting::FromRotation(Eigen::Quaterniond(R_BS).normalized().toRotationMatrix());
+}
+
+double MountingDisagreementDeg(const MountingCheck& check) {
+  if (!check.has_estimate()) return std::nan("");
+  double sum = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    if (check.determined[static_cast<std::size_t>(i)]) sum += check.angles_deg[i] * check.angles_deg[i];
+  }
+  return std::sqrt(sum);
+}
+
+std::string MountingWarning(const MountingCheck& check, const Mounting& suggested) {
+  const double off_deg = MountingDisagreementDeg(check);
+  if (!(off_deg > kMountingWarningDeg)) return "";
+  double std_deg = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    if (check.determined[static_cast<std::size_t>(i)]) std_deg = std::max(std_deg, check.std_error_deg[i]);
+  }
+  const std::string start = check.given == "identity" ? "auto" : "auto:" + check.given;
+  // A sensor mounted on another face (a permutation) is told the permutation, not a quaternion.
+  const std::optional<std::string> permutation = NearPermutation(suggested.R_BS(), kMountingWarningDeg);
+  return fmt::format(
+      "the data disagree with the mounting '{}' by {:.2f}° (rotation about block {}, each ±{:.2f}°{}): the sensor "
+      "is turned on the block. Estimate the mounting with --mounting {} (manifest: mounting = \"{}\"), or give it "
+      "as --mounting={}",
+      check.given, off_deg, AngleList(check.angles_deg), std_deg,
+      check.status == "partial" ? "; " + check.message : std::string(), start, start,
+      permutation ? *permutation + " (the data agree with it within 1°)" : suggested.text());
+}
+
+}  // namespace rockfit::io

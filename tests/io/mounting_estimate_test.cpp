@@ -1,0 +1,210 @@
+// The mounting estimate on hand-made recordings with a known misalignment (cheap, every build): rest at the
+// release tilt, phase 1 about the block's y axis, rocking, rest flat — seen through a sensor turned by R_BBg⁻¹.
+// The sweep over synthetic `rockfit synth` trials is in mounting_sweep_test.cpp.
+#include "rockfit/io/mounting_estimate.hpp"
+
+#include <cmath>
+#include <random>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "rockfit/core/errors.hpp"
+#include "rockfit/io/units.hpp"
+
+namespace rockfit::io {
+namespace {
+
+using ::testing::HasSubstr;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kRate_hz = 256.0;
+constexpr double kG = 9.81;
+// Noise like the x-IMU's: gyro 0.1 °/s, accelerometer 0.015 g per sample.
+constexpr double kGyroNoise_rad_s = 0.1 * kRadPerDeg;
+constexpr double kAccelNoise_m_s2 = 0.015 * kG;
+// The estimate from ~1 s of rest and ~100 phase-1 samples is good to a few hundredths of a degree; 0.1° leaves
+// room for the 0.02° floor per clue and the noise.
+constexpr double kAngleTolerance_deg = 0.1;
+// α comes from two rests of 1 s, each direction good to 0.015 g / √256 ≈ 0.054°: σ_α ≈ 0.08°, 3σ.
+constexpr double kTiltTolerance_deg = 0.25;
+
+Eigen::Matrix3d RotationFromDeg(const Eigen::Vector3d& angles_deg) {
+  const double angle = angles_deg.norm() * kRadPerDeg;
+  if (angle == 0.0) return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(angle, angles_deg.normalized()).toRotationMatrix();
+}
+
+struct HandMadeTrial {
+  double alpha_rad = 0.2;
+  double rest_before_s = 1.0;
+  double rest_after_s = 1.0;
+  bool lateral = true;  // ω_x after the first impact
+  Eigen::Vector3d bias_rad_s = Eigen::Vector3d(0.004, -0.003, 0.002);
+};
+
+// The recording in the axes of a given mounting that is off by R_BBg (block axes from given axes).
+Recording MakeRecording(const HandMadeTrial& t, const Eigen::Matrix3d& R_BBg, std::uint32_t seed = 5) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const auto noise = [&](double sigma) {
+    Eigen::Vector3d v;
+    for (int i = 0; i < 3; ++i) v[i] = sigma * normal(rng);
+    return v;
+  };
+  const Eigen::Matrix3d R_BgB = R_BBg.transpose();
+  Recording r;
+  r.format = "generic-csv";
+  r.rate_hz = kRate_hz;
+  const auto push = [&](const Eigen::Vector3d& w_B, const Eigen::Vector3d& f_B) {
+    r.t_s.push_back(static_cast<double>(r.t_s.size()) / kRate_hz);
+    r.w_B.push_back(R_BgB * w_B + t.bias_rad_s + noise(kGyroNoise_rad_s));
+    r.accel_B.push_back(R_BgB * f_B + noise(kAccelNoise_m_s2));
+  };
+  const Eigen::Vector3d tilted(std::sin(t.alpha_rad), 0.0, std::cos(t.alpha_rad));
+  for (int k = 0; k < static_cast<int>(t.rest_before_s * kRate_hz); ++k) push(Eigen::Vector3d::Zero(), kG * tilted);
+  // Phase 1: 0.4 s about y, ω growing to 1.4 rad/s (the specific force is not used there).
+  const int fall = static_cast<int>(0.4 * kRate_hz);
+  for (int k = 1; k <= fall; ++k) {
+    const double s = static_cast<double>(k) / fall;
+    push(Eigen::Vector3d(0.0, 1.4 * s * s, 0.0), kG * tilted);
+  }
+  // Rocking: decaying oscillations about y, and about x when lateral, for 1.5 s.
+  const int rocking = static_cast<int>(1.5 * kRate_hz);
+  for (int k = 0; k < rocking; ++k) {
+    const double time = static_cast<double>(k) / kRate_hz;
+    const double envelope = 0.3 + 0.7 * std::exp(-time / 0.3);  // still rocking when the recording ends
+    const Eigen::Vector3d w(t.lateral ? 0.4 * envelope * std::sin(2 * kPi * 3.0 * time) : 0.0,
+                            envelope * std::cos(2 * kPi * 4.0 * time), 0.0);
+    push(w, kG * Eigen::Vector3d::UnitZ());
+  }
+  for (int k = 0; k < static_cast<int>(t.rest_after_s * kRate_hz); ++k) {
+    push(Eigen::Vector3d::Zero(), kG * Eigen::Vector3d::UnitZ());
+  }
+  return r;
+}
+
+TEST(MountingEstimate, RecoversASmallRotationAboutEachAxisWithItsStandardError) {
+  for (const Eigen::Vector3d& truth_deg :
+       {Eigen::Vector3d(0, 0, 3), Eigen::Vector3d(2, 0, 0), Eigen::Vector3d(0, -2.5, 0), Eigen::Vector3d(1.2, -3, 2.2)}) {
+    const MountingEstimate e = EstimateMounting(MakeRecording({}, RotationFromDeg(truth_deg)));
+    ASSERT_EQ(e.check.status, "ok") << e.check.message;
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(e.check.angles_deg[i], truth_deg[i], kAngleTolerance_deg) << truth_deg.transpose();
+      EXPECT_GT(e.check.std_error_deg[i], 0.0);
+      EXPECT_LT(e.check.std_error_deg[i], kAngleTolerance_deg);
+    }
+    EXPECT_NEAR(e.check.release_tilt_rad, 0.2, kTiltTolerance_deg * kRadPerDeg);
+    EXPECT_GT(e.rest_before_samples, 200u);
+    EXPECT_GT(e.phase1_samples, 50u);  // |ω| ≥ 0.2 of the landing rate: the last 55 % of the fall
+    EXPECT_GT(e.rest_after_samples, 200u);
+  }
+}
+
+TEST(MountingEstimate, TheGyroBiasAtRestDoesNotTiltThePhaseOneAxis) {
+  HandMadeTrial t;
+  t.bias_rad_s = Eigen::Vector3d(0.3, -0.25, 0.3) * kRadPerDeg;  // 0.3 °/s ≈ 0.2° of a 1.4 rad/s axis unremoved
+  const MountingEstimate e = EstimateMounting(MakeRecording(t, Eigen::Matrix3d::Identity()));
+  ASSERT_EQ(e.check.status, "ok") << e.check.message;
+  EXPECT_LT(e.check.angles_deg.norm(), kAngleTolerance_deg);
+  EXPECT_LT((e.gyro_bias_rad_s - t.bias_rad_s).norm(), 1e-3);
+}
+
+TEST(MountingEstimate, AnUpsideDownSensorWithAMisalignmentIsFoundFromFarAway) {
+  // Given identity, but the sensor is upside down (x,-y,-z) and turned by a few degrees: the start is 180° off.
+  const Eigen::Matrix3d upside_down = Eigen::Vector3d(1, -1, -1).asDiagonal();
+  const Eigen::Matrix3d small = RotationFromDeg(Eigen::Vector3d(-1.5, 2.0, 3.5));
+  const Eigen::Matrix3d R_BBg = small * upside_down;
+  const MountingEstimate e = EstimateMounting(MakeRecording({}, R_BBg));
+  ASSERT_EQ(e.check.status, "ok") << e.check.message;
+  const double error_deg = Eigen::AngleAxisd(e.R_BBg * R_BBg.transpose()).angle() / kRadPerDeg;
+  EXPECT_LT(error_deg, kAngleTolerance_deg);
+  EXPECT_NEAR(MountingDisagreementDeg(e.check), Eigen::AngleAxisd(R_BBg).angle() / kRadPerDeg, kAngleTolerance_deg);
+  // The corrected mounting is the true one: the permutation times the small rotation.
+  const Mounting corrected = CorrectedMounting(Mounting(), e);
+  EXPECT_LT(Eigen::AngleAxisd(corrected.R_BS() * R_BBg.transpose()).angle() / kRadPerDeg, kAngleTolerance_deg);
+}
+
+TEST(MountingEstimate, PlanarRockingWithRestAfterwardsFixesAllThreeAngles) {
+  HandMadeTrial t;
+  t.lateral = false;
+  const Eigen::Vector3d truth_deg(-1.0, 2.0, 4.0);
+  const MountingEstimate e = EstimateMounting(MakeRecording(t, RotationFromDeg(truth_deg)));
+  ASSERT_EQ(e.check.status, "ok") << e.check.message;
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(e.check.angles_deg[i], truth_deg[i], kAngleTolerance_deg);
+}
+
+TEST(MountingEstimate, WithoutRestAfterTheRockingTheAngleAboutYIsOpenAndSaidSo) {
+  HandMadeTrial t;
+  t.lateral = false;
+  t.rest_after_s = 0.0;
+  const Eigen::Vector3d truth_deg(-1.0, 2.0, 4.0);
+  const MountingEstimate e = EstimateMounting(MakeRecording(t, RotationFromDeg(truth_deg)));
+  ASSERT_EQ(e.check.status, "partial");
+  EXPECT_THAT(e.check.message, HasSubstr("about block y"));
+  EXPECT_THAT(e.check.message, HasSubstr("does not end at rest"));
+  EXPECT_TRUE(e.check.determined[0]);
+  EXPECT_FALSE(e.check.determined[1]);
+  EXPECT_TRUE(e.check.determined[2]);
+  EXPECT_NEAR(e.check.angles_deg.x(), truth_deg.x(), kAngleTolerance_deg);
+  EXPECT_NEAR(e.check.angles_deg.z(), truth_deg.z(), kAngleTolerance_deg);
+  EXPECT_NEAR(e.check.angles_deg.y(), 0.0, kAngleTolerance_deg) << "kept at the given mounting";
+  // The turn about y went into the tilt: the sensor turned by +2° about y reads α − 2°.
+  EXPECT_NEAR(e.check.release_tilt_rad, 0.2 - 2.0 * kRadPerDeg, kTiltTolerance_deg * kRadPerDeg);
+}
+
+TEST(MountingEstimate, RecordingsItCannotUseGetAStatusNotAnException) {
+  Recording no_accel = MakeRecording({}, Eigen::Matrix3d::Identity());
+  no_accel.accel_B.clear();
+  EXPECT_EQ(EstimateMounting(no_accel).check.status, "no_accelerometer");
+
+  Recording still = MakeRecording({}, Eigen::Matrix3d::Identity());
+  for (Eigen::Vector3d& w : still.w_B) w = Eigen::Vector3d(0.001, 0.0, 0.0);
+  const MountingEstimate e = EstimateMounting(still);
+  EXPECT_EQ(e.check.status, "no_release");
+  EXPECT_FALSE(e.check.has_estimate());
+  EXPECT_TRUE(std::isnan(MountingDisagreementDeg(e.check)));
+
+  HandMadeTrial short_rest;
+  short_rest.rest_before_s = 0.1;
+  EXPECT_EQ(EstimateMounting(MakeRecording(short_rest, Eigen::Matrix3d::Identity())).check.status, "no_rest");
+}
+
+TEST(MountingEstimate, TheWarningSaysByHowMuchAndHowToFixIt) {
+  const Eigen::Vector3d truth_deg(0.0, 0.0, 3.0);
+  MountingEstimate e = EstimateMounting(MakeRecording({}, RotationFromDeg(truth_deg)));
+  e.check.given = "x,y,z";
+  const std::string warning = MountingWarning(e.check, CorrectedMounting(Mounting(), e));
+  EXPECT_THAT(warning, HasSubstr("by 3.0"));
+  EXPECT_THAT(warning, HasSubstr("z +3.0"));
+  EXPECT_THAT(warning, HasSubstr("--mounting auto:x,y,z"));
+  EXPECT_THAT(warning, HasSubstr("--mounting=0.99"));
+
+  // A sensor on another face, turned by 180° about z and read as identity, is told the permutation.
+  const Eigen::Matrix3d turned = Eigen::Vector3d(-1, -1, 1).asDiagonal();
+  const MountingEstimate on_its_back = EstimateMounting(MakeRecording({}, RotationFromDeg({0.1, 0.2, -0.3}) * turned));
+  const std::string back_warning = MountingWarning(on_its_back.check, CorrectedMounting(Mounting(), on_its_back));
+  EXPECT_THAT(back_warning, HasSubstr("by 179."));
+  EXPECT_THAT(back_warning, HasSubstr("--mounting=-x,-y,z (the data agree with it within 1°)"));
+
+  const MountingEstimate aligned = EstimateMounting(MakeRecording({}, RotationFromDeg({0.2, -0.3, 0.4})));
+  EXPECT_EQ(MountingWarning(aligned.check, CorrectedMounting(Mounting(), aligned)), "");
+}
+
+TEST(MountingOption, AutoAloneOrWithAStartingMounting) {
+  EXPECT_TRUE(MountingOption::Parse("auto").estimate);
+  EXPECT_TRUE(MountingOption::Parse("auto").given.is_identity());
+  EXPECT_EQ(MountingOption::Parse("auto").text(), "auto");
+  const MountingOption start = MountingOption::Parse(" AUTO : x,-y,-z");
+  EXPECT_TRUE(start.estimate);
+  EXPECT_EQ(start.given.text(), "x,-y,-z");
+  EXPECT_EQ(start.text(), "auto:x,-y,-z");
+  EXPECT_FALSE(MountingOption::Parse("-x,-y,z").estimate);
+  EXPECT_EQ(MountingOption::Parse("-x,-y,z").text(), "-x,-y,z");
+  EXPECT_THROW(MountingOption::Parse("autox,y,z"), InvalidArgument);
+  EXPECT_THROW(MountingOption::Parse("auto:auto"), InvalidArgument);
+  EXPECT_THROW(MountingOption::Parse("auto:x,y,-z"), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace rockfit::io
