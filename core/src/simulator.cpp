@@ -393,7 +393,8 @@ HybridRun::Next HybridRun::RestOnTable(double t, const Eigen::Quaterniond& q_fla
                       ": the block leaves the ground (free flight is not modelled)");
     }
     if (options_.stop == StopCondition::kTMax) return Stop(EndReason::kTMax, options_.t_max_s, at_rest);
-    return Stop(EndReason::kRest, t, at_rest);
+    // At rest for good: the run ends, but not before the record does (the samples show the table moving).
+    return Stop(EndReason::kRest, std::max(t, std::min(ground_->t_end_s(), options_.t_max_s)), at_rest);
   }
   while (sampler_.pending() && sampler_.next_time() < uplift->t_s) {
     sampler_.Emit(rest_mode, Eigen::Vector3d::Zero(), [&q_flat] { return q_flat; });
