@@ -332,11 +332,13 @@ HybridRun::Next HybridRun::RunEdge() {
 template <class ModeT>
 HybridRun::Next HybridRun::RunEdgeIn(const ModeT& mode) {
   out_->segments.emplace_back();
-  // Under ground motion an end-lift guard that starts at zero (to round-off: the segment began where it vanished)
-  // counts as exactly zero, so that its sign afterwards decides, not the round-off of the event.
+  // Under ground motion an end-lift guard that starts at or below zero (the segment began where it vanished, or
+  // an impact or Zeno switch left the edge with the end barely lifting) counts as exactly zero: the end lifts
+  // only if the guard then falls (its lift acceleration grows), never on the round-off of the event or on a
+  // lift that is over within the first step (which would bring the vertex straight back: an endless loop).
   std::array<bool, ModeT::kNumGuards> on_surface{};
   for (int g = EdgeMode::kNumGuards; g < ModeT::kNumGuards; ++g) {
-    on_surface[g] = std::abs(mode.Guard(g, t_start_, edge_start_.y).value) <= kLoadZeroTol;
+    on_surface[g] = mode.Guard(g, t_start_, edge_start_.y).value <= kLoadZeroTol;
   }
   const auto outcome = RunSegment(mode, t_start_, edge_start_.y, on_surface, settings_, step_hint_s_, polisher_,
                                   sampler_, &out_->segments.back());
