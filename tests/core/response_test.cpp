@@ -266,7 +266,7 @@ TEST(Respond, MirroredRecordGivesTheMirroredResponse) {
   const Response original = Respond(block, ThreeD(), g, options);
   ASSERT_NE(original.summary.end_reason, EndReason::kFailed) << original.summary.message;
   ASSERT_GE(original.summary.num_impacts, 3u);
-  // y → −y: the mirror image of the block is the block itself, and λ_lat changes sign (DESIGN §12).
+  // y → −y: the mirror image of the block is the block itself, and λ_lat changes sign (the labelling of (21)).
   ModelParameters mirrored_params = ThreeD();
   mirrored_params.lambda_lat = -mirrored_params.lambda_lat;
   const Response mirrored = Respond(block, mirrored_params, Mapped(g, Eigen::Vector3d(1, -1, 1).asDiagonal()), options);
