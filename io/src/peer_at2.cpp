@@ -202,7 +202,7 @@ std::string PeerNumber(double value) {
     digits /= 10;
     ++exponent;
   }
-  char buffer[32];
+  char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%s.%07lldE%c%02d", value < 0.0 ? "-" : "", digits, exponent < 0 ? '-' : '+',
                 std::abs(exponent));
   std::string text(buffer);
