@@ -30,5 +30,12 @@ echo "== 5. the whole campaign in parallel (resumable), then its fitted paramete
 "$rockfit" plot parameters "$out/fits.h5" -o "$out/parameters.png"
 
 echo
+echo "== 6. earthquake response of block2 in position A with its fitted λ, λ_lat, λ_lon (mean of its fits),"
+echo "      under a generated Clough–Penzien record at 30° to the block's x axis"
+"$rockfit" respond --manifest "$manifest" --block block2 --fits "$out/fits.h5" --group block2,A \
+  --record "$here/data-samples/ground-motions/cp-seed2-0.45g.AT2" --angle 30 --format hdf5 -o "$out/response_block2-A.h5"
+"$rockfit" plot response "$out/response_block2-A.h5" -o "$out/response_block2-A.png"
+
+echo
 echo "outputs in $out:"
 ls -1 "$out"

@@ -94,6 +94,19 @@ while read -r id block b2 pos alpha lambda lat lon t0 dur seed noise bias gain f
   made=$((made + 1))
 done <<< "$table"
 
+# Two generated ground motions for `rockfit respond` (Clough–Penzien filtered white noise with a Jennings
+# envelope, io/README.md "Stochastic ground motion"): a moderate one that rocks the granite blocks and a
+# stronger, longer one. PEER AT2 files, values in g.
+if [ "$print_only" -eq 1 ]; then
+  echo "rockfit ground-motion synth --seed 1 --pga 0.3 --duration 20 -o ground-motions/cp-seed1-0.30g.AT2"
+  echo "rockfit ground-motion synth --seed 2 --pga 0.45 --duration 30 --t-strong 15 -o ground-motions/cp-seed2-0.45g.AT2"
+else
+  mkdir -p "$out/ground-motions"
+  (cd "$out" && "$rockfit" ground-motion synth --seed 1 --pga 0.3 --duration 20 -o ground-motions/cp-seed1-0.30g.AT2 >/dev/null)
+  (cd "$out" && "$rockfit" ground-motion synth --seed 2 --pga 0.45 --duration 30 --t-strong 15 \
+      -o ground-motions/cp-seed2-0.45g.AT2 >/dev/null)
+fi
+
 if [ "$made" -eq 0 ]; then
   echo "make_samples.sh: no trial matches ${selected[*]}" >&2
   exit 1

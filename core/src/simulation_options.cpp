@@ -53,6 +53,7 @@ const char* ToString(EndReason reason) {
     case EndReason::kOverturned: return "overturned";
     case EndReason::kTMax: return "t_max";
     case EndReason::kFailed: return "failed";
+    case EndReason::kLiftOff: return "lift_off";
   }
   return "failed";
 }

@@ -5,21 +5,27 @@
 
 #include <array>
 #include <chrono>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
 
 #include "rockfit/core/detail/contact_modes.hpp"
+#include "rockfit/core/detail/ground_modes.hpp"
 #include "rockfit/core/detail/hybrid_segment.hpp"
 #include "rockfit/core/detail/trajectory_sampler.hpp"
 #include "rockfit/core/errors.hpp"
+#include "rockfit/core/ground_uplift.hpp"
 
 namespace rockfit::core {
 namespace {
 
 using detail::EdgeMode;
+using detail::GroundEdgeMode;
+using detail::GroundVertexMode;
 using detail::RunSegment;
 using detail::SegmentOutcome;
 using detail::SegmentEnd;
@@ -43,6 +49,18 @@ constexpr double kInitialPenetrationTol_m = 1e-9;
 constexpr double kInitialEdgeAttitudeTol_rad = 1e-9;
 // A given edge-contact state may have an angular velocity off the edge axis of at most this [rad/s].
 constexpr double kInitialOffAxisTol_rad_s = 1e-9;
+// Under ground motion, an edge whose tilt is below this [rad] when one of its end vertices unloads counts as
+// flat: all base vertices start their guards on the ground.
+constexpr double kFlatTiltTol_rad = 1e-12;
+// An end-vertex lift guard (an acceleration in units of g) below this in magnitude at the start of an Edge
+// segment is zero.
+constexpr double kLoadZeroTol = 1e-9;
+
+// The free mode of a segment's mode (the impact transitions work on the geometry alone).
+const VertexMode& FreeMode(const VertexMode& mode) { return mode; }
+const EdgeMode& FreeMode(const EdgeMode& mode) { return mode; }
+const VertexMode& FreeMode(const GroundVertexMode& mode) { return mode.free_mode(); }
+const EdgeMode& FreeMode(const GroundEdgeMode& mode) { return mode.free_mode(); }
 
 std::string FormatTime(double t_s) {
   std::ostringstream out;
@@ -116,19 +134,28 @@ double KineticEnergyAfterLanding(const Block& block, double gravity, const Conta
 
 class HybridRun {
  public:
-  HybridRun(const Block& block, const ModelParameters& params, const SimulationOptions& options, Trajectory* out)
+  // `ground` null: free rocking. Otherwise the run is in the frame of the moving table; `start_flat` starts it
+  // flat at rest.
+  HybridRun(const Block& block, const ModelParameters& params, const SimulationOptions& options, Trajectory* out,
+            const GroundMotion* ground = nullptr, bool start_flat = false)
       : block_(block),
         params_(params),
         options_(options),
         gravity_(options.gravity_m_s2),
         out_(out),
-        sampler_(options, options.t_max_s, out) {
+        sampler_(options, options.t_max_s, out),
+        ground_(ground),
+        start_flat_(start_flat) {
     settings_.integrator.rel_tol = options.rel_tol;
     settings_.integrator.abs_tol = options.abs_tol;
     settings_.integrator.max_step = options.max_step_s;
     settings_.event_time_tol_s = options.event_time_tol_s;
     settings_.t_limit_s = options.t_max_s;
     release_ = {Block::WrapVertex(options.release_edge_first), Block::WrapVertex(options.release_edge_second)};
+    if (ground_ != nullptr) {
+      t_lift_off_ = LiftOffTime(*ground_, gravity_, 0.0, options.t_max_s);
+      settings_.t_limit_s = std::min(options.t_max_s, t_lift_off_);
+    }
   }
 
   void Run();
@@ -138,6 +165,16 @@ class HybridRun {
 
   Next RunVertex();
   Next RunEdge();
+  template <class ModeT>
+  Next RunVertexIn(const ModeT& mode);
+  template <class ModeT>
+  Next RunEdgeIn(const ModeT& mode);
+  // Under ground motion: the end vertex `lifting` of the edge of `mode` unloads; rocking continues about the
+  // other end vertex with the same ω.
+  Next EdgeToVertex(const EdgeMode& mode, double t, const EdgeDynamics::State& y, int lifting);
+  // Under ground motion: the flat block at rest from t on, until the next uplift (or the end of the run).
+  Next RestOnTable(double t, const Eigen::Quaterniond& q_flat);
+  bool lift_off_before_t_max() const { return t_lift_off_ <= options_.t_max_s; }
   Next AfterEdgeImpact(const VertexMode& mode, double t, const VertexDynamics::State& y, int landing);
   Next AfterFacetImpact(const EdgeMode& mode, double t, const EdgeDynamics::State& y);
   // Continues in `contact` (from an impact map) with attitude q_WB and w_B, a rotation about vertex `pivot`
@@ -182,6 +219,9 @@ class HybridRun {
   VertexStart vertex_start_;
   EdgeStart edge_start_;
   double t_start_ = 0.0;
+  const GroundMotion* ground_ = nullptr;
+  bool start_flat_ = false;
+  double t_lift_off_ = std::numeric_limits<double>::infinity();
 };
 
 EdgeStart HybridRun::MakeEdgeStart(const Contact& edge, const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B,
@@ -198,7 +238,9 @@ EdgeStart HybridRun::MakeEdgeStart(const Contact& edge, const Eigen::Quaterniond
 
 void HybridRun::Run() {
   Next next = Next::kEdge;
-  if (options_.initial_state) {
+  if (ground_ != nullptr && start_flat_) {
+    next = RestOnTable(0.0, Eigen::Quaterniond::Identity());
+  } else if (options_.initial_state) {
     const InitialState& s = *options_.initial_state;
     if (s.contact.is_vertex()) {
       vertex_start_.vertex = s.contact.first;
@@ -239,12 +281,19 @@ void HybridRun::Run() {
 // What a mode rocks about, for messages.
 std::string Pivot(const VertexMode& mode) { return "V" + std::to_string(mode.vertex()); }
 std::string Pivot(const EdgeMode& mode) { return "edge " + mode.mode().ToString(); }
+std::string Pivot(const GroundVertexMode& mode) { return Pivot(mode.free_mode()); }
+std::string Pivot(const GroundEdgeMode& mode) { return Pivot(mode.free_mode()); }
 
 template <typename ModeT>
 std::optional<HybridRun::Next> HybridRun::StopUnlessEvent(const ModeT& mode, const SegmentOutcome<ModeT>& outcome) {
   const EndState end{mode.mode(), mode.Attitude(outcome.y), mode.AngularVelocity_B(outcome.y)};
   switch (outcome.end) {
     case SegmentEnd::kTimeLimit:
+      if (ground_ != nullptr && lift_off_before_t_max()) {
+        return Stop(EndReason::kLiftOff, outcome.t_s, end,
+                    "the table accelerates downward as fast as g at t = " + FormatTime(outcome.t_s) +
+                        ": the block leaves the ground (free flight is not modelled)");
+      }
       return Stop(EndReason::kTMax, outcome.t_s, end);
     case SegmentEnd::kStepFailure:
       return Stop(EndReason::kFailed, outcome.t_s, end,
@@ -257,32 +306,122 @@ std::optional<HybridRun::Next> HybridRun::StopUnlessEvent(const ModeT& mode, con
 }
 
 HybridRun::Next HybridRun::RunVertex() {
-  const VertexMode mode(block_, vertex_start_.vertex, gravity_);
+  if (ground_ != nullptr) return RunVertexIn(GroundVertexMode(block_, vertex_start_.vertex, gravity_, *ground_));
+  return RunVertexIn(VertexMode(block_, vertex_start_.vertex, gravity_));
+}
+
+template <class ModeT>
+HybridRun::Next HybridRun::RunVertexIn(const ModeT& mode) {
   out_->segments.emplace_back();
   const auto outcome = RunSegment(mode, t_start_, vertex_start_.y, vertex_start_.on_surface, settings_, step_hint_s_,
                                   polisher_, sampler_, &out_->segments.back());
   AddCounts(outcome);
   if (const auto stopped = StopUnlessEvent(mode, outcome)) return *stopped;
-  if (!VertexMode::IsTouchdown(outcome.guard)) {
+  if (!ModeT::IsTouchdown(outcome.guard)) {
     return Stop(EndReason::kOverturned, outcome.t_s,
                 {mode.mode(), mode.Attitude(outcome.y), mode.AngularVelocity_B(outcome.y)});
   }
-  return AfterEdgeImpact(mode, outcome.t_s, outcome.y, mode.GuardVertex(outcome.guard));
+  return AfterEdgeImpact(FreeMode(mode), outcome.t_s, outcome.y, mode.GuardVertex(outcome.guard));
 }
 
 HybridRun::Next HybridRun::RunEdge() {
-  const EdgeMode mode(block_, edge_start_.edge.first, edge_start_.edge.second, edge_start_.q_yaw, gravity_);
+  const Contact& e = edge_start_.edge;
+  if (ground_ != nullptr) {
+    return RunEdgeIn(GroundEdgeMode(block_, e.first, e.second, edge_start_.q_yaw, gravity_, *ground_));
+  }
+  return RunEdgeIn(EdgeMode(block_, e.first, e.second, edge_start_.q_yaw, gravity_));
+}
+
+template <class ModeT>
+HybridRun::Next HybridRun::RunEdgeIn(const ModeT& mode) {
   out_->segments.emplace_back();
-  const std::array<bool, EdgeMode::kNumGuards> on_surface{};
+  // Under ground motion an end-lift guard that starts at or below zero (the segment began where it vanished, or
+  // an impact or Zeno switch left the edge with the end barely lifting) counts as exactly zero: the end lifts
+  // only if the guard then falls (its lift acceleration grows), never on the round-off of the event or on a
+  // lift that is over within the first step (which would bring the vertex straight back: an endless loop).
+  std::array<bool, ModeT::kNumGuards> on_surface{};
+  for (int g = EdgeMode::kNumGuards; g < ModeT::kNumGuards; ++g) {
+    on_surface[g] = mode.Guard(g, t_start_, edge_start_.y).value <= kLoadZeroTol;
+  }
   const auto outcome = RunSegment(mode, t_start_, edge_start_.y, on_surface, settings_, step_hint_s_, polisher_,
                                   sampler_, &out_->segments.back());
   AddCounts(outcome);
   if (const auto stopped = StopUnlessEvent(mode, outcome)) return *stopped;
-  if (!EdgeMode::IsTouchdown(outcome.guard)) {
+  if (outcome.guard >= EdgeMode::kNumGuards) {
+    // Ground motion only: an end vertex of the edge unloads (GroundEdgeMode::kLoadFirst / kLoadSecond).
+    const EdgeMode& free = FreeMode(mode);
+    const int lifting = outcome.guard == EdgeMode::kNumGuards ? free.first() : free.second();
+    return EdgeToVertex(free, outcome.t_s, outcome.y, lifting);
+  }
+  if (!ModeT::IsTouchdown(outcome.guard)) {
     return Stop(EndReason::kOverturned, outcome.t_s,
                 {mode.mode(), mode.Attitude(outcome.y), mode.AngularVelocity_B(outcome.y)});
   }
-  return AfterFacetImpact(mode, outcome.t_s, outcome.y);
+  return AfterFacetImpact(FreeMode(mode), outcome.t_s, outcome.y);
+}
+
+HybridRun::Next HybridRun::EdgeToVertex(const EdgeMode& mode, double t, const EdgeDynamics::State& y, int lifting) {
+  const int pivot = lifting == mode.first() ? mode.second() : mode.first();
+  const Eigen::Quaterniond q_WB = mode.Attitude(y);
+  const Eigen::Vector3d w_B = mode.AngularVelocity_B(y);
+  ImpactRecord record;
+  record.t_s = t;
+  record.kind = "uplift";
+  record.contact_before = mode.mode().contact;
+  record.contact_after = Contact::Vertex(pivot);
+  record.w_minus_B = w_B;
+  record.w_plus_B = w_B;
+  record.w_minus_W = q_WB * w_B;
+  record.w_plus_W = record.w_minus_W;
+  Mode after_mode;
+  after_mode.kind = ModeKind::kVertex;
+  after_mode.contact = record.contact_after;
+  const VertexDynamics about_pivot(block_, pivot, gravity_);
+  if (!BookImpact(record, {after_mode, q_WB, w_B}, about_pivot.KineticEnergy(VertexDynamics::MakeState(q_WB, w_B)))) {
+    return Next::kStopped;
+  }
+  edge_impacts_.Clear();
+  const bool flat = y[0] < kFlatTiltTol_rad;
+  return Continue(record.contact_after, t, q_WB, w_B, pivot, flat ? -1 : lifting, flat ? -1 : 0);
+}
+
+HybridRun::Next HybridRun::RestOnTable(double t, const Eigen::Quaterniond& q_flat) {
+  Mode rest_mode;
+  rest_mode.kind = ModeKind::kRest;
+  const EndState at_rest{rest_mode, q_flat, Eigen::Vector3d::Zero()};
+  const double t_until = std::min(options_.t_max_s, t_lift_off_);
+  const std::optional<Uplift> uplift = NextUplift(block_, *ground_, q_flat, gravity_, t, t_until);
+  if (!uplift) {
+    if (lift_off_before_t_max()) {
+      return Stop(EndReason::kLiftOff, t_lift_off_, at_rest,
+                  "the table accelerates downward as fast as g at t = " + FormatTime(t_lift_off_) +
+                      ": the block leaves the ground (free flight is not modelled)");
+    }
+    if (options_.stop == StopCondition::kTMax) return Stop(EndReason::kTMax, options_.t_max_s, at_rest);
+    // At rest for good: the run ends, but not before the record does (the samples show the table moving).
+    return Stop(EndReason::kRest, std::max(t, std::min(ground_->t_end_s(), options_.t_max_s)), at_rest);
+  }
+  while (sampler_.pending() && sampler_.next_time() < uplift->t_s) {
+    sampler_.Emit(rest_mode, Eigen::Vector3d::Zero(), [&q_flat] { return q_flat; });
+  }
+  ImpactRecord record;
+  record.t_s = uplift->t_s;
+  record.kind = "uplift";
+  record.contact_after = uplift->contact;
+  out_->impacts.push_back(record);
+  edge_impacts_.Clear();
+  facet_impacts_.Clear();
+  t_start_ = uplift->t_s;
+  if (uplift->contact.is_vertex()) {
+    vertex_start_.vertex = uplift->contact.first;
+    vertex_start_.y = VertexDynamics::MakeState(q_flat, Eigen::Vector3d::Zero());
+    for (int g = 0; g < VertexMode::kNumGuards; ++g) vertex_start_.on_surface[g] = VertexMode::IsTouchdown(g);
+    return Next::kVertex;
+  }
+  edge_start_.edge = uplift->contact;
+  edge_start_.q_yaw = q_flat;
+  edge_start_.y = EdgeDynamics::State::Zero();
+  return Next::kEdge;
 }
 
 bool HybridRun::BookImpact(const ImpactRecord& record, const EndState& state, double kinetic_after_J) {
@@ -494,6 +633,7 @@ HybridRun::Next HybridRun::Rest(double t, const Eigen::Quaterniond& q_flat, cons
   const double kinetic = KineticEnergyAfterLanding(block_, gravity_, trigger.contact_after, q_flat, trigger.w_plus_B);
   rest.delta_energy_J = -kinetic;
   out_->impacts.push_back(rest);
+  if (ground_ != nullptr) return RestOnTable(t, q_flat);
   Mode rest_mode;
   rest_mode.kind = ModeKind::kRest;
   const EndState at_rest{rest_mode, q_flat, Eigen::Vector3d::Zero()};
@@ -522,6 +662,22 @@ Trajectory Simulate(const Block& block, const ModelParameters& params, const Sim
   params.Validate(!options.initial_state.has_value());
   Trajectory trajectory;
   HybridRun run(block, params, options, &trajectory);
+  run.Run();
+  trajectory.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return trajectory;
+}
+
+Trajectory Simulate(const Block& block, const ModelParameters& params, const SimulationOptions& options,
+                    const GroundMotion& ground, GroundStart start) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  options.Validate();
+  const bool flat = start == GroundStart::kFlatAtRest;
+  params.Validate(!flat && !options.initial_state.has_value());
+  if (options.stop == StopCondition::kPhase4) {
+    throw InvalidArgument("a run under ground motion stops at t_max, at rest or when the block overturns, not at phase 4");
+  }
+  Trajectory trajectory;
+  HybridRun run(block, params, options, &trajectory, &ground, flat);
   run.Run();
   trajectory.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return trajectory;

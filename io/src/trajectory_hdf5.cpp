@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -118,11 +120,19 @@ std::vector<double> Rows(const std::vector<Vector>& rows) {
   return flat;
 }
 
+// The extra contents of a response to ground motion.
+struct ResponseContents {
+  const core::Response* response;
+  const core::GroundMotion* ground;
+  const std::vector<std::string>* sources;
+};
+
 void WriteContents(const Writer& w, hid_t file, const core::Block& block, const core::ModelParameters& params,
-                   const core::SimulationOptions& options, const core::Trajectory& trajectory) {
+                   const core::SimulationOptions& options, const core::Trajectory& trajectory,
+                   const ResponseContents* extra = nullptr) {
   w.Attribute(file, "schema", std::string(kTrajectorySchemaName));
   w.Attribute(file, "schema_version", static_cast<long long>(kTrajectorySchemaVersion));
-  w.Attribute(file, "created_by", std::string("rockfit simulate"));
+  w.Attribute(file, "created_by", std::string(extra != nullptr ? "rockfit respond" : "rockfit simulate"));
   {
     Handle g = w.Group(file, "block");
     w.Attribute(g.get(), "b1_m", block.b1());
@@ -180,6 +190,41 @@ void WriteContents(const Writer& w, hid_t file, const core::Block& block, const 
     modes.reserve(n);
     for (const auto& mode : trajectory.mode) modes.push_back(mode.ToString());
     w.Strings(g.get(), "mode", modes);
+    if (extra != nullptr) {
+      std::vector<Eigen::Vector3d> a_g;
+      std::vector<double> tilt;
+      for (std::size_t k = 0; k < n; ++k) a_g.push_back(extra->ground->Acceleration_W(trajectory.t_s[k]));
+      for (const auto& quaternion : trajectory.q_WB) {
+        tilt.push_back(std::acos(std::clamp(quaternion.toRotationMatrix()(2, 2), -1.0, 1.0)));
+      }
+      w.Numbers(g.get(), "a_g_W", Rows(a_g), n, 3, "m/s^2");
+      w.Numbers(g.get(), "tilt", tilt, tilt.size(), 0, "rad");
+    }
+  }
+  if (extra != nullptr) {
+    const core::GroundMotion& ground = *extra->ground;
+    Handle g = w.Group(file, "ground_motion");
+    std::vector<double> t;
+    for (std::size_t k = 0; k < ground.size(); ++k) t.push_back(ground.SampleTime(k));
+    w.Numbers(g.get(), "t", t, t.size(), 0, "s");
+    w.Numbers(g.get(), "a_W", Rows(ground.samples_W()), ground.size(), 3, "m/s^2");
+    w.Attribute(g.get(), "dt_s", ground.dt_s());
+    w.Attribute(g.get(), "pga_horizontal_m_s2", ground.PeakHorizontal());
+    w.Attribute(g.get(), "pga_vertical_m_s2", ground.PeakVertical());
+    if (!extra->sources->empty()) w.Strings(g.get(), "sources", *extra->sources);
+    const core::ResponseSummary& r = extra->response->summary;
+    Handle rg = w.Group(file, "response");
+    w.Attribute(rg.get(), "overturned", static_cast<long long>(r.overturned ? 1 : 0));
+    w.Attribute(rg.get(), "t_overturn_s", r.t_overturn_s ? *r.t_overturn_s : std::nan(""));
+    w.Attribute(rg.get(), "peak_tilt_rad", r.peak_tilt_rad);
+    w.Attribute(rg.get(), "t_peak_tilt_s", r.t_peak_tilt_s);
+    w.Attribute(rg.get(), "peak_rotation_rad", r.peak_rotation_rad);
+    w.Attribute(rg.get(), "peak_rate_rad_s", r.peak_rate_rad_s);
+    w.Attribute(rg.get(), "critical_tilt_rad", r.critical_tilt_rad);
+    w.Attribute(rg.get(), "num_impacts", static_cast<long long>(r.num_impacts));
+    w.Attribute(rg.get(), "max_friction_ratio", r.max_friction_ratio);
+    w.Attribute(rg.get(), "min_normal_force_N", r.min_normal_force_N);
+    w.Numbers(rg.get(), "uplift_times", r.uplift_times_s, r.uplift_times_s.size(), 0, "s");
   }
   {
     Handle g = w.Group(file, "impacts");
@@ -234,11 +279,9 @@ void WriteContents(const Writer& w, hid_t file, const core::Block& block, const 
   }
 }
 
-}  // namespace
-
-void WriteTrajectoryHdf5(const std::filesystem::path& path, const core::Block& block,
-                         const core::ModelParameters& params, const core::SimulationOptions& options,
-                         const core::Trajectory& trajectory) {
+void WriteHdf5File(const std::filesystem::path& path, const core::Block& block, const core::ModelParameters& params,
+                   const core::SimulationOptions& options, const core::Trajectory& trajectory,
+                   const ResponseContents* extra) {
   // HDF5 prints its error stack to stderr by default; rockfit reports errors itself.
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   const std::filesystem::path directory = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
@@ -254,7 +297,7 @@ void WriteTrajectoryHdf5(const std::filesystem::path& path, const core::Block& b
     {
       Handle file(H5Fcreate(temporary.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), &H5Fclose);
       writer.Check(file.ok(), "the file header (is the directory writable?)");
-      WriteContents(writer, file.get(), block, params, options, trajectory);
+      WriteContents(writer, file.get(), block, params, options, trajectory, extra);
       writer.Check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL) >= 0, "the file contents");
     }
     std::filesystem::rename(temporary, path, ec);
@@ -263,6 +306,21 @@ void WriteTrajectoryHdf5(const std::filesystem::path& path, const core::Block& b
     std::filesystem::remove(temporary, ec);
     throw;
   }
+}
+
+}  // namespace
+
+void WriteTrajectoryHdf5(const std::filesystem::path& path, const core::Block& block,
+                         const core::ModelParameters& params, const core::SimulationOptions& options,
+                         const core::Trajectory& trajectory) {
+  WriteHdf5File(path, block, params, options, trajectory, nullptr);
+}
+
+void WriteResponseHdf5(const std::filesystem::path& path, const core::Block& block, const core::ModelParameters& params,
+                       const core::SimulationOptions& options, const core::Response& response,
+                       const core::GroundMotion& ground, const std::vector<std::string>& sources) {
+  const ResponseContents extra{&response, &ground, &sources};
+  WriteHdf5File(path, block, params, options, response.trajectory, &extra);
 }
 
 }  // namespace rockfit::io

@@ -14,6 +14,12 @@ inline std::filesystem::path RealImuDir() {
   return std::filesystem::is_directory(dir) ? dir : std::filesystem::path();
 }
 
+// ../shared/ground-motions beside the checkout (real PEER AT2 records); empty path when it is not there.
+inline std::filesystem::path GroundMotionsDir() {
+  const std::filesystem::path dir = std::filesystem::path(ROCKFIT_SHARED_DIR) / "ground-motions";
+  return std::filesystem::is_directory(dir) ? dir : std::filesystem::path();
+}
+
 }  // namespace rockfit::testing
 
 // Skips the current test when the shared real recordings are absent.

@@ -35,6 +35,10 @@ TEST(MakeSamples, RegeneratesTrialsAndManifestBitForBit) {
     ++compared;
   }
   EXPECT_EQ(compared, 2u * 7u);  // 6 CSV files (no rotation matrix) and the truth per trial
+  for (const char* record : {"cp-seed1-0.30g.AT2", "cp-seed2-0.45g.AT2"}) {
+    EXPECT_TRUE(ReadWholeFile(out / "ground-motions" / record) == ReadWholeFile(samples / "ground-motions" / record))
+        << record << " differs from the committed generated ground motion";
+  }
   fs::remove_all(out);
 }
 

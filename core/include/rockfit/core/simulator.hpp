@@ -18,6 +18,7 @@
 #include <Eigen/Geometry>
 
 #include "rockfit/core/block.hpp"
+#include "rockfit/core/ground_motion.hpp"
 #include "rockfit/core/impact_maps.hpp"
 
 namespace rockfit::core {
@@ -34,9 +35,11 @@ struct Mode {
 };
 
 enum class StopCondition { kPhase4, kRest, kOverturned, kTMax };
-enum class EndReason { kPhase4, kRest, kOverturned, kTMax, kFailed };
+// kLiftOff: under ground motion the table accelerates downward at least as fast as g; the block would leave
+// the ground (free flight is not modelled), and the run ends at that instant.
+enum class EndReason { kPhase4, kRest, kOverturned, kTMax, kFailed, kLiftOff };
 const char* ToString(StopCondition stop);  // "phase4", "rest", "overturned", "t_max"
-const char* ToString(EndReason reason);    // "phase4", "rest", "overturned", "t_max", "failed"
+const char* ToString(EndReason reason);    // "phase4", "rest", "overturned", "t_max", "failed", "lift_off"
 
 // Initial conditions and impact parameters of one run (constant during the run).
 struct ModelParameters {
@@ -88,8 +91,10 @@ struct SimulationOptions {
 
 struct ImpactRecord {
   double t_s = 0.0;
-  // "facet", "edge" (impact maps), "zeno" (switch to edge rocking after accumulating edge impacts) or "rest"
-  // (the block stops on its base; contact_after is empty, ΔE = −the kinetic energy left).
+  // "facet", "edge" (impact maps), "zeno" (switch to edge rocking after accumulating edge impacts), "rest"
+  // (the block stops on its base; contact_after is empty, ΔE = −the kinetic energy left) or, under ground
+  // motion only, "uplift" (rest → rocking about contact_after, or edge → rocking about one of its vertices
+  // when the other end's normal force vanishes; ω is continuous and ΔE = 0).
   std::string kind;
   Contact contact_before;
   Contact contact_after;
@@ -132,5 +137,18 @@ struct Trajectory {
 // Throws InvalidArgument for invalid options, parameters or initial state; numerical trouble during the run
 // is EndReason::kFailed with a message, never an exception or a NaN.
 Trajectory Simulate(const Block& block, const ModelParameters& params, const SimulationOptions& options);
+
+// How a run under ground motion starts: flat at rest on the table (the usual case), or as the free run does
+// (the release at α on the release edge, or options.initial_state).
+enum class GroundStart { kFlatAtRest, kAsOptions };
+
+// The same hybrid simulation in the frame of a table that moves with `ground` (ground_motion.hpp): the inertial
+// force −m a_g acts at the COM, impacts act on velocities relative to the table, the flat block at rest starts
+// to rock when the moment of gravity and inertial force about a base edge changes sign (ground_uplift.hpp),
+// and a rest is not final: the block may uplift again. The run ends with `lift_off` when g + a_z ≤ 0. Use
+// StopCondition::kTMax (run to t_max) or kRest/kOverturned (end at rest once no later uplift is possible
+// before t_max). With a zero ground motion the motion is that of Simulate() above.
+Trajectory Simulate(const Block& block, const ModelParameters& params, const SimulationOptions& options,
+                    const GroundMotion& ground, GroundStart start);
 
 }  // namespace rockfit::core

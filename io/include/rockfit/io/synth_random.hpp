@@ -21,6 +21,7 @@ enum class SynthStream : std::uint64_t {
   kMagNoise = 3,
   kDriftWalk = 4,
   kHousekeeping = 5,  // battery voltage and temperature packets
+  kGroundMotion = 6,  // white noise of the stochastic ground-motion generator (stochastic_ground_motion.hpp)
 };
 
 // The SplitMix64 finaliser (Steele, Lea & Flood 2014): a bijective 64-bit mix used to derive stream seeds.

@@ -13,11 +13,24 @@
 //   /segments     t_begin, t_end (S) [s], mode (S strings), min_normal_force (S) [N], max_friction_ratio (S),
 //                 energy_drift_rel (S)
 // Every dataset has a `units` attribute ("1" for dimensionless numbers, "" for strings).
+//
+// A response to ground motion (`rockfit respond`, WriteResponseHdf5) has the same layout, `created_by`
+// "rockfit respond", and in addition:
+//   /ground_motion  t (G) [s], a_W (G×3) [m/s²] (the record as simulated: rotated and scaled), attributes
+//                   dt_s, pga_horizontal_m_s2, pga_vertical_m_s2, and `sources` (strings) when given
+//   /samples        a_g_W (N×3) [m/s²] (the ground acceleration at the sample times), tilt (N) [rad]
+//   /response       attributes overturned (0/1), t_overturn_s (NaN if not), peak_tilt_rad, t_peak_tilt_s,
+//                   peak_rotation_rad, peak_rate_rad_s, critical_tilt_rad, num_impacts, max_friction_ratio,
+//                   min_normal_force_N; dataset uplift_times (U) [s]
 #pragma once
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "rockfit/core/block.hpp"
+#include "rockfit/core/ground_motion.hpp"
+#include "rockfit/core/response.hpp"
 #include "rockfit/core/simulator.hpp"
 
 namespace rockfit::io {
@@ -30,5 +43,10 @@ inline constexpr const char* kTrajectorySchemaName = "rockfit.simulation";
 void WriteTrajectoryHdf5(const std::filesystem::path& path, const core::Block& block,
                          const core::ModelParameters& params, const core::SimulationOptions& options,
                          const core::Trajectory& trajectory);
+
+// The same for a response to ground motion (layout above), written the same way.
+void WriteResponseHdf5(const std::filesystem::path& path, const core::Block& block, const core::ModelParameters& params,
+                       const core::SimulationOptions& options, const core::Response& response,
+                       const core::GroundMotion& ground, const std::vector<std::string>& sources);
 
 }  // namespace rockfit::io

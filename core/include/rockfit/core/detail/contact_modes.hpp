@@ -34,6 +34,10 @@ class VertexMode {
 
   void operator()(double t, const State& y, State& dydt) const { dynamics_(t, y, dydt); }
   GuardValue Guard(int index, const State& y) const;
+  // The interface of the segment runner (time-dependent guards, forces and step limits exist only under
+  // ground motion, detail/ground_modes.hpp): here t is ignored and steps are limited by t_limit alone.
+  GuardValue Guard(int index, double /*t*/, const State& y) const { return Guard(index, y); }
+  double StepLimit(double /*t*/, double t_limit) const { return t_limit; }
   static bool IsTouchdown(int guard) { return guard == kTouchNext || guard == kTouchPrevious; }
   // The vertex that lands when `guard` fires (a neighbour of the pivot).
   int GuardVertex(int guard) const;
@@ -43,6 +47,7 @@ class VertexMode {
   double Energy(const State& y) const { return dynamics_.Energy(y); }
   double KineticEnergy(const State& y) const { return dynamics_.KineticEnergy(y); }
   ContactForce Force(const State& y, const State& dydt) const { return dynamics_.Force(y, dydt); }
+  ContactForce Force(double /*t*/, const State& y, const State& dydt) const { return dynamics_.Force(y, dydt); }
   // Renormalises the quaternion between steps.
   static void Project(State* y);
   Mode mode() const;
@@ -69,6 +74,8 @@ class EdgeMode {
 
   void operator()(double t, const State& y, State& dydt) const { dynamics_(t, y, dydt); }
   GuardValue Guard(int index, const State& y) const;
+  GuardValue Guard(int index, double /*t*/, const State& y) const { return Guard(index, y); }
+  double StepLimit(double /*t*/, double t_limit) const { return t_limit; }
   static bool IsTouchdown(int guard) { return guard == kFlat; }
 
   Eigen::Quaterniond Attitude(const State& y) const { return q_yaw_ * dynamics_.Tilt(y[0]); }
@@ -76,6 +83,7 @@ class EdgeMode {
   double Energy(const State& y) const { return dynamics_.Energy(y); }
   double KineticEnergy(const State& y) const { return dynamics_.KineticEnergy(y); }
   ContactForce Force(const State& y, const State& dydt) const { return dynamics_.Force(y, dydt, q_yaw_); }
+  ContactForce Force(double /*t*/, const State& y, const State& dydt) const { return Force(y, dydt); }
   static void Project(State* /*y*/) {}
   Mode mode() const;
   int first() const { return first_; }

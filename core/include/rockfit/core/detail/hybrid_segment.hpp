@@ -56,8 +56,8 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
   diagnostics->mode = mode_label;
   diagnostics->min_normal_force_N = std::numeric_limits<double>::infinity();
   diagnostics->max_friction_ratio = 0.0;
-  const auto record_force = [&](const State& y, const State& dydt) {
-    const ContactForce force = mode.Force(y, dydt);
+  const auto record_force = [&](double t, const State& y, const State& dydt) {
+    const ContactForce force = mode.Force(t, y, dydt);
     diagnostics->min_normal_force_N = std::min(diagnostics->min_normal_force_N, force.normal_N);
     if (force.normal_N > 0.0) {
       diagnostics->max_friction_ratio = std::max(diagnostics->max_friction_ratio, force.tangential_N / force.normal_N);
@@ -73,7 +73,7 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
     outcome.num_evaluations = integrator.num_evaluations();
     State dydt;
     mode(t, y, dydt);
-    record_force(y, dydt);
+    record_force(t, y, dydt);
     diagnostics->t_end_s = t;
     diagnostics->energy_drift_rel =
         energy_start != 0.0 ? std::abs(mode.Energy(y) - energy_start) / std::abs(energy_start) : 0.0;
@@ -86,7 +86,7 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
   // Guards at the start; a guard already past zero (or on zero and moving down) fires at once.
   std::array<GuardValue, kGuards> g0;
   for (int i = 0; i < kGuards; ++i) {
-    g0[i] = mode.Guard(i, y_start);
+    g0[i] = mode.Guard(i, t_start, y_start);
     if (starts_on_surface[i]) g0[i].value = 0.0;
   }
   for (int i = 0; i < kGuards; ++i) {
@@ -109,7 +109,7 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
       outcome.next_step_hint_s = integrator.suggested_step();
       return finish(SegmentEnd::kTimeLimit, -1, integrator.t(), integrator.y());
     }
-    if (integrator.Step(mode, settings.t_limit_s) != StepStatus::kOk || !integrator.y().allFinite()) {
+    if (integrator.Step(mode, mode.StepLimit(integrator.t(), settings.t_limit_s)) != StepStatus::kOk || !integrator.y().allFinite()) {
       const State y_last = integrator.y().allFinite() ? integrator.y() : y_start;
       return finish(SegmentEnd::kStepFailure, -1, integrator.t(), y_last);
     }
@@ -117,12 +117,12 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
     const double t1 = integrator.t();
     const State& y1 = integrator.y();
     std::array<GuardValue, kGuards> g1;
-    for (int i = 0; i < kGuards; ++i) g1[i] = mode.Guard(i, y1);
+    for (int i = 0; i < kGuards; ++i) g1[i] = mode.Guard(i, t1, y1);
 
     double t_event = std::numeric_limits<double>::infinity();
     int fired = -1;
     for (int i = 0; i < kGuards; ++i) {
-      const auto eval = [&](double t) { return mode.Guard(i, interpolate(t)); };
+      const auto eval = [&](double t) { return mode.Guard(i, t, interpolate(t)); };
       const std::optional<double> root = FindFirstDescent(eval, t0, g0[i], t1, g1[i], polisher, settings.event_time_tol_s);
       if (root && *root < t_event) {
         t_event = *root;
@@ -136,7 +136,7 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
       const State y_event = t_event >= t1 ? y1 : interpolate(t_event);
       return finish(SegmentEnd::kEvent, fired, t_event, y_event);
     }
-    record_force(y1, integrator.dydt());
+    record_force(t1, y1, integrator.dydt());
     g0 = g1;
     ModeT::Project(&integrator.mutable_y());
   }

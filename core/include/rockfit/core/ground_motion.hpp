@@ -1,0 +1,61 @@
+// Prescribed motion of the rigid table: the ground acceleration a_g(t) in the world frame W, piecewise
+// linear between the samples of a record (uniform step), zero before the first and after the last sample.
+// The simulator integrates in the ground frame with the inertial force −m·a_g at the centre of mass and
+// stops its integrator steps at the record's sample times, so that the right-hand side is smooth within a
+// step and event times stay exact (core/README.md, "Ground motion").
+//
+//   const GroundMotion quake = GroundMotion::Uniform(0.01, a_W);   // a_W[k] at t = k·0.01 s [m/s²]
+//   const Eigen::Vector3d a = quake.Acceleration_W(2.345);
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace rockfit::core {
+
+// Standard gravity of records given in units of g [m/s²] (the simulation's g is a separate option).
+inline constexpr double kRecordGravity = 9.80665;
+
+class GroundMotion {
+ public:
+  GroundMotion() = default;
+  // Samples a_W[k] [m/s²] at t = t_start_s + k·dt_s. Throws InvalidArgument for dt ≤ 0, fewer than two
+  // samples or a non-finite value.
+  static GroundMotion Uniform(double dt_s, std::vector<Eigen::Vector3d> a_W, double t_start_s = 0.0);
+
+  bool empty() const { return a_W_.empty(); }
+  std::size_t size() const { return a_W_.size(); }
+  double dt_s() const { return dt_s_; }
+  double t_start_s() const { return t_start_s_; }
+  double t_end_s() const { return t_start_s_ + static_cast<double>(a_W_.size() - 1) * dt_s_; }
+  double SampleTime(std::size_t k) const { return t_start_s_ + static_cast<double>(k) * dt_s_; }
+  const Eigen::Vector3d& Sample(std::size_t k) const { return a_W_[k]; }
+  const std::vector<Eigen::Vector3d>& samples_W() const { return a_W_; }
+
+  // a_g(t): linear between samples, exactly the sample at a sample time, zero outside the record.
+  Eigen::Vector3d Acceleration_W(double t_s) const;
+  // The first sample time after t_s by more than the round-off of t (+∞ after the last sample): where the
+  // slope of a_g changes.
+  double NextBreak(double t_s) const;
+
+  // Largest |a_x, a_y| (horizontal resultant) and |a_z| over the samples [m/s²].
+  double PeakHorizontal() const;
+  double PeakVertical() const;
+  // The same motion with every sample multiplied by `factor`.
+  GroundMotion Scaled(double factor) const;
+  // Horizontal components rotated about the vertical by β (a record along x acts along (cos β, sin β, 0)).
+  GroundMotion Rotated(double beta_rad) const;
+
+ private:
+  double dt_s_ = 1.0;
+  double t_start_s_ = 0.0;
+  std::vector<Eigen::Vector3d> a_W_;
+};
+
+// The first time in [t_from, t_until] at which the table accelerates downward at least as fast as g
+// (g + a_z ≤ 0): from then on the block would leave the ground (end status `lift_off`). +∞ if never.
+double LiftOffTime(const GroundMotion& ground, double gravity_m_s2, double t_from_s, double t_until_s);
+
+}  // namespace rockfit::core

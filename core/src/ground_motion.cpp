@@ -1,0 +1,114 @@
+#include "rockfit/core/ground_motion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include "rockfit/core/errors.hpp"
+
+namespace rockfit::core {
+namespace {
+
+// Round-off floor of a time variable t [s]: two break times closer than this are the same instant (the same
+// floor as the integrator's smallest step, with a margin).
+double TimeFloor(double t_s) { return 64.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_s)); }
+
+}  // namespace
+
+GroundMotion GroundMotion::Uniform(double dt_s, std::vector<Eigen::Vector3d> a_W, double t_start_s) {
+  if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
+    throw InvalidArgument("the time step of a ground motion must be a positive number of seconds, got " +
+                          std::to_string(dt_s));
+  }
+  if (!std::isfinite(t_start_s)) throw InvalidArgument("the start time of a ground motion must be finite");
+  if (a_W.size() < 2) throw InvalidArgument("a ground motion needs at least two samples");
+  for (std::size_t k = 0; k < a_W.size(); ++k) {
+    if (!a_W[k].allFinite()) {
+      throw InvalidArgument("ground acceleration sample " + std::to_string(k) + " is not a finite number");
+    }
+  }
+  GroundMotion g;
+  g.dt_s_ = dt_s;
+  g.t_start_s_ = t_start_s;
+  g.a_W_ = std::move(a_W);
+  return g;
+}
+
+Eigen::Vector3d GroundMotion::Acceleration_W(double t_s) const {
+  if (a_W_.empty() || t_s < t_start_s_) return Eigen::Vector3d::Zero();
+  const double x = (t_s - t_start_s_) / dt_s_;
+  const double last = static_cast<double>(a_W_.size() - 1);
+  if (x > last) return t_s <= t_end_s() ? a_W_.back() : Eigen::Vector3d::Zero();
+  // At a sample time (to the round-off of t/dt) the sample itself, so that breaks are exact.
+  const double nearest = std::round(x);
+  if (std::abs(x - nearest) <= 4.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, x)) {
+    return a_W_[static_cast<std::size_t>(nearest)];
+  }
+  const std::size_t k = std::min(static_cast<std::size_t>(x), a_W_.size() - 2);
+  const double u = (t_s - SampleTime(k)) / dt_s_;
+  return (1.0 - u) * a_W_[k] + u * a_W_[k + 1];
+}
+
+double GroundMotion::NextBreak(double t_s) const {
+  if (a_W_.empty()) return std::numeric_limits<double>::infinity();
+  const double floor_s = TimeFloor(t_s);
+  if (t_s < t_start_s_ - floor_s) return t_start_s_;
+  const double x = std::max(0.0, std::floor((t_s - t_start_s_) / dt_s_));
+  for (std::size_t k = static_cast<std::size_t>(x); k < a_W_.size(); ++k) {
+    const double t_k = SampleTime(k);
+    if (t_k > t_s + floor_s) return t_k;
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+double GroundMotion::PeakHorizontal() const {
+  double peak = 0.0;
+  for (const Eigen::Vector3d& a : a_W_) peak = std::max(peak, a.head<2>().norm());
+  return peak;
+}
+
+double GroundMotion::PeakVertical() const {
+  double peak = 0.0;
+  for (const Eigen::Vector3d& a : a_W_) peak = std::max(peak, std::abs(a.z()));
+  return peak;
+}
+
+GroundMotion GroundMotion::Scaled(double factor) const {
+  if (!std::isfinite(factor)) throw InvalidArgument("the scale factor of a ground motion must be finite");
+  GroundMotion g = *this;
+  for (Eigen::Vector3d& a : g.a_W_) a *= factor;
+  return g;
+}
+
+GroundMotion GroundMotion::Rotated(double beta_rad) const {
+  if (!std::isfinite(beta_rad)) throw InvalidArgument("the incidence angle of a ground motion must be finite");
+  GroundMotion g = *this;
+  const double c = std::cos(beta_rad);
+  const double s = std::sin(beta_rad);
+  for (Eigen::Vector3d& a : g.a_W_) a = Eigen::Vector3d(c * a.x() - s * a.y(), s * a.x() + c * a.y(), a.z());
+  return g;
+}
+
+double LiftOffTime(const GroundMotion& ground, double gravity_m_s2, double t_from_s, double t_until_s) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const auto margin = [&](double t) { return gravity_m_s2 + ground.Acceleration_W(t).z(); };
+  if (ground.empty() || !(t_until_s >= t_from_s)) return inf;
+  if (margin(t_from_s) <= 0.0) return t_from_s;
+  // g + a_z is linear between breaks: a root lies between two break times where it changes sign.
+  double t0 = t_from_s;
+  double m0 = margin(t0);
+  while (t0 < t_until_s) {
+    const double t1 = std::min(ground.NextBreak(t0), t_until_s);
+    if (!std::isfinite(t1)) return inf;
+    // The value just before the break (the record's last sample is followed by a jump to zero).
+    const double m1 = gravity_m_s2 + (ground.Acceleration_W(t1).z());
+    if (m1 <= 0.0) return m0 <= 0.0 ? t0 : t0 + (t1 - t0) * m0 / (m0 - m1);  // (m0 > 0 ≥ m1)
+    t0 = t1;
+    m0 = m1;
+  }
+  return inf;
+}
+
+}  // namespace rockfit::core

@@ -1,0 +1,360 @@
+// Respond(): the simulator under ground motion against an independent planar integration, the uplift
+// threshold, the one-sine pulse, symmetries, the energy balance, and hostile records.
+#include "rockfit/core/response.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "build_type.hpp"
+#include "planar_base_rocking.hpp"
+#include "rockfit/core/vertex_dynamics.hpp"
+
+namespace rockfit::core {
+namespace {
+
+constexpr double kG = 9.81;
+// Event times of the two integrations agree far below this [s] (both locate events to ~1e-12 s).
+constexpr double kEventTimeTol_s = 1e-8;
+// Sampled tilts agree below this [rad] (the integrators' tolerances are 1e-12 and 1e-14).
+constexpr double kTiltTol_rad = 1e-8;
+
+Block GraniteBlock() { return Block::FromDensity(0.05, 0.04, 0.2, 2692); }
+
+// a_x(t) = A sin(2π f t) for t ≤ cycles/f, sampled at dt.
+std::vector<double> SinePulse(double amplitude, double frequency_hz, double cycles, double dt) {
+  const auto n = static_cast<std::size_t>(std::llround(cycles / frequency_hz / dt)) + 1;
+  std::vector<double> a(n);
+  for (std::size_t k = 0; k < n; ++k) a[k] = amplitude * std::sin(2.0 * M_PI * frequency_hz * static_cast<double>(k) * dt);
+  return a;
+}
+
+GroundMotion AlongX(const std::vector<double>& a_x, double dt) {
+  std::vector<Eigen::Vector3d> a(a_x.size(), Eigen::Vector3d::Zero());
+  for (std::size_t k = 0; k < a_x.size(); ++k) a[k].x() = a_x[k];
+  return GroundMotion::Uniform(dt, a);
+}
+
+ModelParameters Planar(double lambda_lon) {
+  ModelParameters p;
+  p.lambda = 1.0;
+  p.lambda_lat = 0.0;
+  p.lambda_lon = lambda_lon;
+  return p;
+}
+
+testing::PlanarBaseRocking PlanarModel(const Block& block, double lambda, const std::vector<double>& a_x, double dt) {
+  testing::PlanarBaseRocking m;
+  m.mass_kg = block.mass();
+  m.b_m = block.b1();
+  m.h_m = block.h();
+  m.theta_yy = block.mass() / 3.0 * (block.b1() * block.b1() + block.h() * block.h());  // Θ_yy of a cuboid
+  m.gravity = kG;
+  m.lambda = lambda;
+  m.dt_record_s = dt;
+  m.a_x = a_x;
+  return m;
+}
+
+std::vector<double> ImpactTimes(const Trajectory& tr) {
+  std::vector<double> t;
+  for (const ImpactRecord& r : tr.impacts) {
+    if (r.kind == "facet" || r.kind == "edge") t.push_back(r.t_s);
+  }
+  return t;
+}
+
+TEST(Respond, PlanarExcitationMatchesAnIndependentHousnerIntegration) {
+  const Block block = GraniteBlock();
+  const double dt = 0.005;
+  const double lambda = 0.8;
+  // Two cycles of 4 Hz at 0.3 g (uplift needs g b1/h = 0.25 g), then free rocking.
+  const std::vector<double> a_x = SinePulse(0.3 * kG, 4.0, 2.0, dt);
+  ResponseOptions options;
+  options.simulation.rate_hz = 1000.0;
+  options.tail_s = 1.5;
+  const Response r = Respond(block, Planar(lambda), AlongX(a_x, dt), options);
+  ASSERT_NE(r.summary.end_reason, EndReason::kFailed) << r.summary.message;
+  ASSERT_FALSE(r.summary.overturned);
+
+  const testing::PlanarResult ref = testing::SimulatePlanarBaseRocking(PlanarModel(block, lambda, a_x, dt), r.summary.t_end_s, 1e-3);
+  ASSERT_FALSE(ref.overturned);
+  ASSERT_FALSE(ref.uplift_times.empty());
+  ASSERT_FALSE(r.summary.uplift_times_s.empty());
+  EXPECT_NEAR(r.summary.uplift_times_s.front(), ref.uplift_times.front(), kEventTimeTol_s);
+
+  // Every impact of the reference up to its first return to rest (its rest rule differs from rockfit's).
+  const std::vector<double> impacts = ImpactTimes(r.trajectory);
+  const double t_compare = ref.uplift_times.size() > 1 ? ref.uplift_times[1] : r.summary.t_end_s;
+  std::size_t compared = 0;
+  for (std::size_t k = 0; k < ref.impact_times.size() && ref.impact_times[k] < t_compare - 0.05; ++k) {
+    ASSERT_LT(k, impacts.size());
+    EXPECT_NEAR(impacts[k], ref.impact_times[k], kEventTimeTol_s) << "impact " << k;
+    ++compared;
+  }
+  EXPECT_GE(compared, 5u);
+  // Tilt at every sample up to the same time: θ = −φy for rocking in the xz plane.
+  double peak = 0.0;
+  double peak_ref = 0.0;
+  for (std::size_t k = 0; k < r.trajectory.t_s.size() && k < ref.output_theta.size(); ++k) {
+    if (r.trajectory.t_s[k] > t_compare - 0.05) break;
+    EXPECT_NEAR(-r.trajectory.euler_zyx[k][1], ref.output_theta[k], kTiltTol_rad) << "t = " << r.trajectory.t_s[k];
+    peak = std::max(peak, std::abs(r.trajectory.euler_zyx[k][1]));
+    peak_ref = std::max(peak_ref, std::abs(ref.output_theta[k]));
+  }
+  EXPECT_NEAR(peak, peak_ref, kTiltTol_rad);
+  EXPECT_GT(peak, 0.02);
+  // The motion stays in the xz plane.
+  for (const Eigen::Vector3d& w : r.trajectory.w_B) EXPECT_NEAR(w.x(), 0.0, 1e-12);
+}
+
+TEST(Respond, ConstantAccelerationJustBelowGTimesBOverHNeverUplifts) {
+  const Block block = GraniteBlock();
+  for (const Eigen::Vector3d& direction : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, -1, 0)}) {
+    const double b = direction.x() != 0.0 ? block.b1() : block.b2();
+    for (const double ratio : {1.0 - 1e-9, 1.0 + 1e-9}) {
+      const Eigen::Vector3d a = ratio * kG * b / block.h() * direction;
+      const GroundMotion steady = GroundMotion::Uniform(1.0, {a, a, a});
+      ResponseOptions options;
+      options.tail_s = 0.0;
+      const Response r = Respond(block, Planar(1.0), steady, options);
+      if (ratio < 1.0) {
+        EXPECT_TRUE(r.summary.uplift_times_s.empty()) << direction.transpose();
+        EXPECT_EQ(r.summary.end_reason, EndReason::kRest);
+        EXPECT_EQ(r.summary.peak_tilt_rad, 0.0);
+      } else {
+        ASSERT_EQ(r.summary.uplift_times_s.size(), 1u) << direction.transpose();
+        EXPECT_EQ(r.summary.uplift_times_s.front(), 0.0);
+        EXPECT_GT(r.summary.peak_tilt_rad, 0.0);
+      }
+    }
+  }
+}
+
+TEST(Respond, DiagonalAccelerationRocksOnAVertex) {
+  const Block block = GraniteBlock();
+  // A ramp along (b1, b2) reaches both side thresholds at once: vertex rocking about V1 from the start.
+  const double s = 2.0 * kG / block.h();
+  const GroundMotion ramp = GroundMotion::Uniform(1.0, {{0, 0, 0}, {s * block.b1(), s * block.b2(), 0}, {0, 0, 0}});
+  ResponseOptions options;
+  options.tail_s = 0.5;
+  const Response r = Respond(block, Planar(1.0), ramp, options);
+  ASSERT_FALSE(r.trajectory.impacts.empty());
+  EXPECT_EQ(r.trajectory.impacts.front().kind, "uplift");
+  EXPECT_EQ(r.trajectory.impacts.front().contact_after, Contact::Vertex(1));
+  EXPECT_NEAR(r.trajectory.impacts.front().t_s, 0.5, 1e-12);
+}
+
+TEST(Respond, DownwardTableAccelerationBeyondGEndsAsLiftOff) {
+  const Block block = GraniteBlock();
+  const GroundMotion drop = GroundMotion::Uniform(1.0, {{0, 0, 0}, {0, 0, -2 * kG}});
+  ResponseOptions options;
+  const Response r = Respond(block, Planar(1.0), drop, options);
+  EXPECT_EQ(r.summary.end_reason, EndReason::kLiftOff);
+  EXPECT_NEAR(r.summary.t_end_s, 0.5, 1e-15);
+}
+
+// The smallest a_p (in units of g tan θ_c) of a one-sine pulse a_p sin(ω_p t), 0 ≤ t ≤ 2π/ω_p, that overturns
+// the block, by bisection on `overturns`.
+template <class Overturns>
+double MinimumOverturningAmplitude(const Overturns& overturns, double lo, double hi, double tol) {
+  while (hi - lo > tol) {
+    const double mid = 0.5 * (lo + hi);
+    (overturns(mid) ? hi : lo) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+TEST(Respond, OneSinePulseOverturningAmplitudeMatchesIndependentPlanarIntegration) {
+  ROCKFIT_REQUIRE_OPTIMISED_BUILD();
+  // Housner's restitution: (6) with λ = 1 is (3), r = 1 − 1.5 sin²θ_c for a rectangle.
+  const Block block = Block::FromDensity(0.05, 0.05, 0.5, 2500);  // slender, θ_c = 0.0997 rad
+  const double theta_c = std::atan(block.b1() / block.h());
+  const double R = std::hypot(block.b1(), block.h());
+  const double p = std::sqrt(3.0 * kG / (4.0 * R));  // frequency parameter of the rectangular block
+  const double tol = 1e-3;
+  struct Point { double ratio, rockfit, planar; };
+  std::vector<Point> points;
+  for (const double ratio : {2.0, 3.0, 4.0, 6.0}) {
+    const double omega_p = ratio * p;
+    const double period = 2.0 * M_PI / omega_p;
+    const double dt = period / 400.0;
+    const auto pulse = [&](double amplitude_ratio) {
+      return SinePulse(amplitude_ratio * kG * std::tan(theta_c), 1.0 / period, 1.0, dt);
+    };
+    const double t_run = period + 8.0 / p;
+    const auto rockfit_overturns = [&](double amplitude_ratio) {
+      ResponseOptions options;
+      options.simulation.rate_hz = 10.0;
+      options.tail_s = t_run - period;
+      return Respond(block, Planar(1.0), AlongX(pulse(amplitude_ratio), dt), options).summary.overturned;
+    };
+    const auto planar_overturns = [&](double amplitude_ratio) {
+      return testing::SimulatePlanarBaseRocking(PlanarModel(block, 1.0, pulse(amplitude_ratio), dt), t_run, 0.1, 2e-3)
+          .overturned;
+    };
+    points.push_back({ratio, MinimumOverturningAmplitude(rockfit_overturns, 1.0, 20.0, tol),
+                      MinimumOverturningAmplitude(planar_overturns, 1.0, 20.0, tol)});
+  }
+  for (const Point& pt : points) {
+    RecordProperty("a_p/(g tan θ) at ω_p/p = " + std::to_string(pt.ratio), std::to_string(pt.rockfit));
+    std::printf("one-sine pulse  ω_p/p = %.1f   a_p/(g tan θ): rockfit %.4f   planar reference %.4f\n", pt.ratio,
+                pt.rockfit, pt.planar);
+    EXPECT_NEAR(pt.rockfit, pt.planar, 2.0 * tol) << "ω_p/p = " << pt.ratio;
+  }
+  // The curve rises with the pulse frequency (Zhang & Makris 2001, Fig. 4): short pulses need more.
+  for (std::size_t k = 1; k < points.size(); ++k) EXPECT_GT(points[k].rockfit, points[k - 1].rockfit);
+}
+
+// A two-component record: a band of sines along x and y.
+GroundMotion TwoComponentRecord(double scale) {
+  const double dt = 0.005;
+  std::vector<Eigen::Vector3d> a(601, Eigen::Vector3d::Zero());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    const double t = static_cast<double>(k) * dt;
+    const double envelope = std::sin(M_PI * t / 3.0);
+    a[k] = scale * kG * envelope *
+           Eigen::Vector3d(0.30 * std::sin(2 * M_PI * 1.7 * t) + 0.1 * std::sin(2 * M_PI * 3.1 * t),
+                           0.22 * std::sin(2 * M_PI * 2.3 * t + 0.4), 0.0);
+  }
+  return GroundMotion::Uniform(dt, a);
+}
+
+GroundMotion Mapped(const GroundMotion& g, const Eigen::Matrix3d& M) {
+  std::vector<Eigen::Vector3d> a = g.samples_W();
+  for (Eigen::Vector3d& v : a) v = M * v;
+  return GroundMotion::Uniform(g.dt_s(), a);
+}
+
+// Round-off differs between the two runs (other vertex numbers, mirrored signs) and grows over hundreds of
+// impacts of 3D rocking: after ~370 impacts it reaches 3e-9 s. Far below any physical difference.
+constexpr double kSymmetryTimeTol_s = 1e-8;
+constexpr double kSymmetryTiltTol_rad = 1e-8;
+
+void ExpectSameResponse(const Response& a, const Response& b) {
+  ASSERT_EQ(a.summary.end_reason, b.summary.end_reason);
+  EXPECT_NEAR(a.summary.t_end_s, b.summary.t_end_s, kSymmetryTimeTol_s);
+  EXPECT_NEAR(a.summary.peak_tilt_rad, b.summary.peak_tilt_rad, kSymmetryTiltTol_rad);
+  const std::vector<double> ta = ImpactTimes(a.trajectory);
+  const std::vector<double> tb = ImpactTimes(b.trajectory);
+  ASSERT_EQ(ta.size(), tb.size());
+  double worst = 0.0;
+  for (std::size_t k = 0; k < ta.size(); ++k) {
+    EXPECT_NEAR(ta[k], tb[k], kSymmetryTimeTol_s) << "impact " << k;
+    worst = std::max(worst, std::abs(ta[k] - tb[k]));
+  }
+  std::printf("%zu impacts, largest difference of impact times %.2e s\n", ta.size(), worst);
+}
+
+ModelParameters ThreeD() {
+  ModelParameters p;
+  p.lambda = 0.9;
+  p.lambda_lat = 0.3;
+  p.lambda_lon = 0.8;
+  return p;
+}
+
+TEST(Respond, MirroredRecordGivesTheMirroredResponse) {
+  const Block block = GraniteBlock();
+  const GroundMotion g = TwoComponentRecord(1.0);
+  ResponseOptions options;
+  options.tail_s = 1.0;
+  const Response original = Respond(block, ThreeD(), g, options);
+  ASSERT_NE(original.summary.end_reason, EndReason::kFailed) << original.summary.message;
+  ASSERT_GE(original.summary.num_impacts, 3u);
+  // y → −y: the mirror image of the block is the block itself, and λ_lat changes sign (the labelling of (21)).
+  ModelParameters mirrored_params = ThreeD();
+  mirrored_params.lambda_lat = -mirrored_params.lambda_lat;
+  const Response mirrored = Respond(block, mirrored_params, Mapped(g, Eigen::Vector3d(1, -1, 1).asDiagonal()), options);
+  ExpectSameResponse(original, mirrored);
+}
+
+TEST(Respond, RotatedBlockAndRecordGiveTheSameResponse) {
+  const Block block = GraniteBlock();
+  const Block turned = Block::FromDensity(block.b2(), block.b1(), block.h(), 2692);  // the block turned by 90°
+  const GroundMotion g = TwoComponentRecord(1.0);
+  ResponseOptions options;
+  options.tail_s = 1.0;
+  const Response original = Respond(block, ThreeD(), g, options);
+  ASSERT_NE(original.summary.end_reason, EndReason::kFailed) << original.summary.message;
+  const Response rotated = Respond(turned, ThreeD(), g.Rotated(M_PI / 2), options);
+  ExpectSameResponse(original, rotated);
+}
+
+// Kinetic plus potential energy of a sample, about its contact, and the velocity of the COM relative to the table.
+struct SampleEnergy {
+  double energy_J;
+  Eigen::Vector3d v_C_W;
+};
+
+SampleEnergy EnergyOf(const Block& block, const Mode& mode, const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B) {
+  const Eigen::Matrix3d R = q_WB.toRotationMatrix();
+  Eigen::Vector3d p_BP_B = Eigen::Vector3d::Zero();
+  if (mode.kind == ModeKind::kVertex) p_BP_B = block.p_BV_B(mode.contact.first);
+  if (mode.kind == ModeKind::kEdge) p_BP_B = 0.5 * (block.p_BV_B(mode.contact.first) + block.p_BV_B(mode.contact.second));
+  // The contact is on the ground; the lowest base vertex gives the ground level at rest as well.
+  double ground_z = std::numeric_limits<double>::infinity();
+  for (int k = 1; k <= 4; ++k) ground_z = std::min(ground_z, (R * block.p_BV_B(k)).z());
+  const double z_C = (R * block.p_BC_B()).z() - ground_z;
+  const Eigen::Matrix3d J = InertiaAboutPoint(block, p_BP_B);
+  const double kinetic = 0.5 * w_B.dot(J * w_B);
+  return {kinetic + block.mass() * kG * z_C, R * w_B.cross(block.p_BC_B() - p_BP_B)};
+}
+
+TEST(Respond, EnergyStaysBelowTheWorkOfTheInertialForce) {
+  const Block block = GraniteBlock();
+  const GroundMotion g = TwoComponentRecord(1.0);
+  ResponseOptions options;
+  options.simulation.rate_hz = 4000.0;
+  options.tail_s = 1.0;
+  const Response r = Respond(block, ThreeD(), g, options);
+  ASSERT_NE(r.summary.end_reason, EndReason::kFailed) << r.summary.message;
+  const Trajectory& tr = r.trajectory;
+  const double e0 = block.mass() * kG * block.h();
+  double work = 0.0;
+  double worst = -std::numeric_limits<double>::infinity();
+  double power_before = 0.0;
+  for (std::size_t k = 0; k < tr.t_s.size(); ++k) {
+    const SampleEnergy s = EnergyOf(block, tr.mode[k], tr.q_WB[k], tr.w_B[k]);
+    const double power = -block.mass() * g.Acceleration_W(tr.t_s[k]).dot(s.v_C_W);
+    if (k > 0) work += 0.5 * (power + power_before) * (tr.t_s[k] - tr.t_s[k - 1]);
+    power_before = power;
+    worst = std::max(worst, s.energy_J - e0 - work);
+  }
+  // Impacts with these parameters dissipate, so E − E₀ ≤ W up to the trapezoid error of W at 4 kHz.
+  const double tolerance_J = 1e-4 * e0;
+  std::printf("max(E − E0 − W) = %.3e J (E0 = %.4f J, final W = %.4f J)\n", worst, e0, work);
+  EXPECT_LT(worst, tolerance_J);
+  EXPECT_GT(r.summary.num_impacts, 0u);
+}
+
+TEST(Respond, RandomRecordsUpToThreeGAlwaysEndWithAStatus) {
+  const Block block = GraniteBlock();
+  const double dt = 0.01;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    std::mt19937_64 engine(seed);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    const double peak_g = seed <= 3 ? 3.0 : 0.4;  // violent and moderate
+    const bool vertical = seed % 2 == 0;
+    std::vector<Eigen::Vector3d> a(6001);
+    for (Eigen::Vector3d& v : a) {
+      v = peak_g * kG * Eigen::Vector3d(unit(engine), unit(engine), vertical ? unit(engine) : 0.0);
+    }
+    ResponseOptions options;
+    options.tail_s = 1.0;
+    ModelParameters params = ThreeD();
+    const Response r = Respond(block, params, GroundMotion::Uniform(dt, a), options);
+    EXPECT_LE(r.summary.t_end_s, 61.0 + 1e-9);
+    EXPECT_TRUE(std::isfinite(r.summary.peak_tilt_rad));
+    std::printf("seed %d  %.1f g%s  → %s at %.3f s, %zu impacts, %.1f ms\n", static_cast<int>(seed), peak_g,
+                vertical ? " + vertical" : "", ToString(r.summary.end_reason), r.summary.t_end_s, r.summary.num_impacts,
+                1e3 * r.summary.wall_time_s);
+  }
+}
+
+}  // namespace
+}  // namespace rockfit::core

@@ -1,0 +1,96 @@
+// `rockfit respond`, `rockfit ground-motion` and `rockfit plot response` run as the real binary: summary, JSON keys,
+// HDF5 round trip through the plot, exit codes for bad records and missing fits.
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.hpp"
+#include "scratch_dir.hpp"
+#include "test_paths.hpp"
+
+namespace rockfit::testing {
+namespace {
+
+std::vector<std::string> Block() { return {"--b1", "0.05", "--b2", "0.04", "--h", "0.2", "--density", "2692"}; }
+
+std::vector<std::string> Respond(std::vector<std::string> more) {
+  std::vector<std::string> args{"respond"};
+  for (const auto& a : Block()) args.push_back(a);
+  args.insert(args.end(), more.begin(), more.end());
+  return args;
+}
+
+TEST(CliRespond, SyntheticRecordGivesASummaryAndJsonWithDocumentedKeys) {
+  const CommandResult table = RunRockfit(Respond({"--synthetic", "4", "--pga", "0.4", "--lambda", "0.9", "--lambda-lat",
+                                                 "0.3", "--lambda-lon", "0.8"}));
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  for (const char* row : {"status", "overturned", "peak tilt", "uplifts", "impacts", "friction ratio"}) {
+    EXPECT_NE(table.out.find(row), std::string::npos) << row << "\n" << table.out;
+  }
+  const CommandResult json = RunRockfit(Respond({"--synthetic", "4", "--pga", "0.4", "--json"}));
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const nlohmann::json j = nlohmann::json::parse(json.out);
+  for (const char* key : {"summary", "block", "parameters", "ground_motion", "impacts", "samples"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  for (const char* key : {"end_reason", "overturned", "t_overturn", "peak_tilt_rad", "peak_rotation_rad", "num_impacts",
+                          "uplift_times", "max_friction_ratio"}) {
+    EXPECT_TRUE(j["summary"].contains(key)) << key;
+  }
+  EXPECT_NEAR(j["ground_motion"]["pga_horizontal_m_s2"].get<double>(), 0.4 * 9.80665, 1e-9);
+  EXPECT_EQ(j["samples"]["t"].size(), j["samples"]["a_g_W"].size());
+}
+
+TEST(CliRespond, Hdf5OutputFeedsPlotResponse) {
+  ScratchDir dir("cli_respond");
+  const std::string h5 = (dir.path() / "r.h5").string();
+  const CommandResult r = RunRockfit(Respond({"--synthetic", "2", "--pga", "0.35", "--format", "hdf5", "-o", h5}));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string png = (dir.path() / "r.png").string();
+  const CommandResult plot = RunRockfit({"plot", "response", h5, "-o", png});
+  if (plot.exit_code == 4 && plot.err.find("gnuplot") != std::string::npos) GTEST_SKIP() << "gnuplot not installed";
+  ASSERT_EQ(plot.exit_code, 0) << plot.err;
+  EXPECT_TRUE(std::filesystem::exists(png));
+}
+
+TEST(CliRespond, BadRecordIsExitTwoWithFileAndLine) {
+  ScratchDir dir("cli_respond");
+  const std::filesystem::path bad = dir.path() / "short.AT2";
+  std::ofstream(bad) << "a\nb\nc\nNPTS=  5, DT= .01000 SEC\n  .1E-01  .2E-01\n";
+  const CommandResult r = RunRockfit(Respond({"--record", bad.string()}));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("short.AT2:5"), std::string::npos) << r.err;
+  const CommandResult missing = RunRockfit(Respond({"--record", bad.string(), "--fits", (dir.path() / "none.h5").string(),
+                                                    "--trial", "x"}));
+  EXPECT_EQ(missing.exit_code, 2) << missing.err;
+  EXPECT_EQ(RunRockfit(Respond({})).exit_code, 1);
+}
+
+TEST(CliRespond, GroundMotionSynthWritesAnAt2FileThatInspectReads) {
+  ScratchDir dir("cli_respond");
+  const std::string at2 = (dir.path() / "gen.AT2").string();
+  const CommandResult w = RunRockfit({"ground-motion", "synth", "--seed", "9", "--pga", "0.2", "--duration", "5", "-o", at2});
+  ASSERT_EQ(w.exit_code, 0) << w.err;
+  const CommandResult i = RunRockfit({"ground-motion", "inspect", at2, "--json"});
+  ASSERT_EQ(i.exit_code, 0) << i.err;
+  const nlohmann::json j = nlohmann::json::parse(i.out);
+  EXPECT_EQ(j["records"][0]["npts"].get<int>(), 1001);
+  EXPECT_NEAR(j["records"][0]["pga_g"].get<double>(), 0.2, 1e-7);
+}
+
+TEST(CliRespond, RealRecordsRespondAtAnIncidenceAngle) {
+  const std::filesystem::path dir = GroundMotionsDir();
+  if (dir.empty()) GTEST_SKIP() << "../shared/ground-motions not present";
+  const CommandResult r = RunRockfit(Respond({"--record", (dir / "ARL360.at2").string(), "--angle", "30", "--json"}));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["ground_motion"]["npts"].get<int>(), 2000);
+  EXPECT_NEAR(j["ground_motion"]["pga_horizontal_m_s2"].get<double>() / 9.80665, 0.3081, 1e-4);
+}
+
+}  // namespace
+}  // namespace rockfit::testing
