@@ -19,7 +19,10 @@
 namespace rockfit::testing {
 namespace {
 
-const std::vector<std::string> kQuick = {"--method", "nelder-mead", "--max-evaluations", "15", "--no-global"};
+// Linearised intervals: the profiles of the default (`thorough`) cost thousands of simulations, too slow for the
+// sanitizer build; tests/tools/cli_fit_intervals_test.cpp covers them in optimised builds.
+const std::vector<std::string> kQuick = {"--method", "nelder-mead", "--max-evaluations", "15", "--no-global",
+                                         "--intervals", "fast"};
 
 // A manifest of the given sample trials (block2) in `dir`, the files given as absolute paths.
 std::string WriteManifest(const ScratchDir& dir, const std::vector<std::string>& trials, bool add_missing = false) {
@@ -87,7 +90,7 @@ TEST(CliBatch, FailedTrialIsListedAndTheOthersAreKept) {
   // Other settings: fitted again.
   const CommandResult other = RunRockfit(
       {"batch", manifest, "-o", out, "--resume", "--json", "--method", "nelder-mead", "--max-evaluations", "16",
-       "--no-global"});
+       "--no-global", "--intervals", "fast"});
   EXPECT_EQ(nlohmann::json::parse(other.out)["skipped"], 0);
 }
 

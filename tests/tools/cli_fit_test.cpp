@@ -20,7 +20,7 @@ std::string SampleManifest() { return (SourceDir() / "data-samples" / "manifest.
 std::vector<std::string> QuickFit(std::vector<std::string> extra) {
   std::vector<std::string> args = {"fit",     SampleManifest(), "--trial",           "block2-A-1",
                                    "--method", "nelder-mead",    "--max-evaluations", "40",
-                                   "--no-global"};
+                                   "--no-global",    "--intervals", "fast"};
   args.insert(args.end(), extra.begin(), extra.end());
   return args;
 }
@@ -86,7 +86,7 @@ TEST(CliFit, WritesTheFitGroupAndKeepsOthers) {
   ASSERT_EQ(RunRockfit(QuickFit({"--fix", "t0,alpha", "-o", out})).exit_code, 0);
   const CommandResult r = RunRockfit(
       {"fit", SampleManifest(), "--trial", "block2-B-1", "--method", "nelder-mead", "--max-evaluations", "20",
-       "--no-global", "-o", out});
+       "--no-global", "--intervals", "fast", "-o", out});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const CommandResult check = RunH5pyScript(R"(
 import sys, h5py
