@@ -29,15 +29,15 @@ TEST(CliFit, JsonHasTheDocumentedKeysAndEpsilonNotAboveTheStart) {
   const CommandResult r = RunRockfit(QuickFit({"--json"}));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
-  for (const char* key : {"trial", "parameters", "epsilon", "epsilon_initial", "t_end", "simulations", "wall_s",
-                          "termination", "warnings"}) {
+  for (const char* key : {"trial", "parameters", "correlation", "uncertainty_method", "uncertainty", "epsilon",
+                          "epsilon_initial", "t_end", "simulations", "wall_s", "termination", "warnings"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
-  EXPECT_EQ(j.size(), 9u) << "only the documented keys";
+  EXPECT_EQ(j.size(), 12u) << "only the documented keys";
   EXPECT_EQ(j["trial"], "block2-A-1");
   for (const char* name : {"t0", "alpha", "lambda", "lambda_lat", "lambda_lon", "tau_edge"}) {
     ASSERT_TRUE(j["parameters"].contains(name)) << name;
-    for (const char* field : {"value", "lower", "upper", "fixed", "std_error"}) {
+    for (const char* field : {"value", "lower", "upper", "fixed", "std_error", "interval_68", "interval_95", "determined"}) {
       EXPECT_TRUE(j["parameters"][name].contains(field)) << name << "." << field;
     }
   }
