@@ -202,7 +202,8 @@ std::string GroupRangeTable(const std::vector<GroupRange>& ranges) {
                                 "parameter", "pooled [95 % interval] (pooled/n)", "spread", "χ²/dof", "p");
   for (const GroupRange& r : ranges) {
     for (const char* name : kSummaryParameters) {
-      if (std::string(name) == "tau_edge") continue;
+      // t0 is a time in each recording, not a property of the block: no range (the HDF5 table has it anyway).
+      if (std::string(name) == "tau_edge" || std::string(name) == "t0") continue;
       const fitting::PooledEstimate& e = r.pooled.at(name);
       const std::string pooled = e.n_pooled > 0 ? fmt::format("{:.4g} [{:.4g}, {:.4g}] ({}/{})", e.pooled,
                                                               e.interval_95[0], e.interval_95[1], e.n_pooled, e.n_trials)
