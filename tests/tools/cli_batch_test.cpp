@@ -67,6 +67,11 @@ t = f['summary/fits/per_trial']
 assert len(t['trial']) == 2 and len(t['alpha']) == 2
 g = f['summary/fits/per_group']
 assert list(g['n'][()]) == [1, 1], list(g['n'][()])
+for name in ['alpha_interval_68_lower', 'alpha_interval_95_upper', 'lambda_lat_determined']:
+    assert len(t[name]) == 2, name
+for name in ['alpha_pooled', 'alpha_pooled_95_lower', 'alpha_pooled_95_upper', 'alpha_n_pooled', 'alpha_chi2_per_dof',
+             'alpha_consistency_p']:
+    assert len(g[name]) == 2, name
 print('ok')
 )",
                                             out);

@@ -257,9 +257,10 @@ void RenderFitPlot(const FitPlotData& d, const std::filesystem::path& output, in
                                                            "(solid), edge (dotted)", d.trial, d.epsilon_rad_s)));
   body += "set grid lc rgb '#dddddd'\nset lmargin 10\nset rmargin 3\nset key top right font ',9'\n" + marks;
   if (!d.parameter_lines.empty()) {
-    std::string line;
-    for (const std::string& l : d.parameter_lines) line += (line.empty() ? "" : "     ") + l;
-    body += fmt::format("set label 1 {} at screen 0.5, screen 0.945 center font ',9'\n", GnuplotString(line));
+    // One line per parameter, top left of the first panel (the block is at rest there before the release).
+    std::string text = "95 % intervals";
+    for (const std::string& l : d.parameter_lines) text += "\\n" + l;  // a newline inside a double-quoted string
+    body += fmt::format("set label 1 \"{}\" at graph 0.01, graph 0.95 left front font ',8' noenhanced\n", text);
   }
   for (int c = 0; c < 3; ++c) {
     body += fmt::format("set ylabel '{} [rad/s]'\n", kComponent[c]);
@@ -267,6 +268,7 @@ void RenderFitPlot(const FitPlotData& d, const std::filesystem::path& output, in
     body += fmt::format("plot {0} using 1:{1} with points pt 7 ps 0.4 lc rgb '{3}' title 'measured', {0} using 1:{2} "
                         "with lines lw 1.5 lc rgb '#000000' title 'simulated'\n",
                         data, c + 2, c + 5, kColours[c]);
+    if (c == 0) body += "unset label 1\n";  // drawn once, under the title
   }
   body += "unset multiplot\n";
   figure.Render(body, output, width_px, height_px);
