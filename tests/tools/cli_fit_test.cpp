@@ -50,6 +50,15 @@ TEST(CliFit, JsonHasTheDocumentedKeysAndEpsilonNotAboveTheStart) {
   EXPECT_NEAR(j["t_end"].get<double>(), 3.378 - 0.012, 0.004);
 }
 
+TEST(CliFit, TextShowsTheIntervalsAndHowTheyWereMade) {
+  const CommandResult r = RunRockfit(QuickFit({}));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("68 % interval"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("95 % interval"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("determined"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("intervals    fast: linearised"), std::string::npos) << r.out;
+}
+
 TEST(CliFit, EvaluatePrintsEpsilonWithoutFitting) {
   const CommandResult truth = RunRockfit({"fit", SampleManifest(), "--trial", "block2-A-1", "--evaluate", "--json",
                                           "--t0", "2.33", "--alpha", "0.197", "--lambda", "2.185", "--lambda-lat",
