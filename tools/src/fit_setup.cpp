@@ -72,8 +72,8 @@ void AddFitOptions(CLI::App& app, FitArgs& args) {
   app.add_flag("--keep-bias", args.keep_bias, "Do not subtract the gyro bias measured at rest before the release");
   app.add_option("--threads", args.threads, "Threads of the global stage and the intervals (0: all cores)");
   app.add_option("--intervals", args.intervals,
-                 "68 % and 95 % intervals: thorough (profiles of (28)'s sum of squares, the others re-fitted; about "
-                 "as costly as the fit), fast (linearised, nearly free) or none (standard errors only)")
+                 "68 % and 95 % intervals: thorough (profiles of (28)'s sum of squares, the others re-fitted; the fit "
+                 "costs about 1.5 times as much), fast (linearised, nearly free) or none (standard errors only)")
       ->capture_default_str();
 }
 
