@@ -322,6 +322,7 @@ StandardErrors ComputeStandardErrors(const Objective& objective, const Eigen::Ve
     result.message = "the model fails at the optimum";
     return result;
   }
+  result.residuals = Eigen::Map<const Eigen::VectorXd>(r, static_cast<Eigen::Index>(3 * evaluator.num_slots()));
   double sum_sq = 0.0;
   for (std::size_t i = 0; i < 3 * evaluator.num_slots(); ++i) sum_sq += r[i] * r[i];
   const double inflation = CorrelationInflation(r, evaluator.num_slots());
@@ -345,6 +346,8 @@ StandardErrors ComputeStandardErrors(const Objective& objective, const Eigen::Ve
       }
     }
     const Eigen::VectorXd singular = Eigen::JacobiSVD<Eigen::MatrixXd>(jacobian).singularValues();
+    result.jacobian = jacobian;
+
     // (JᵀJ) has reciprocal condition (σ_min/σ_max)²; Ceres' default threshold for it is 1e-14.
     constexpr double kMinReciprocalCondition = 1e-14;
     if (singular.size() == 0 || !(singular.minCoeff() > std::sqrt(kMinReciprocalCondition) * singular.maxCoeff())) {
@@ -367,6 +370,7 @@ StandardErrors ComputeStandardErrors(const Objective& objective, const Eigen::Ve
     return result;
   }
   const double s2 = inflation * sum_sq / dof;
+  result.inverse_normal_matrix = cov;
   for (Eigen::Index i = 0; i < n; ++i) {
     result.std_error[i] = cov(i, i) >= 0.0 ? std::sqrt(s2 * cov(i, i)) : std::numeric_limits<double>::quiet_NaN();
   }

@@ -92,6 +92,41 @@ void GlobalStageOptions::Validate() const {
   RequirePositive(alpha_halfwidth_rad, "global.alpha_halfwidth_rad");
 }
 
+const char* ToString(IntervalMethod method) {
+  switch (method) {
+    case IntervalMethod::kNone: return "none";
+    case IntervalMethod::kFast: return "fast";
+    case IntervalMethod::kThorough: return "thorough";
+  }
+  return "?";
+}
+
+IntervalMethod ParseIntervalMethod(const std::string& name) {
+  if (name == "none") return IntervalMethod::kNone;
+  if (name == "fast") return IntervalMethod::kFast;
+  if (name == "thorough") return IntervalMethod::kThorough;
+  throw InvalidArgument(fmt::format("unknown interval method '{}'; use none, fast or thorough", name));
+}
+
+void IntervalOptions::Validate() const {
+  RequirePositive(noise_correlation_window_s, "intervals.noise_correlation_window_s");
+  if (!(model_error_allowance >= 1.0 && std::isfinite(model_error_allowance))) {
+    throw InvalidArgument(fmt::format("fit option intervals.model_error_allowance must be at least 1, got {}",
+                                      model_error_allowance));
+  }
+  RequireAtLeast(profile_evaluations, 1, "intervals.profile_evaluations");
+  RequireAtLeast(centre_evaluations, 0, "intervals.centre_evaluations");
+  RequireAtLeast(profile_points, 2, "intervals.profile_points");
+  if (!(profile_growth > 1.0 && std::isfinite(profile_growth))) {
+    throw InvalidArgument(fmt::format("fit option intervals.profile_growth must be above 1, got {}", profile_growth));
+  }
+  RequirePositive(min_step, "intervals.min_step");
+  if (!(undetermined_range_fraction > 0.0 && undetermined_range_fraction <= 1.0)) {
+    throw InvalidArgument(fmt::format("fit option intervals.undetermined_range_fraction must lie in (0, 1], got {}",
+                                      undetermined_range_fraction));
+  }
+}
+
 void IdentifiabilityOptions::Validate() const {
   RequirePositive(probe_step, "identifiability.probe_step");
   RequirePositive(relative_tolerance, "identifiability.relative_tolerance");
@@ -102,6 +137,7 @@ void FitOptions::Validate() const {
   nelder_mead.Validate();
   ceres.Validate();
   identifiability.Validate();
+  intervals.Validate();
   RequireAtLeast(num_threads, 0, "num_threads");
   if (!(at_bound_fraction >= 0.0 && at_bound_fraction < 0.5)) {
     throw InvalidArgument(fmt::format("fit option at_bound_fraction must lie in [0, 0.5), got {}", at_bound_fraction));

@@ -28,8 +28,8 @@ std::string FitSummary::BriefReport() const {
 
 std::string FitSummary::FullReport() const {
   std::ostringstream out;
-  out << fmt::format("{:<11} {:>12} {:>12} {:>10} {:>10}  {}\n", "parameter", "value", "std error", "lower",
-                     "upper", "");
+  out << fmt::format("{:<11} {:>12} {:>12} {:>10} {:>10}  {:<25} {:<25} {:<9} {}\n", "parameter", "value", "std error",
+                     "lower", "upper", "68 % interval", "95 % interval", "determined", "");
   for (ParameterId id : kAllParameters) {
     const Parameter& p = parameters[id];
     const std::size_t k = static_cast<std::size_t>(id);
@@ -37,8 +37,14 @@ std::string FitSummary::FullReport() const {
     if (!p.fixed && at_bound[k]) flags += "at bound ";
     if (!p.fixed && !identifiable[k]) flags += "not identifiable";
     const std::string se = std::isfinite(std_error[k]) ? fmt::format("{:12.5g}", std_error[k]) : fmt::format("{:>12}", "-");
-    out << fmt::format("{:<11} {:12.6g} {} {:10.4g} {:10.4g}  {} {}\n", Name(id), p.value, se, p.lower, p.upper,
-                       Unit(id), flags);
+    auto end = [](double v) { return std::isnan(v) ? std::string("open") : fmt::format("{:.6g}", v); };
+    auto interval = [&](const Interval& i) {
+      return p.fixed ? std::string("—") : fmt::format("[{}, {}]", end(i[0]), end(i[1]));
+    };
+    const auto& d = uncertainty.determined[k];
+    out << fmt::format("{:<11} {:12.6g} {} {:10.4g} {:10.4g}  {:<25} {:<25} {:<9} {} {}\n", Name(id), p.value, se, p.lower,
+                       p.upper, interval(uncertainty.interval_68[k]), interval(uncertainty.interval_95[k]),
+                       d ? ToString(*d) : "—", Unit(id), flags);
   }
   out << fmt::format("ε (28)      {:.6g} rad/s (at the start {:.6g} rad/s), window ends at t_end = {:.4f} s\n",
                      epsilon_rad_s, epsilon_initial_rad_s, t_end_s);
@@ -49,6 +55,9 @@ std::string FitSummary::FullReport() const {
                        s.evaluations, s.wall_time_s, s.termination);
   }
   out << fmt::format("termination {} (kept: {})\n", termination, kept_stage);
+  out << fmt::format("intervals   {} ({} simulations, {:.3f} s)\n", uncertainty.description, uncertainty.evaluations,
+                     uncertainty.wall_time_s);
+  for (const std::string& s : uncertainty.statements) out << "data fix    " << s << "\n";
   for (const FitWarning& w : warnings) out << "warning     " << w.message << "\n";
   return out.str();
 }
@@ -67,10 +76,23 @@ std::string FitSummary::ToJson(const std::string& trial) const {
                         {"std_error", NumberOrNull(std_error[k])},
                         {"identifiable", identifiable[k]},
                         {"at_bound", at_bound[k]},
+                        {"interval_68", nlohmann::json::parse(IntervalJson(uncertainty.interval_68[k], p.fixed))},
+                        {"interval_95", nlohmann::json::parse(IntervalJson(uncertainty.interval_95[k], p.fixed))},
+                        {"determined", uncertainty.determined[k] ? nlohmann::json(ToString(*uncertainty.determined[k]))
+                                                                 : nlohmann::json()},
                         {"start", start.value(id)},
                         {"unit", Unit(id)}};
   }
   j["parameters"] = params;
+  j["correlation"] = nlohmann::json::parse(CorrelationJson(uncertainty, parameters));
+  j["uncertainty_method"] = ToString(uncertainty.method);
+  j["uncertainty"] = {{"description", uncertainty.description},
+                      {"correlation_factor", uncertainty.correlation_factor},
+      {"noise_inflation", nlohmann::json::parse(NoiseInflationJson(uncertainty, parameters))},
+                      {"noise_rms_rad_s", uncertainty.noise_rms_rad_s},
+                      {"statements", uncertainty.statements},
+                      {"simulations", uncertainty.evaluations},
+                      {"wall_s", uncertainty.wall_time_s}};
   j["epsilon"] = epsilon_rad_s;
   j["epsilon_initial"] = epsilon_initial_rad_s;
   j["feasible"] = feasible;

@@ -12,6 +12,7 @@
 #include "rockfit/fitting/global_stage.hpp"
 #include "rockfit/fitting/identifiability.hpp"
 #include "rockfit/fitting/local_optimizer.hpp"
+#include "rockfit/fitting/uncertainty.hpp"
 
 namespace rockfit::fitting {
 namespace {
@@ -77,9 +78,11 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
     summary.stages.push_back({"start", e.epsilon_rad_s, 1, seconds_since(t), e.feasible ? "evaluated" : e.failure});
   }
   Eigen::VectorXd x_current = x_start;
+  std::vector<std::pair<Eigen::VectorXd, double>> global_candidates;
 
   if (options.global.enabled) {
     const GlobalStageResult g = RunGlobalStage(objective, x_start, options);
+    global_candidates = g.candidates;
     const std::string termination =
         fmt::format("{} of {} first-window starts feasible, {} continued to the full window", g.num_feasible_samples,
                     g.num_samples, g.num_continued);
@@ -118,35 +121,90 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
     if (c.converged && c.feasible && c.epsilon_rad_s == best->epsilon_rad_s) summary.converged = true;
   }
 
-  // Identifiability and bounds.
-  const IdentifiabilityReport ident = CheckIdentifiability(objective, summary.parameters, options.identifiability);
-  summary.identifiable = ident.identifiable;
-  summary.std_error.fill(std::numeric_limits<double>::quiet_NaN());
-  ParameterSet for_covariance = summary.parameters;
-  for (ParameterId id : objective.free_ids()) {
-    const std::size_t k = static_cast<std::size_t>(id);
-    const Parameter& p = summary.parameters[id];
-    const double range = p.upper - p.lower;
-    const double margin = std::isfinite(range) ? options.at_bound_fraction * range : 0.0;
-    summary.at_bound[k] = p.value <= p.lower + margin || p.value >= p.upper - margin;
-    if (summary.at_bound[k]) {
-      summary.warnings.push_back({"at_bound", Name(id),
-                                  fmt::format("{} = {:.6g} {} is at its {} bound; the optimum may lie beyond it", Name(id),
-                                              p.value, Unit(id), p.value <= p.lower + margin ? "lower" : "upper")});
+  // Identifiability, bounds, standard errors and intervals at the kept point. The profiles of the intervals may
+  // meet a point with a lower (28) (they leave the basin of the fit along a valley the global stage did not
+  // follow to its end): the fit then moves there by Nelder–Mead and everything is computed once more.
+  for (int pass = 0; pass < 2; ++pass) {
+    // Identifiability and bounds.
+    const std::size_t warnings_before = summary.warnings.size();
+    const IdentifiabilityReport ident = CheckIdentifiability(objective, summary.parameters, options.identifiability);
+    summary.identifiable = ident.identifiable;
+    summary.std_error.fill(std::numeric_limits<double>::quiet_NaN());
+    ParameterSet for_covariance = summary.parameters;
+    for (ParameterId id : objective.free_ids()) {
+      const std::size_t k = static_cast<std::size_t>(id);
+      const Parameter& p = summary.parameters[id];
+      const double range = p.upper - p.lower;
+      const double margin = std::isfinite(range) ? options.at_bound_fraction * range : 0.0;
+      summary.at_bound[k] = p.value <= p.lower + margin || p.value >= p.upper - margin;
+      if (summary.at_bound[k]) {
+        summary.warnings.push_back({"at_bound", Name(id),
+                                    fmt::format("{} = {:.6g} {} is at its {} bound; the optimum may lie beyond it", Name(id),
+                                                p.value, Unit(id), p.value <= p.lower + margin ? "lower" : "upper")});
+      }
+      if (!ident.identifiable[k]) summary.warnings.push_back({"not_identifiable", Name(id), ident.reason[k]});
+      if (summary.at_bound[k] || !ident.identifiable[k]) for_covariance[id].fixed = true;
     }
-    if (!ident.identifiable[k]) summary.warnings.push_back({"not_identifiable", Name(id), ident.reason[k]});
-    if (summary.at_bound[k] || !ident.identifiable[k]) for_covariance[id].fixed = true;
-  }
 
-  // Standard errors of the identifiable parameters that are not at a bound.
-  if (options.compute_std_errors && summary.feasible && !for_covariance.FreeIds().empty()) {
-    const Objective restricted = objective.WithParameters(for_covariance);
-    const StandardErrors se =
-        ComputeStandardErrors(restricted, restricted.FreeValues(summary.parameters), options.ceres);
-    for (std::size_t i = 0; i < restricted.num_free(); ++i) {
-      summary.std_error[static_cast<std::size_t>(restricted.free_ids()[i])] = se.std_error[static_cast<Eigen::Index>(i)];
+    // Standard errors of the identifiable parameters that are not at a bound.
+    Linearisation lin;
+    const bool want_covariance = options.compute_std_errors || options.intervals.method != IntervalMethod::kNone;
+    if (want_covariance && summary.feasible && !for_covariance.FreeIds().empty()) {
+      const Objective restricted = objective.WithParameters(for_covariance);
+      const StandardErrors se =
+          ComputeStandardErrors(restricted, restricted.FreeValues(summary.parameters), options.ceres);
+      if (options.compute_std_errors) {
+        for (std::size_t i = 0; i < restricted.num_free(); ++i) {
+          summary.std_error[static_cast<std::size_t>(restricted.free_ids()[i])] = se.std_error[static_cast<Eigen::Index>(i)];
+        }
+      }
+      if (se.inverse_normal_matrix.rows() > 0) {
+        lin = {restricted.free_ids(), se.inverse_normal_matrix, se.jacobian, se.residuals};
+      }
+      if (!se.available && options.compute_std_errors) summary.warnings.push_back({"std_error_unavailable", "", "standard errors: " + se.message});
     }
-    if (!se.available) summary.warnings.push_back({"std_error_unavailable", "", "standard errors: " + se.message});
+
+    std::vector<ParameterSet> alternatives;
+    for (const auto& c : global_candidates) alternatives.push_back(objective.WithFree(c.first));
+    summary.uncertainty = ComputeUncertainty(objective, summary.parameters, summary.epsilon_rad_s, summary.identifiable,
+                                             lin, alternatives, options.intervals, options.num_threads);
+    if (!summary.feasible || !summary.uncertainty.better_point || pass == 1) break;
+    const LocalResult r =
+        MakeNelderMead(options.nelder_mead)->Minimize(objective, objective.FreeValues(*summary.uncertainty.better_point));
+    summary.stages.push_back({"interval-restart", r.epsilon_rad_s, r.evaluations, r.wall_time_s, r.termination});
+    if (!(r.feasible && r.epsilon_rad_s < summary.epsilon_rad_s)) break;
+    summary.warnings.resize(warnings_before);
+    summary.warnings.push_back(
+        {"moved_by_intervals", "",
+         fmt::format("the profiles of the intervals met a lower (28) than the global stage's result: ε {:.6g} → {:.6g} "
+                     "rad/s; the fit moved there", summary.epsilon_rad_s, r.epsilon_rad_s)});
+    summary.parameters = objective.WithFree(r.x);
+    summary.epsilon_rad_s = r.epsilon_rad_s;
+    summary.termination = r.termination;
+    summary.kept_stage = "interval-restart";
+    summary.converged = r.converged;
+  }
+  // A second solution: a candidate of the global stage in another basin that the data do not exclude.
+  if (summary.feasible && summary.uncertainty.second_solution) {
+    const ParameterSet& other = *summary.uncertainty.second_solution;
+    const double epsilon = summary.uncertainty.second_solution_epsilon_rad_s;
+    std::string values;
+    for (ParameterId id : objective.free_ids()) {
+      values += fmt::format("{}{} = {:.5g}", values.empty() ? "" : ", ", Name(id), other.value(id));
+    }
+    summary.warnings.push_back(
+        {"second_basin", "",
+         fmt::format("a second solution in another basin fits nearly as well: {} with ε = {:.6g} rad/s ({:+.2f} % of "
+                     "the result's); the data do not decide between them, the intervals include both",
+                     values, epsilon, 100.0 * (epsilon / summary.epsilon_rad_s - 1.0))});
+  }
+  for (ParameterId id : objective.free_ids()) {
+    const auto& d = summary.uncertainty.determined[static_cast<std::size_t>(id)];
+    if (d && *d != Determination::kYes && summary.identifiable[static_cast<std::size_t>(id)]) {
+      summary.warnings.push_back({"not_determined", Name(id),
+                                  fmt::format("{}: the data fix {} (see the intervals)", Name(id),
+                                              *d == Determination::kSignOnly ? "only its sign" : "no useful range")});
+    }
   }
 
   // Model failures during this fit.

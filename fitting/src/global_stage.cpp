@@ -8,10 +8,7 @@
 #include <numeric>
 #include <optional>
 
-#include <tbb/info.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
+#include "parallel_for.hpp"
 #include "rockfit/fitting/identifiability.hpp"
 #include "rockfit/fitting/latin_hypercube.hpp"
 
@@ -20,14 +17,6 @@ namespace {
 
 // Two starts closer than this in box-normalised coordinates (each axis scaled to [0, 1]) are the same start.
 constexpr double kDistinctStartDistance = 0.05;
-
-template <typename Body>
-void ParallelFor(std::size_t n, int num_threads, const Body& body) {
-  // More threads than cores only makes TBB warn; 0 means all cores.
-  const int cores = tbb::info::default_concurrency();
-  tbb::task_arena arena(num_threads > 0 ? std::min(num_threads, cores) : cores);
-  arena.execute([&] { tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) { body(i); }); });
-}
 
 // `window` with every parameter that does not change ε at `at` held fixed at its value there (all values
 // taken from `at`). nullopt when nothing acts (or the model fails at `at`).
@@ -396,6 +385,7 @@ GlobalStageResult RunGlobalStage(const Objective& objective, const Eigen::Vector
   for (std::size_t i = 0; i < continued.size(); ++i) {
     result.evaluations += evaluations[i] + 1;
     const Evaluation e = objective.Evaluate(continued[i]);
+    if (e.feasible) result.candidates.emplace_back(objective.FreeValues(continued[i]), e.epsilon_rad_s);
     if (i == 0 || (e.feasible && !result.feasible) || (e.feasible == result.feasible && e.epsilon_rad_s < best)) {
       best = e.epsilon_rad_s;
       result.best_x = objective.FreeValues(continued[i]);
@@ -435,6 +425,7 @@ GlobalStageResult RunGlobalStage(const Objective& objective, const Eigen::Vector
     });
     for (std::size_t i = 0; i < refined.size(); ++i) {
       result.evaluations += refine_evaluations[i];
+      if (refined_e[i].feasible) result.candidates.emplace_back(objective.FreeValues(refined[i]), refined_e[i].epsilon_rad_s);
       if (refined_e[i].feasible && refined_e[i].epsilon_rad_s < result.best_epsilon_rad_s) {
         result.best_x = objective.FreeValues(refined[i]);
         result.best_epsilon_rad_s = refined_e[i].epsilon_rad_s;

@@ -1,6 +1,7 @@
 // Fitting speed (DESIGN §11): one five-parameter fit of a synthetic trial from no starting point on one core
 // (target ≤ 2 s), one evaluation of (28) (one simulation of the window), and the bundled sample campaign
-// (data-samples/manifest.toml) on two cores (target: 80 trials in ≤ 1 min).
+// (data-samples/manifest.toml) on two cores (target: 80 trials in ≤ 1 min); each with the interval settings of
+// `--intervals` (none, fast, thorough).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -53,12 +54,14 @@ const Trial& SyntheticTrial() {
   return trial;
 }
 
-void FitOneTrial(benchmark::State& state, fitting::FitMethod method) {
+void FitOneTrial(benchmark::State& state, fitting::FitMethod method,
+                 fitting::IntervalMethod intervals = fitting::IntervalMethod::kFast) {
   const Trial& trial = SyntheticTrial();
   fitting::FitOptions options;
   options.method = method;
+  options.intervals.method = intervals;
   options.num_threads = 1;  // one core
-  double simulations = 0.0, epsilon = 0.0, rate = 0.0;
+  double simulations = 0.0, epsilon = 0.0, rate = 0.0, interval_simulations = 0.0;
   for (auto _ : state) {
     // Everything `rockfit fit` does after reading the files: data estimate, bias, window, fit.
     const fitting::TrialProblem problem =
@@ -67,9 +70,11 @@ void FitOneTrial(benchmark::State& state, fitting::FitMethod method) {
     simulations = static_cast<double>(summary.simulations);
     epsilon = summary.epsilon_rad_s;
     rate = summary.simulations_per_second;
+    interval_simulations = static_cast<double>(summary.uncertainty.evaluations);
     benchmark::ClobberMemory();
   }
   state.counters["simulations"] = simulations;
+  state.counters["interval_simulations"] = interval_simulations;
   state.counters["sims_per_s"] = rate;
   // In mrad/s: this Google Benchmark prints counters below 1 wrongly.
   state.counters["epsilon_mrad_s"] = 1e3 * epsilon;
@@ -78,7 +83,16 @@ void FitOneTrial(benchmark::State& state, fitting::FitMethod method) {
 void BM_FitOneTrialAuto(benchmark::State& state) { FitOneTrial(state, fitting::FitMethod::kAuto); }
 void BM_FitOneTrialNelderMead(benchmark::State& state) { FitOneTrial(state, fitting::FitMethod::kNelderMead); }
 void BM_FitOneTrialCeres(benchmark::State& state) { FitOneTrial(state, fitting::FitMethod::kCeres); }
-BENCHMARK(BM_FitOneTrialAuto)->Unit(benchmark::kMillisecond)->Iterations(3);
+// `rockfit fit` with each --intervals setting (auto): the cost of the intervals per trial.
+void BM_FitOneTrialIntervalsNone(benchmark::State& state) {
+  FitOneTrial(state, fitting::FitMethod::kAuto, fitting::IntervalMethod::kNone);
+}
+void BM_FitOneTrialIntervalsThorough(benchmark::State& state) {
+  FitOneTrial(state, fitting::FitMethod::kAuto, fitting::IntervalMethod::kThorough);
+}
+BENCHMARK(BM_FitOneTrialAuto)->Unit(benchmark::kMillisecond)->Iterations(3);  // --intervals fast
+BENCHMARK(BM_FitOneTrialIntervalsNone)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_FitOneTrialIntervalsThorough)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_FitOneTrialNelderMead)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_FitOneTrialCeres)->Unit(benchmark::kMillisecond)->Iterations(3);
 
@@ -102,7 +116,7 @@ void BM_Error28Evaluation(benchmark::State& state) {
 BENCHMARK(BM_Error28Evaluation)->Unit(benchmark::kMicrosecond);
 
 // The bundled sample campaign, every trial, two trials at a time (as `rockfit batch -j 2`, without the files).
-void BM_FitSampleCampaign(benchmark::State& state) {
+void FitSampleCampaign(benchmark::State& state, fitting::IntervalMethod intervals) {
   const std::filesystem::path manifest_path = std::filesystem::path(ROCKFIT_SOURCE_DIR) / "data-samples" / "manifest.toml";
   if (!std::filesystem::exists(manifest_path)) {
     state.SkipWithError("data-samples/manifest.toml is not there");
@@ -122,6 +136,7 @@ void BM_FitSampleCampaign(benchmark::State& state) {
   }
   fitting::FitOptions options;
   options.num_threads = 1;
+  options.intervals.method = intervals;
   std::vector<double> epsilon(signals.size(), 0.0);
   tbb::task_arena arena(static_cast<int>(state.range(0)));
   for (auto _ : state) {
@@ -138,7 +153,13 @@ void BM_FitSampleCampaign(benchmark::State& state) {
   state.counters["trials"] = static_cast<double>(signals.size());
   state.counters["mean_epsilon_mrad_s"] = 1e3 * mean;
 }
+// `rockfit batch -j 2` with --intervals fast, and with the command line's default (thorough).
+void BM_FitSampleCampaign(benchmark::State& state) { FitSampleCampaign(state, fitting::IntervalMethod::kFast); }
+void BM_FitSampleCampaignIntervalsThorough(benchmark::State& state) {
+  FitSampleCampaign(state, fitting::IntervalMethod::kThorough);
+}
 BENCHMARK(BM_FitSampleCampaign)->Arg(2)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_FitSampleCampaignIntervalsThorough)->Arg(2)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
 

@@ -19,7 +19,10 @@
 namespace rockfit::testing {
 namespace {
 
-const std::vector<std::string> kQuick = {"--method", "nelder-mead", "--max-evaluations", "15", "--no-global"};
+// Linearised intervals: the profiles of the default (`thorough`) cost thousands of simulations, too slow for the
+// sanitizer build; tests/tools/cli_fit_intervals_test.cpp covers them in optimised builds.
+const std::vector<std::string> kQuick = {"--method", "nelder-mead", "--max-evaluations", "15", "--no-global",
+                                         "--intervals", "fast"};
 
 // A manifest of the given sample trials (block2) in `dir`, the files given as absolute paths.
 std::string WriteManifest(const ScratchDir& dir, const std::vector<std::string>& trials, bool add_missing = false) {
@@ -64,6 +67,11 @@ t = f['summary/fits/per_trial']
 assert len(t['trial']) == 2 and len(t['alpha']) == 2
 g = f['summary/fits/per_group']
 assert list(g['n'][()]) == [1, 1], list(g['n'][()])
+for name in ['alpha_interval_68_lower', 'alpha_interval_95_upper', 'lambda_lat_determined']:
+    assert len(t[name]) == 2, name
+for name in ['alpha_pooled', 'alpha_pooled_95_lower', 'alpha_pooled_95_upper', 'alpha_n_pooled', 'alpha_chi2_per_dof',
+             'alpha_consistency_p']:
+    assert len(g[name]) == 2, name
 print('ok')
 )",
                                             out);
@@ -87,7 +95,7 @@ TEST(CliBatch, FailedTrialIsListedAndTheOthersAreKept) {
   // Other settings: fitted again.
   const CommandResult other = RunRockfit(
       {"batch", manifest, "-o", out, "--resume", "--json", "--method", "nelder-mead", "--max-evaluations", "16",
-       "--no-global"});
+       "--no-global", "--intervals", "fast"});
   EXPECT_EQ(nlohmann::json::parse(other.out)["skipped"], 0);
 }
 

@@ -159,7 +159,8 @@ TEST(CliFitRecovery, LambdaIsReportedNotIdentifiableInAPlanarTrial) {
   nlohmann::json truth_file;
   const std::string prefix = Synthesize(dir, t, &truth_file);
   const nlohmann::json j = RunJson(FitCommand(
-      prefix, t, {"--fix", "lambda_lat=0", "--no-global", "--method", "nelder-mead", "--max-evaluations", "60"}));
+      prefix, t, {"--fix", "lambda_lat=0", "--no-global", "--method", "nelder-mead", "--max-evaluations", "60",
+                 "--intervals", "fast"}));
   EXPECT_TRUE(j["parameters"]["lambda_lat"]["fixed"].get<bool>());
   EXPECT_EQ(j["parameters"]["lambda_lat"]["value"].get<double>(), 0.0);
   bool lambda_flagged = false;
@@ -180,7 +181,8 @@ TEST(CliFitRecovery, FixWithoutAValueHoldsTheDataEstimate) {
   nlohmann::json truth_file;
   const std::string prefix = Synthesize(dir, t, &truth_file);
   const nlohmann::json j = RunJson(
-      FitCommand(prefix, t, {"--fix", "t0", "--no-global", "--method", "nelder-mead", "--max-evaluations", "20"}));
+      FitCommand(prefix, t, {"--fix", "t0", "--no-global", "--method", "nelder-mead", "--max-evaluations", "20",
+                              "--intervals", "fast"}));
   EXPECT_TRUE(j["parameters"]["t0"]["fixed"].get<bool>());
   // The phase-1 estimate is good to a few samples (3.9 ms each).
   EXPECT_NEAR(j["parameters"]["t0"]["value"].get<double>(), t.t0_s, 0.02);

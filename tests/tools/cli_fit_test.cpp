@@ -20,7 +20,7 @@ std::string SampleManifest() { return (SourceDir() / "data-samples" / "manifest.
 std::vector<std::string> QuickFit(std::vector<std::string> extra) {
   std::vector<std::string> args = {"fit",     SampleManifest(), "--trial",           "block2-A-1",
                                    "--method", "nelder-mead",    "--max-evaluations", "40",
-                                   "--no-global"};
+                                   "--no-global",    "--intervals", "fast"};
   args.insert(args.end(), extra.begin(), extra.end());
   return args;
 }
@@ -29,15 +29,15 @@ TEST(CliFit, JsonHasTheDocumentedKeysAndEpsilonNotAboveTheStart) {
   const CommandResult r = RunRockfit(QuickFit({"--json"}));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
-  for (const char* key : {"trial", "parameters", "epsilon", "epsilon_initial", "t_end", "simulations", "wall_s",
-                          "termination", "warnings", "mounting"}) {
+  for (const char* key : {"trial", "parameters", "correlation", "uncertainty_method", "uncertainty", "epsilon",
+                          "epsilon_initial", "t_end", "simulations", "wall_s", "termination", "warnings", "mounting"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
-  EXPECT_EQ(j.size(), 10u) << "only the documented keys";
+  EXPECT_EQ(j.size(), 13u) << "only the documented keys";
   EXPECT_EQ(j["trial"], "block2-A-1");
   for (const char* name : {"t0", "alpha", "lambda", "lambda_lat", "lambda_lon", "tau_edge"}) {
     ASSERT_TRUE(j["parameters"].contains(name)) << name;
-    for (const char* field : {"value", "lower", "upper", "fixed", "std_error"}) {
+    for (const char* field : {"value", "lower", "upper", "fixed", "std_error", "interval_68", "interval_95", "determined"}) {
       EXPECT_TRUE(j["parameters"][name].contains(field)) << name << "." << field;
     }
   }
@@ -48,6 +48,15 @@ TEST(CliFit, JsonHasTheDocumentedKeysAndEpsilonNotAboveTheStart) {
   // The window ends 12 ms (window_end_margin_s) before the impact that ends phase 4; the truth file gives
   // phase4_end_s = 3.378 s, detected to one sample (3.9 ms).
   EXPECT_NEAR(j["t_end"].get<double>(), 3.378 - 0.012, 0.004);
+}
+
+TEST(CliFit, TextShowsTheIntervalsAndHowTheyWereMade) {
+  const CommandResult r = RunRockfit(QuickFit({}));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("68 % interval"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("95 % interval"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("determined"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("intervals    fast: linearised"), std::string::npos) << r.out;
 }
 
 TEST(CliFit, EvaluatePrintsEpsilonWithoutFitting) {
@@ -86,7 +95,7 @@ TEST(CliFit, WritesTheFitGroupAndKeepsOthers) {
   ASSERT_EQ(RunRockfit(QuickFit({"--fix", "t0,alpha", "-o", out})).exit_code, 0);
   const CommandResult r = RunRockfit(
       {"fit", SampleManifest(), "--trial", "block2-B-1", "--method", "nelder-mead", "--max-evaluations", "20",
-       "--no-global", "-o", out});
+       "--no-global", "--intervals", "fast", "-o", out});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const CommandResult check = RunH5pyScript(R"(
 import sys, h5py

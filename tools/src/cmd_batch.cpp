@@ -24,6 +24,7 @@
 #include "recording_input.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/fitting/fitter.hpp"
+#include "rockfit/fitting/group_pooling.hpp"
 #include "rockfit/io/campaign_hdf5.hpp"
 #include "rockfit/io/hdf5_transaction.hpp"
 #include "rockfit/io/manifest.hpp"
@@ -56,11 +57,43 @@ struct TrialOutcome {
 
 const char* const kSummaryParameters[] = {"t0", "alpha", "lambda", "lambda_lat", "lambda_lon", "tau_edge"};
 
-// /summary/fits from every /fits/<trial> in the file: a per-trial table and a per-(block, position) table of
-// mean and sample standard deviation (layout in fitting/README.md).
-void WriteFitSummaryTables(const io::hdf5::Group& root) {
+// Interval columns of one /fits/<trial>/parameters table (NaN / "" where a file written before intervals
+// existed lacks them).
+struct StoredIntervals {
+  std::vector<double> lo68, hi68, lo95, hi95;
+  std::vector<std::string> determined;
+};
+
+StoredIntervals ReadStoredIntervals(const io::hdf5::Group& g, std::size_t rows) {
+  StoredIntervals s;
+  auto doubles = [&](const char* name) {
+    const std::string path = std::string("parameters/") + name;
+    return g.IsDataset(path) ? g.ReadDoubles(path) : std::vector<double>(rows, std::nan(""));
+  };
+  s.lo68 = doubles("interval_68_lower");
+  s.hi68 = doubles("interval_68_upper");
+  s.lo95 = doubles("interval_95_lower");
+  s.hi95 = doubles("interval_95_upper");
+  s.determined = g.IsDataset("parameters/determined") ? g.ReadStrings("parameters/determined")
+                                                       : std::vector<std::string>(rows, "");
+  return s;
+}
+
+// One (block, position) group's range of every parameter (fitting::PoolTrials).
+struct GroupRange {
+  std::string block, position;
+  std::int64_t n = 0;
+  std::map<std::string, double> mean, std_dev;
+  std::map<std::string, fitting::PooledEstimate> pooled;
+};
+
+// /summary/fits from every /fits/<trial> in the file: a per-trial table with the intervals and a
+// per-(block, position) table of mean, spread, pooled estimate with its interval and consistency (layout in
+// fitting/README.md). Returns the groups (for the text table of `batch`).
+std::vector<GroupRange> WriteFitSummaryTables(const io::hdf5::Group& root) {
   std::vector<std::string> trials, blocks, positions;
-  std::map<std::string, std::vector<double>> columns;
+  std::map<std::string, std::vector<double>> columns, lo68, hi68, lo95, hi95;
+  std::map<std::string, std::vector<std::string>> determined;
   std::vector<double> epsilon, wall, mounting_x, mounting_y, mounting_z;
   std::vector<std::string> mounting;
   std::vector<std::int64_t> simulations;
@@ -72,9 +105,17 @@ void WriteFitSummaryTables(const io::hdf5::Group& root) {
     positions.push_back(g.GetString("position").value_or(""));
     const std::vector<std::string> names = g.ReadStrings("parameters/name");
     const std::vector<double> values = g.ReadDoubles("parameters/value");
+    const StoredIntervals stored = ReadStoredIntervals(g, names.size());
     for (const char* name : kSummaryParameters) {
       const auto it = std::find(names.begin(), names.end(), name);
-      columns[name].push_back(it == names.end() ? std::nan("") : values[static_cast<std::size_t>(it - names.begin())]);
+      const bool found = it != names.end();
+      const std::size_t row = static_cast<std::size_t>(it - names.begin());
+      columns[name].push_back(found ? values[row] : std::nan(""));
+      lo68[name].push_back(found ? stored.lo68[row] : std::nan(""));
+      hi68[name].push_back(found ? stored.hi68[row] : std::nan(""));
+      lo95[name].push_back(found ? stored.lo95[row] : std::nan(""));
+      hi95[name].push_back(found ? stored.hi95[row] : std::nan(""));
+      determined[name].push_back(found ? stored.determined[row] : "");
     }
     epsilon.push_back(g.GetDouble("epsilon_rad_s").value_or(std::nan("")));
     wall.push_back(g.GetDouble("wall_s").value_or(std::nan("")));
@@ -91,7 +132,14 @@ void WriteFitSummaryTables(const io::hdf5::Group& root) {
   t.WriteStrings("block", blocks);
   t.WriteStrings("position", positions);
   for (const char* name : kSummaryParameters) {
-    t.WriteDoubles(name, columns[name], fitting::Unit(fitting::ParseParameterName(name)));
+    const std::string unit = fitting::Unit(fitting::ParseParameterName(name));
+    const std::string n = name;
+    t.WriteDoubles(n, columns[name], unit);
+    t.WriteDoubles(n + "_interval_68_lower", lo68[name], unit + "; NaN: open");
+    t.WriteDoubles(n + "_interval_68_upper", hi68[name], unit + "; NaN: open");
+    t.WriteDoubles(n + "_interval_95_lower", lo95[name], unit + "; NaN: open");
+    t.WriteDoubles(n + "_interval_95_upper", hi95[name], unit + "; NaN: open");
+    t.WriteStrings(n + "_determined", determined[name]);
   }
   t.WriteDoubles("epsilon_rad_s", epsilon, "rad/s");
   t.WriteDoubles("wall_s", wall, "s");
@@ -103,32 +151,84 @@ void WriteFitSummaryTables(const io::hdf5::Group& root) {
 
   std::map<std::pair<std::string, std::string>, std::vector<std::size_t>> groups;
   for (std::size_t i = 0; i < trials.size(); ++i) groups[{blocks[i], positions[i]}].push_back(i);
-  std::vector<std::string> group_block, group_position;
-  std::vector<std::int64_t> count;
-  std::map<std::string, std::vector<double>> mean, std_dev;
+  std::vector<GroupRange> ranges;
   for (const auto& [key, members] : groups) {
-    group_block.push_back(key.first);
-    group_position.push_back(key.second);
-    count.push_back(static_cast<std::int64_t>(members.size()));
+    GroupRange range;
+    range.block = key.first;
+    range.position = key.second;
+    range.n = static_cast<std::int64_t>(members.size());
     for (const char* name : kSummaryParameters) {
       double sum = 0.0;
       for (std::size_t i : members) sum += columns[name][i];
       const double m = sum / static_cast<double>(members.size());
       double ss = 0.0;
       for (std::size_t i : members) ss += (columns[name][i] - m) * (columns[name][i] - m);
-      mean[name].push_back(m);
-      std_dev[name].push_back(members.size() > 1 ? std::sqrt(ss / static_cast<double>(members.size() - 1)) : std::nan(""));
+      range.mean[name] = m;
+      range.std_dev[name] = members.size() > 1 ? std::sqrt(ss / static_cast<double>(members.size() - 1)) : std::nan("");
+      std::vector<fitting::TrialEstimate> estimates;
+      for (std::size_t i : members) {
+        estimates.push_back({columns[name][i], {lo95[name][i], hi95[name][i]}, determined[name][i] == "yes"});
+      }
+      range.pooled[name] = fitting::PoolTrials(estimates);
     }
+    ranges.push_back(range);
   }
   const io::hdf5::Group g = root.CreateGroup("summary/fits/per_group");
+  std::vector<std::string> group_block, group_position;
+  std::vector<std::int64_t> count;
+  for (const GroupRange& r : ranges) {
+    group_block.push_back(r.block);
+    group_position.push_back(r.position);
+    count.push_back(r.n);
+  }
   g.WriteStrings("block", group_block);
   g.WriteStrings("position", group_position);
   g.WriteInts("n", count, "1");
   for (const char* name : kSummaryParameters) {
     const std::string unit = fitting::Unit(fitting::ParseParameterName(name));
-    g.WriteDoubles(std::string(name) + "_mean", mean[name], unit);
-    g.WriteDoubles(std::string(name) + "_std", std_dev[name], unit);
+    const std::string n = name;
+    std::vector<double> mean, std_dev, pooled, lo, hi, chi2, p;
+    std::vector<std::int64_t> n_pooled;
+    for (const GroupRange& r : ranges) {
+      mean.push_back(r.mean.at(name));
+      std_dev.push_back(r.std_dev.at(name));
+      const fitting::PooledEstimate& e = r.pooled.at(name);
+      pooled.push_back(e.n_pooled > 0 ? e.pooled : std::nan(""));
+      lo.push_back(e.interval_95[0]);
+      hi.push_back(e.interval_95[1]);
+      chi2.push_back(e.chi2_per_dof);
+      p.push_back(e.consistency_p);
+      n_pooled.push_back(e.n_pooled);
+    }
+    g.WriteDoubles(n + "_mean", mean, unit);
+    g.WriteDoubles(n + "_std", std_dev, unit + "; the spread between trials");
+    g.WriteDoubles(n + "_pooled", pooled, unit + "; inverse-variance weighted over the determined trials");
+    g.WriteDoubles(n + "_pooled_95_lower", lo, unit);
+    g.WriteDoubles(n + "_pooled_95_upper", hi, unit);
+    g.WriteInts(n + "_n_pooled", n_pooled, "1");
+    g.WriteDoubles(n + "_chi2_per_dof", chi2, "1");
+    g.WriteDoubles(n + "_consistency_p", p, "1; below 0.05 the trials disagree beyond their intervals");
   }
+  return ranges;
+}
+
+// The per-group table of `batch`: pooled estimate [95 % interval], spread, consistency per parameter.
+std::string GroupRangeTable(const std::vector<GroupRange>& ranges) {
+  std::string out = fmt::format("{:<10} {:<4} {:>2}  {:<11} {:>34} {:>9} {:>7} {:>7}\n", "block", "pos", "n",
+                                "parameter", "pooled [95 % interval] (pooled/n)", "spread", "χ²/dof", "p");
+  for (const GroupRange& r : ranges) {
+    for (const char* name : kSummaryParameters) {
+      // t0 is a time in each recording, not a property of the block: no range (the HDF5 table has it anyway).
+      if (std::string(name) == "tau_edge" || std::string(name) == "t0") continue;
+      const fitting::PooledEstimate& e = r.pooled.at(name);
+      const std::string pooled = e.n_pooled > 0 ? fmt::format("{:.4g} [{:.4g}, {:.4g}] ({}/{})", e.pooled,
+                                                              e.interval_95[0], e.interval_95[1], e.n_pooled, e.n_trials)
+                                                : fmt::format("— (0/{})", e.n_trials);
+      out += fmt::format("{:<10} {:<4} {:>2}  {:<11} {:>34} {:>9.3g} {:>7.3g} {:>7.3g}\n", r.block, r.position, r.n,
+                         name, pooled, r.std_dev.at(name), e.chi2_per_dof, e.consistency_p);
+    }
+  }
+  return out;
 }
 
 // Hashes of the fits already in the file (for --resume).
@@ -189,6 +289,7 @@ int RunBatch(const BatchCommand& cmd) {
   std::vector<TrialOutcome> outcomes(n);
   std::atomic<std::size_t> next{0};
   std::mutex write_mutex;
+  std::vector<GroupRange> last_ranges;  // the group table of the last commit
   Progress progress(n, isatty(fileno(stderr)) != 0);
   FitArgs fit_args = cmd.fit;
   fit_args.threads = 1;  // parallel over trials, not inside one fit
@@ -223,7 +324,7 @@ int RunBatch(const BatchCommand& cmd) {
           io::WriteFileAttributes(tx.Root(), ROCKFIT_VERSION);
           WriteFitGroup(tx.Root(), o.trial, {spec.block_id, spec.position, spec.notes}, prepared, summary);
           io::WriteMountingHdf5(tx.Root().OpenGroup("fits/" + o.trial), recording);
-          WriteFitSummaryTables(tx.Root());
+          last_ranges = WriteFitSummaryTables(tx.Root());
           tx.Commit();
         }
       } catch (const InvalidArgument& e) {
@@ -268,12 +369,28 @@ int RunBatch(const BatchCommand& cmd) {
                       {"mounting_disagreement_deg", OrNull(o.mounting_disagreement_deg)},
                       {"message", o.message}});
   }
+  nlohmann::json groups = nlohmann::json::array();
+  for (const GroupRange& r : last_ranges) {
+    nlohmann::json params = nlohmann::json::object();
+    for (const char* name : kSummaryParameters) {
+      const fitting::PooledEstimate& e = r.pooled.at(name);
+      params[name] = {{"mean", OrNull(r.mean.at(name))},
+                      {"spread", OrNull(r.std_dev.at(name))},
+                      {"pooled", e.n_pooled > 0 ? OrNull(e.pooled) : nlohmann::json()},
+                      {"pooled_interval_95", {OrNull(e.interval_95[0]), OrNull(e.interval_95[1])}},
+                      {"n_pooled", e.n_pooled},
+                      {"chi2_per_dof", OrNull(e.chi2_per_dof)},
+                      {"consistency_p", OrNull(e.consistency_p)}};
+    }
+    groups.push_back({{"block", r.block}, {"position", r.position}, {"n", r.n}, {"parameters", params}});
+  }
   if (cmd.json) {
     PrintJson({{"output", cmd.output}, {"trials", trials}, {"fitted", n - failed - skipped}, {"skipped", skipped},
-               {"failed", failed}});
+               {"failed", failed}, {"groups", groups}});
   } else {
     std::cout << fmt::format("{} trials: {} fitted, {} skipped (already in {} with the same settings), {} failed\n", n,
                              n - failed - skipped, skipped, cmd.output, failed);
+    if (!last_ranges.empty()) std::cout << GroupRangeTable(last_ranges);
   }
   for (const TrialOutcome& o : outcomes) {
     if (!o.mounting_warning.empty()) std::cerr << "rockfit: warning: " << o.trial << ": " << o.mounting_warning << "\n";

@@ -110,6 +110,21 @@ int RunFit(const FitCommand& cmd) {
       data.impact_t_s.push_back(summary.parameters.value(fitting::ParameterId::kT0) + e.t_s);
       data.impact_kind.push_back(e.kind);
     }
+    std::vector<std::string> names, units;
+    std::vector<double> values, lo, hi;
+    std::vector<bool> fixed;
+    for (fitting::ParameterId id : fitting::kAllParameters) {
+      const std::size_t k = static_cast<std::size_t>(id);
+      names.push_back(fitting::Name(id));
+      units.push_back(fitting::Unit(id));
+      values.push_back(summary.parameters.value(id));
+      fixed.push_back(summary.parameters[id].fixed);
+      lo.push_back(summary.uncertainty.interval_95[k][0]);
+      hi.push_back(summary.uncertainty.interval_95[k][1]);
+    }
+    if (summary.uncertainty.method != fitting::IntervalMethod::kNone) {
+      data.parameter_lines = ParameterLines(names, units, values, fixed, lo, hi);
+    }
     RenderFitPlot(data, cmd.plot, 1200, 900);
   }
   if (cmd.json) {

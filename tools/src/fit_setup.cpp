@@ -70,7 +70,11 @@ void AddFitOptions(CLI::App& app, FitArgs& args) {
   app.add_option("--max-evaluations", args.max_evaluations, "Nelder–Mead evaluation budget (0: default)");
   app.add_flag("--no-global", args.no_global, "Skip the global stage (local search from the data estimate only)");
   app.add_flag("--keep-bias", args.keep_bias, "Do not subtract the gyro bias measured at rest before the release");
-  app.add_option("--threads", args.threads, "Threads of the global stage (0: all cores)");
+  app.add_option("--threads", args.threads, "Threads of the global stage and the intervals (0: all cores)");
+  app.add_option("--intervals", args.intervals,
+                 "68 % and 95 % intervals: thorough (profiles of (28)'s sum of squares, the others re-fitted; the fit "
+                 "costs about 1.5 times as much), fast (linearised, nearly free) or none (standard errors only)")
+      ->capture_default_str();
 }
 
 std::vector<FixEntry> ParseFixEntries(const FitArgs& args) {
@@ -117,6 +121,7 @@ PreparedFit PrepareFit(const io::Recording& recording, const core::Block& block,
   if (args.max_evaluations > 0) options.nelder_mead.max_evaluations = args.max_evaluations;
   if (args.threads < 0) throw InvalidArgument("--threads must be ≥ 0");
   options.num_threads = args.threads;
+  options.intervals.method = fitting::ParseIntervalMethod(args.intervals);
   options.Validate();
 
   fitting::ParameterSet set = MakeParameterSet(args);
@@ -146,9 +151,11 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   // v2: the gyro bias at rest is subtracted unless --keep-bias, and a detected window ends just before its impact.
   // v3: the window-end detector follows the integrated attitude and recognises landings with a small jump; the
   // values of fixed parameters are part of the settings.
-  std::string settings = fmt::format("rockfit-fit v3; method={}; bounds={}; t_end={}; max_evaluations={}; global={}; "
-                                     "keep_bias={}; block=({:.17g},{:.17g},{:.17g},{:.17g})",
-                                     fitting::ToString(fitting::ParseFitMethod(args.method)), args.bounds,
+  // v4: 68 % / 95 % intervals (--intervals); their profiles can move the fit to a lower (28).
+  std::string settings = fmt::format("rockfit-fit v4; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
+                                     "global={}; keep_bias={}; block=({:.17g},{:.17g},{:.17g},{:.17g})",
+                                     fitting::ToString(fitting::ParseFitMethod(args.method)),
+                                     fitting::ToString(fitting::ParseIntervalMethod(args.intervals)), args.bounds,
                                      args.t_end_s ? fmt::format("{:.17g}", *args.t_end_s) : "auto",
                                      args.max_evaluations, !args.no_global, args.keep_bias, block.b1(), block.b2(),
                                      block.h(), block.mass());
@@ -176,35 +183,66 @@ nlohmann::json FitResultJson(const std::string& trial, const fitting::FitSummary
   nlohmann::json params = nlohmann::json::object();
   for (fitting::ParameterId id : fitting::kAllParameters) {
     const fitting::Parameter& p = s.parameters[id];
+    const std::size_t k = static_cast<std::size_t>(id);
     params[fitting::Name(id)] = {{"value", p.value},
                                  {"lower", OrNull(p.lower)},
                                  {"upper", OrNull(p.upper)},
                                  {"fixed", p.fixed},
-                                 {"std_error", OrNull(s.std_error[static_cast<std::size_t>(id)])}};
+                                 {"std_error", OrNull(s.std_error[static_cast<std::size_t>(id)])},
+                                 {"interval_68", nlohmann::json::parse(fitting::IntervalJson(s.uncertainty.interval_68[k], p.fixed))},
+                                 {"interval_95", nlohmann::json::parse(fitting::IntervalJson(s.uncertainty.interval_95[k], p.fixed))},
+                                 {"determined", s.uncertainty.determined[k] ? nlohmann::json(fitting::ToString(*s.uncertainty.determined[k]))
+                                                                            : nlohmann::json()}};
   }
   nlohmann::json warnings = nlohmann::json::array();
   for (const fitting::FitWarning& w : s.warnings) {
     warnings.push_back({{"kind", w.kind}, {"parameter", w.parameter}, {"message", w.message}});
   }
-  return {{"trial", trial},     {"parameters", params}, {"epsilon", s.epsilon_rad_s},
-          {"epsilon_initial", s.epsilon_initial_rad_s}, {"t_end", s.t_end_s}, {"simulations", s.simulations},
-          {"wall_s", s.wall_time_s}, {"termination", s.termination}, {"warnings", warnings}};
+  const nlohmann::json uncertainty = {{"description", s.uncertainty.description},
+                                      {"correlation_factor", s.uncertainty.correlation_factor},
+      {"noise_inflation", nlohmann::json::parse(fitting::NoiseInflationJson(s.uncertainty, s.parameters))},
+                                      {"noise_rms_rad_s", s.uncertainty.noise_rms_rad_s},
+                                      {"statements", s.uncertainty.statements},
+                                      {"simulations", s.uncertainty.evaluations},
+                                      {"wall_s", s.uncertainty.wall_time_s}};
+  return {{"trial", trial},
+          {"parameters", params},
+          {"correlation", nlohmann::json::parse(fitting::CorrelationJson(s.uncertainty, s.parameters))},
+          {"uncertainty_method", fitting::ToString(s.uncertainty.method)},
+          {"uncertainty", uncertainty},
+          {"epsilon", s.epsilon_rad_s},
+          {"epsilon_initial", s.epsilon_initial_rad_s},
+          {"t_end", s.t_end_s},
+          {"simulations", s.simulations},
+          {"wall_s", s.wall_time_s},
+          {"termination", s.termination},
+          {"warnings", warnings}};
 }
 
 std::string FitResultTable(const std::string& trial, const fitting::FitSummary& s) {
   std::string out = fmt::format("trial        {}\n", trial);
-  out += fmt::format("{:<12} {:>12} {:>12} {:>12} {:>12}  {:<6} {}\n", "parameter", "value", "std_error", "lower",
-                     "upper", "unit", "");
+  out += fmt::format("{:<12} {:>12} {:>10} {:>23} {:>23} {:>10} {:>10} {:>10}  {:<6} {}\n", "parameter", "value",
+                     "std_error", "68 % interval", "95 % interval", "determined", "lower", "upper", "unit", "");
+  auto end = [](double v) { return std::isnan(v) ? std::string("open") : fmt::format("{:.6g}", v); };
   for (fitting::ParameterId id : fitting::kAllParameters) {
     const fitting::Parameter& p = s.parameters[id];
-    const double se = s.std_error[static_cast<std::size_t>(id)];
-    out += fmt::format("{:<12} {:>12.6g} {:>12} {:>12.6g} {:>12.6g}  {:<6} {}\n", fitting::Name(id), p.value,
-                       std::isfinite(se) ? fmt::format("{:.3g}", se) : "—", p.lower, p.upper, fitting::Unit(id),
-                       p.fixed ? "fixed" : "");
+    const std::size_t k = static_cast<std::size_t>(id);
+    const double se = s.std_error[k];
+    auto interval = [&](const fitting::Interval& i) {
+      return p.fixed ? std::string("—") : fmt::format("[{}, {}]", end(i[0]), end(i[1]));
+    };
+    const auto& d = s.uncertainty.determined[k];
+    out += fmt::format("{:<12} {:>12.6g} {:>10} {:>23} {:>23} {:>10} {:>10.6g} {:>10.6g}  {:<6} {}\n",
+                       fitting::Name(id), p.value, std::isfinite(se) ? fmt::format("{:.3g}", se) : "—",
+                       interval(s.uncertainty.interval_68[k]), interval(s.uncertainty.interval_95[k]),
+                       d ? fitting::ToString(*d) : "—", p.lower, p.upper, fitting::Unit(id), p.fixed ? "fixed" : "");
   }
   out += fmt::format("ε (28)       {:.6g} rad/s (start {:.6g} rad/s), window ends at {:.4f} s\n", s.epsilon_rad_s,
                      s.epsilon_initial_rad_s, s.t_end_s);
   out += fmt::format("effort       {} simulations in {:.2f} s; {}\n", s.simulations, s.wall_time_s, s.termination);
+  out += fmt::format("intervals    {} ({} of the simulations, {:.2f} s)\n", s.uncertainty.description,
+                     s.uncertainty.evaluations, s.uncertainty.wall_time_s);
+  for (const std::string& statement : s.uncertainty.statements) out += "data fix     " + statement + "\n";
   for (const fitting::FitWarning& w : s.warnings) out += "warning      " + w.message + "\n";
   return out;
 }
@@ -215,7 +253,8 @@ void WriteFitGroup(const io::hdf5::Group& root, const std::string& trial, const 
   g.SetString("block", labels.block_id);
   g.SetString("position", labels.position);
   std::vector<std::string> names, units, fixed_text;
-  std::vector<double> value, lower, upper, std_error, start;
+  std::vector<double> value, lower, upper, std_error, start, lo68, hi68, lo95, hi95;
+  std::vector<std::string> determined;
   std::vector<std::int64_t> fixed;
   for (fitting::ParameterId id : fitting::kAllParameters) {
     const fitting::Parameter& p = s.parameters[id];
@@ -227,6 +266,12 @@ void WriteFitGroup(const io::hdf5::Group& root, const std::string& trial, const 
     fixed.push_back(p.fixed ? 1 : 0);
     std_error.push_back(s.std_error[static_cast<std::size_t>(id)]);
     start.push_back(s.start.value(id));
+    const std::size_t k = static_cast<std::size_t>(id);
+    lo68.push_back(s.uncertainty.interval_68[k][0]);
+    hi68.push_back(s.uncertainty.interval_68[k][1]);
+    lo95.push_back(s.uncertainty.interval_95[k][0]);
+    hi95.push_back(s.uncertainty.interval_95[k][1]);
+    determined.push_back(s.uncertainty.determined[k] ? fitting::ToString(*s.uncertainty.determined[k]) : "fixed");
   }
   const io::hdf5::Group table = g.CreateGroup("parameters");
   table.WriteStrings("name", names);
@@ -237,6 +282,20 @@ void WriteFitGroup(const io::hdf5::Group& root, const std::string& trial, const 
   table.WriteInts("fixed", fixed, "1");
   table.WriteDoubles("std_error", std_error, "per row: see the unit dataset");
   table.WriteDoubles("start", start, "per row: see the unit dataset");
+  table.WriteDoubles("interval_68_lower", lo68, "per row: see the unit dataset; NaN: open");
+  table.WriteDoubles("interval_68_upper", hi68, "per row: see the unit dataset; NaN: open");
+  table.WriteDoubles("interval_95_lower", lo95, "per row: see the unit dataset; NaN: open");
+  table.WriteDoubles("interval_95_upper", hi95, "per row: see the unit dataset; NaN: open");
+  table.WriteStrings("determined", determined);
+  std::vector<double> correlation(fitting::kNumParameters * fitting::kNumParameters, std::nan(""));
+  if (s.uncertainty.correlation.rows() == static_cast<Eigen::Index>(fitting::kNumParameters)) {
+    for (std::size_t a = 0; a < fitting::kNumParameters; ++a) {
+      for (std::size_t b = 0; b < fitting::kNumParameters; ++b) {
+        correlation[a * fitting::kNumParameters + b] = s.uncertainty.correlation(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
+      }
+    }
+  }
+  table.WriteMatrix("correlation", correlation, fitting::kNumParameters, fitting::kNumParameters, "1");
   g.SetDouble("epsilon_rad_s", s.epsilon_rad_s);
   g.SetDouble("epsilon_initial_rad_s", s.epsilon_initial_rad_s);
   g.SetDouble("t_end_s", s.t_end_s);
@@ -244,6 +303,9 @@ void WriteFitGroup(const io::hdf5::Group& root, const std::string& trial, const 
   g.SetDouble("wall_s", s.wall_time_s);
   g.SetString("termination", s.termination);
   g.SetString("method", fitting::ToString(s.method));
+  g.SetString("uncertainty_method", fitting::ToString(s.uncertainty.method));
+  g.SetString("uncertainty", s.uncertainty.description);
+  g.SetDouble("noise_correlation_factor", s.uncertainty.correlation_factor);
   g.SetInt("feasible", s.feasible ? 1 : 0);
   g.SetString("settings", fit.settings);
   g.SetString("settings_hash", SettingsHash(fit.settings));

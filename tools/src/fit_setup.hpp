@@ -36,10 +36,11 @@ struct FitArgs {
   bool no_global = false;
   bool keep_bias = false;  // do not subtract the gyro bias measured at rest
   int threads = 0;
+  std::string intervals = "thorough";  // none | fast | thorough (fitting::IntervalMethod)
 };
 
 // --method, --bounds, --free, --fix, --lower, --upper, --t-end, --max-evaluations, --no-global, --keep-bias,
-// --threads.
+// --threads, --intervals.
 void AddFitOptions(CLI::App& app, FitArgs& args);
 
 struct PreparedFit {
@@ -74,8 +75,9 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args);
 // FNV-1a of the settings text, as 16 hex digits.
 std::string SettingsHash(const std::string& settings);
 
-// The documented JSON of one fit: trial, parameters (value, lower, upper, fixed, std_error), epsilon,
-// epsilon_initial, t_end, simulations, wall_s, termination, warnings.
+// The documented JSON of one fit: trial, parameters (value, lower, upper, fixed, std_error, interval_68,
+// interval_95, determined), correlation, uncertainty_method, uncertainty, epsilon, epsilon_initial, t_end,
+// simulations, wall_s, termination, warnings.
 nlohmann::json FitResultJson(const std::string& trial, const fitting::FitSummary& summary);
 
 // A table for terminals.

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <array>
 #include <map>
 
 #include <fmt/format.h>
@@ -52,6 +53,14 @@ FitPlotData ReadFitPlotData(const std::string& path, const std::string& trial) {
   d.impact_t_s = g.ReadDoubles("impacts/t_s");
   d.impact_kind = g.ReadStrings("impacts/kind");
   d.epsilon_rad_s = g.GetDouble("epsilon_rad_s").value_or(std::numeric_limits<double>::quiet_NaN());
+  if (g.IsDataset("parameters/interval_95_lower")) {
+    const std::vector<std::int64_t> fixed = g.ReadInts("parameters/fixed");
+    d.parameter_lines = ParameterLines(g.ReadStrings("parameters/name"), g.ReadStrings("parameters/unit"),
+                                       g.ReadDoubles("parameters/value"),
+                                       std::vector<bool>(fixed.begin(), fixed.end()),
+                                       g.ReadDoubles("parameters/interval_95_lower"),
+                                       g.ReadDoubles("parameters/interval_95_upper"));
+  }
   return d;
 }
 
@@ -84,7 +93,7 @@ int RunPlotParameters(const PlotParametersCommand& cmd) {
   const io::hdf5::Group fits = OpenFits(file, cmd.path);
   struct Row {
     std::string trial, group;
-    std::map<std::string, double> value;
+    std::map<std::string, double> value, lower, upper;  // value and 95 % interval (open ends at the bound)
   };
   std::vector<Row> rows;
   for (const std::string& id : fits.Children()) {
@@ -98,6 +107,21 @@ int RunPlotParameters(const PlotParametersCommand& cmd) {
     const std::vector<std::string> names = g.ReadStrings("parameters/name");
     const std::vector<double> values = g.ReadDoubles("parameters/value");
     for (std::size_t k = 0; k < names.size() && k < values.size(); ++k) r.value[names[k]] = values[k];
+    if (g.IsDataset("parameters/interval_95_lower")) {
+      const std::vector<double> lo = g.ReadDoubles("parameters/interval_95_lower");
+      const std::vector<double> hi = g.ReadDoubles("parameters/interval_95_upper");
+      const std::vector<double> lower_bound = g.ReadDoubles("parameters/lower");
+      const std::vector<double> upper_bound = g.ReadDoubles("parameters/upper");
+      const std::vector<std::string> determined = g.IsDataset("parameters/determined")
+                                                      ? g.ReadStrings("parameters/determined")
+                                                      : std::vector<std::string>(names.size(), "");
+      for (std::size_t k = 0; k < names.size() && k < lo.size(); ++k) {
+        if (determined[k] == "fixed") continue;
+        // An open end reaches the bound: the bar shows how far the data leave the parameter free.
+        r.lower[names[k]] = std::isnan(lo[k]) ? lower_bound[k] : lo[k];
+        r.upper[names[k]] = std::isnan(hi[k]) ? upper_bound[k] : hi[k];
+      }
+    }
     r.value["epsilon"] = g.GetDouble("epsilon_rad_s").value_or(std::nan(""));
     rows.push_back(r);
   }
@@ -105,28 +129,64 @@ int RunPlotParameters(const PlotParametersCommand& cmd) {
   const char* const panels[] = {"alpha", "lambda", "lambda_lat", "lambda_lon", "epsilon"};
   const char* const labels[] = {"α [rad]", "λ", "λ_{lat}", "λ_{lon}", "ε (28) [rad/s]"};
   GnuplotFigure figure;
-  std::vector<std::vector<double>> columns(6);
+  // Columns: x, then per panel value, lower and upper end of the 95 % interval (NaN: no interval).
+  std::vector<std::vector<double>> columns(16);
   std::string xtics;
   std::vector<std::size_t> block_starts;
+  std::map<std::string, std::pair<std::size_t, std::size_t>> group_rows;  // first and last x of each group
+  auto lookup = [](const std::map<std::string, double>& m, const char* key) {
+    const auto it = m.find(key);
+    return it == m.end() ? std::nan("") : it->second;
+  };
   for (std::size_t i = 0; i < rows.size(); ++i) {
     if (i > 0 && rows[i].group != rows[i - 1].group) block_starts.push_back(i);
+    if (!group_rows.count(rows[i].group)) group_rows[rows[i].group] = {i + 1, i + 1};
+    group_rows[rows[i].group].second = i + 1;
     columns[0].push_back(static_cast<double>(i + 1));
-    for (int p = 0; p < 5; ++p) {
-      const auto it = rows[i].value.find(panels[p]);
-      columns[static_cast<std::size_t>(p) + 1].push_back(it == rows[i].value.end() ? std::nan("") : it->second);
+    for (std::size_t p = 0; p < 5; ++p) {
+      columns[3 * p + 1].push_back(lookup(rows[i].value, panels[p]));
+      columns[3 * p + 2].push_back(lookup(rows[i].lower, panels[p]));
+      columns[3 * p + 3].push_back(lookup(rows[i].upper, panels[p]));
     }
     xtics += fmt::format("{}{} {}", xtics.empty() ? "" : ", ", GnuplotString(rows[i].trial), i + 1);
   }
   const std::string data = figure.AddData("parameters", columns, block_starts);
+  // The pooled range of each block and position (/summary/fits/per_group, written by `batch`): a band over the
+  // group's trials from the lower to the upper end of the pooled 95 % interval, a line at the pooled value.
+  std::array<std::string, 5> bands;
+  const io::hdf5::Group root = file.Root();
+  if (root.IsGroup("summary/fits/per_group") && root.IsDataset("summary/fits/per_group/alpha_pooled")) {
+    const io::hdf5::Group g = root.OpenGroup("summary/fits/per_group");
+    const std::vector<std::string> block = g.ReadStrings("block"), position = g.ReadStrings("position");
+    for (std::size_t p = 0; p < 4; ++p) {
+      const std::string name = panels[p];
+      const std::vector<double> pooled = g.ReadDoubles(name + "_pooled");
+      const std::vector<double> lo = g.ReadDoubles(name + "_pooled_95_lower");
+      const std::vector<double> hi = g.ReadDoubles(name + "_pooled_95_upper");
+      for (std::size_t k = 0; k < block.size(); ++k) {
+        const auto it = group_rows.find(block[k].empty() ? "—" : block[k] + " " + position[k]);
+        if (it == group_rows.end() || !std::isfinite(pooled[k])) continue;
+        const double x1 = static_cast<double>(it->second.first) - 0.4, x2 = static_cast<double>(it->second.second) + 0.4;
+        bands[p] += fmt::format("set object rect from {},{} to {},{} fc rgb '#ff7f0e' fs transparent solid 0.2 noborder "
+                                "behind\nset arrow from {},{} to {},{} nohead lc rgb '#ff7f0e' lw 2\n",
+                                x1, lo[k], x2, hi[k], x1, pooled[k], x2, pooled[k]);
+      }
+    }
+  }
   std::string body = fmt::format("set multiplot layout 5,1 title {} font ',13'\n",
-                                 GnuplotString(fmt::format("Fitted parameters per trial ({} fits), lines join a block "
-                                                           "and position", rows.size())));
+                                 GnuplotString(fmt::format("Fitted parameters per trial ({} fits) with 95 % intervals; "
+                                                           "lines join a block and position, bands: its pooled range",
+                                                           rows.size())));
   body += fmt::format("set xrange [0.5:{}]\nset grid lc rgb '#dddddd'\nset lmargin 12\nset rmargin 3\nset key off\nset offsets 0, 0, graph 0.08, graph 0.08\n",
                       rows.size() + 0.5);
   for (int p = 0; p < 5; ++p) {
     body += fmt::format("set ylabel {}\n", GnuplotString(labels[p]));
     body += p == 4 ? fmt::format("set xtics ({}) rotate by 45 right font ',8'\n", xtics) : "set xtics 1 format ''\n";
-    body += fmt::format("plot {} using 1:{} with linespoints pt 7 ps 0.8 lc rgb '#1f77b4'\n", data, p + 2);
+    body += "unset object\nunset arrow\n" + bands[static_cast<std::size_t>(p)];
+    const int c = 3 * p + 2;
+    body += fmt::format("plot {0} using 1:{1} with lines lc rgb '#1f77b4', {0} using 1:{1}:{2}:{3} with yerrorbars "
+                        "pt 7 ps 0.8 lc rgb '#1f77b4'\n",
+                        data, c, c + 1, c + 2);
   }
   body += "unset multiplot\n";
   figure.Render(body, cmd.picture.output, cmd.picture.width_px, cmd.picture.height_px);
@@ -150,13 +210,29 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   a->callback([fit] { SetExitCode(RunPlotFit(*fit)); });
 
   auto params = std::make_shared<PlotParametersCommand>();
-  CLI::App* b = plot.add_subcommand("parameters", "Fitted α, λ, λ_lat, λ_lon and ε per trial, by block and position (Fig. 15)");
+  CLI::App* b = plot.add_subcommand(
+      "parameters", "Fitted α, λ, λ_lat, λ_lon (with 95 % intervals) and ε per trial, by block and position, with each "
+                    "group's pooled range (Fig. 15)");
   b->add_option("FITS", params->path, "HDF5 file written by `rockfit batch` or `rockfit fit -o`")->required();
   AddPictureOptions(*b, params->picture, 1200, 1200);
   b->callback([params] { SetExitCode(RunPlotParameters(*params)); });
 });
 
 }  // namespace
+
+std::vector<std::string> ParameterLines(const std::vector<std::string>& names, const std::vector<std::string>& units,
+                                        const std::vector<double>& values, const std::vector<bool>& fixed,
+                                        const std::vector<double>& lower_95, const std::vector<double>& upper_95) {
+  std::vector<std::string> lines;
+  auto end = [](double v) { return std::isnan(v) ? std::string("open") : fmt::format("{:.4g}", v); };
+  for (std::size_t k = 0; k < names.size() && k < values.size(); ++k) {
+    if (k < fixed.size() && fixed[k]) continue;
+    const std::string unit = k < units.size() && units[k] != "1" ? " " + units[k] : "";
+    lines.push_back(fmt::format("{} = {:.5g}{} [{}, {}]", names[k], values[k], unit,
+                                k < lower_95.size() ? end(lower_95[k]) : "?", k < upper_95.size() ? end(upper_95[k]) : "?"));
+  }
+  return lines;
+}
 
 void RenderFitPlot(const FitPlotData& d, const std::filesystem::path& output, int width_px, int height_px) {
   GnuplotFigure figure;
@@ -180,12 +256,19 @@ void RenderFitPlot(const FitPlotData& d, const std::filesystem::path& output, in
                                  GnuplotString(fmt::format("Fit of trial {}     ε = {:.4g} rad/s     impacts: facet "
                                                            "(solid), edge (dotted)", d.trial, d.epsilon_rad_s)));
   body += "set grid lc rgb '#dddddd'\nset lmargin 10\nset rmargin 3\nset key top right font ',9'\n" + marks;
+  if (!d.parameter_lines.empty()) {
+    // One line per parameter, top left of the first panel (the block is at rest there before the release).
+    std::string text = "95 % intervals";
+    for (const std::string& l : d.parameter_lines) text += "\\n" + l;  // a newline inside a double-quoted string
+    body += fmt::format("set label 1 \"{}\" at graph 0.01, graph 0.95 left front font ',8' noenhanced\n", text);
+  }
   for (int c = 0; c < 3; ++c) {
     body += fmt::format("set ylabel '{} [rad/s]'\n", kComponent[c]);
     body += c == 2 ? "set xlabel 't [s]'\n" : "";
     body += fmt::format("plot {0} using 1:{1} with points pt 7 ps 0.4 lc rgb '{3}' title 'measured', {0} using 1:{2} "
                         "with lines lw 1.5 lc rgb '#000000' title 'simulated'\n",
                         data, c + 2, c + 5, kColours[c]);
+    if (c == 0) body += "unset label 1\n";  // drawn once, under the title
   }
   body += "unset multiplot\n";
   figure.Render(body, output, width_px, height_px);

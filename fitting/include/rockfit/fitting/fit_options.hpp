@@ -95,6 +95,42 @@ struct IdentifiabilityOptions {
   void Validate() const;
 };
 
+// Intervals for the fitted parameters (uncertainty.hpp, fitting/README.md "Intervals").
+//  kNone:      standard errors only (linearised, AR(1) noise correction).
+//  kFast:      linearised intervals value ± z·σ, σ from the Gauss–Newton covariance with the noise level and
+//              its correlation in time estimated from the residuals (long-run variance, Bartlett window).
+//  kThorough:  profile intervals of the sum of squares behind (28): each parameter is stepped outwards
+//              from the optimum, the others re-fitted at every step, until the rise exceeds the χ²₁ quantile
+//              times the same effective noise level; curved ridges and bounds are followed, not linearised.
+enum class IntervalMethod { kNone, kFast, kThorough };
+const char* ToString(IntervalMethod method);                // "none", "fast", "thorough"
+IntervalMethod ParseIntervalMethod(const std::string& name);  // throws InvalidArgument
+
+struct IntervalOptions {
+  IntervalMethod method = IntervalMethod::kFast;  // the command line defaults to kThorough (--intervals)
+  // Largest lag of the residual autocorrelation that enters the effective noise level [s]: ringing after
+  // impacts (tens of ms) and slowly varying model error make neighbouring residuals alike.
+  double noise_correlation_window_s = 0.1;
+  // Factor on every effective noise variance for what the noise model cannot see: ringing follows the impacts
+  // (systematic, not noise) and the model is not the device. Calibrated on the coverage study of
+  // tools/coverage_study.py (seed 1; fitting/README.md, "Intervals"): with 1 the 95 % profile intervals held
+  // the truth of α in 88 % and of λ_lat in 76 % of the trials.
+  double model_error_allowance = 2.0;
+  // Nelder–Mead evaluations per profile point (the other parameters re-fitted, warm-started).
+  int profile_evaluations = 120;
+  // Evaluations of the least-squares refinement of the optimum that the profiles start from.
+  int centre_evaluations = 300;
+  // Profile points per side at most; they are placed at growing multiples of the linearised σ.
+  int profile_points = 14;
+  double profile_growth = 1.5;  // factor between successive offsets (after the first two)
+  // Smallest profile step per parameter (units of the parameter), used where the linearised σ is smaller or
+  // not available: about a tenth of a sample period for t0, the resolution of the model otherwise.
+  PerParameter min_step = {2e-4, 2e-4, 0.01, 0.01, 0.005, 1e-5};
+  // A 95 % interval wider than this fraction of the parameter's range counts as not determining it.
+  double undetermined_range_fraction = 0.5;
+  void Validate() const;
+};
+
 struct FitOptions {
   FitMethod method = FitMethod::kAuto;
   // true: free parameters start from the estimate from the recording (no starting point needed);
@@ -105,6 +141,7 @@ struct FitOptions {
   CeresOptions ceres;
   IdentifiabilityOptions identifiability;
   bool compute_std_errors = true;
+  IntervalOptions intervals;
   // Worker threads for the global stage; 0 = all cores (TBB default). Batches set 1 per trial.
   int num_threads = 0;
   // A value closer than this fraction of its range to a bound is reported "at bound".

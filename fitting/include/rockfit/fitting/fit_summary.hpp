@@ -10,12 +10,13 @@
 
 #include "rockfit/fitting/fit_options.hpp"
 #include "rockfit/fitting/parameters.hpp"
+#include "rockfit/fitting/uncertainty.hpp"
 
 namespace rockfit::fitting {
 
 struct FitWarning {
   // "at_bound", "not_identifiable", "simulation_failures", "not_converged", "std_error_unavailable",
-  // "infeasible", "poor_fit".
+  // "infeasible", "poor_fit", "second_basin", "not_determined".
   std::string kind;
   std::string parameter;  // empty when the warning is not about one parameter
   std::string message;    // one sentence for people
@@ -38,6 +39,8 @@ struct FitSummary {
   PerParameter std_error{};
   std::array<bool, kNumParameters> identifiable{};  // true for fixed parameters
   std::array<bool, kNumParameters> at_bound{};
+  // 68 % / 95 % intervals, "determined", correlation and what the data fix (uncertainty.hpp).
+  UncertaintySummary uncertainty;
 
   double epsilon_initial_rad_s = 0.0;  // (28) at `start`
   double epsilon_rad_s = 0.0;          // (28) at `parameters`

@@ -48,6 +48,9 @@ struct GlobalStageResult {
   int num_continued = 0;
   std::int64_t evaluations = 0;
   double wall_time_s = 0.0;
+  // Every feasible start carried to the full window and every refined candidate, with its (28): the fitter
+  // reports a distinct one with nearly the same ε as a second solution.
+  std::vector<std::pair<Eigen::VectorXd, double>> candidates;
 };
 
 // The sampling box: t0 and α within the given half-widths of the estimate (they are well determined by

@@ -44,6 +44,13 @@ std::unique_ptr<LocalOptimizer> MakeCeres(const CeresOptions& options);
 // `std_error` holds NaN where the covariance is not defined (rank-deficient Jacobian); `message` says why.
 struct StandardErrors {
   Eigen::VectorXd std_error;
+  // (JᵀJ)⁻¹ of the residuals √w_k·(ω_m − ω_s) (free parameters × free parameters; empty when not available):
+  // the covariance is κ·s²·(JᵀJ)⁻¹. Intervals (uncertainty.hpp) use it with their own noise level.
+  Eigen::MatrixXd inverse_normal_matrix;
+  // The residuals √w_k·(ω_m − ω_s) in time order (3 per slot: the t0 node, every sample that can be a node,
+  // the t_end node; 0 before t0) and their Jacobian (limited differences), for the correlated-noise sandwich.
+  Eigen::VectorXd residuals;
+  Eigen::MatrixXd jacobian;
   bool available = false;
   std::string message;
 };

@@ -1,0 +1,573 @@
+#include "rockfit/fitting/uncertainty.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <numeric>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <nlopt.hpp>
+
+#include "parallel_for.hpp"
+
+namespace rockfit::fitting {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// z of the two-sided 68.27 % and 95 % intervals of a normal variable; z² is the χ²₁ quantile the profile uses.
+constexpr double kZ68 = 1.0;
+constexpr double kZ95 = 1.959963984540054;
+// A pair of parameters with |correlation| at least this is reported as "only a combination is fixed".
+constexpr double kStrongCorrelation = 0.95;
+// The sum of squares of an infeasible point: far above any real one, finite for Nelder–Mead.
+constexpr double kInfeasibleSumOfSquares = 1e30;
+// A point met while profiling whose (28) is lower than the fit's by more than this fraction moves the fit
+// there: ε differences below it are within the round-off of the local searches.
+constexpr double kBetterPointFraction = 1e-3;
+// Initial simplex of the re-fits where no linearised σ is available: a quarter of the Nelder–Mead default,
+// as the continuation of the global stage uses.
+constexpr PerParameter kFallbackStep = {1e-3, 1.25e-3, 0.05, 0.075, 0.0125, 2.5e-4};
+// Relative tolerance of the least-squares re-fits: changes of S below it are round-off of the sum.
+constexpr double kSumOfSquaresFtolRel = 1e-7;
+
+struct SumOfSquaresValue {
+  double sum_sq = kInfeasibleSumOfSquares;
+  double epsilon_rad_s = std::numeric_limits<double>::infinity();
+  bool feasible = false;
+};
+
+SumOfSquaresValue SumOfSquares(const Objective& objective, const ParameterSet& at) {
+  std::vector<Eigen::Vector3d> r;
+  SumOfSquaresValue v;
+  if (!WeightedResiduals(objective, at, &r, &v.epsilon_rad_s)) return v;
+  v.sum_sq = 0.0;
+  for (const Eigen::Vector3d& x : r) v.sum_sq += x.squaredNorm();
+  v.feasible = std::isfinite(v.sum_sq);
+  if (!v.feasible) v.sum_sq = kInfeasibleSumOfSquares;
+  return v;
+}
+
+// The lowest (28) met by a search, with its point.
+struct BestEpsilon {
+  double epsilon_rad_s = std::numeric_limits<double>::infinity();
+  std::optional<ParameterSet> at;
+  void Offer(double epsilon, const ParameterSet& set) {
+    if (epsilon < epsilon_rad_s) {
+      epsilon_rad_s = epsilon;
+      at = set;
+    }
+  }
+  void Merge(const BestEpsilon& other) {
+    if (other.at) Offer(other.epsilon_rad_s, *other.at);
+  }
+};
+
+struct SearchProblem {
+  const Objective* objective = nullptr;
+  ParameterSet best;
+  SumOfSquaresValue best_value;
+  BestEpsilon* best_epsilon = nullptr;
+  std::int64_t evaluations = 0;
+};
+
+double SearchObjective(const std::vector<double>& x, std::vector<double>& /*grad*/, void* data) {
+  auto* p = static_cast<SearchProblem*>(data);
+  ++p->evaluations;
+  const ParameterSet set = p->objective->WithFree(Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size())));
+  const SumOfSquaresValue v = SumOfSquares(*p->objective, set);
+  if (v.feasible) p->best_epsilon->Offer(v.epsilon_rad_s, set);
+  if (v.sum_sq < p->best_value.sum_sq) {
+    p->best_value = v;
+    p->best = set;
+  }
+  return v.sum_sq;
+}
+
+// Minimises S over the free parameters of `objective` from `start` by Nelder–Mead (NLopt), at most
+// `max_evaluations`; returns the best point evaluated (the start when nothing is better).
+ParameterSet MinimizeSumOfSquares(const Objective& objective, const ParameterSet& start, const PerParameter& step,
+                                  int max_evaluations, SumOfSquaresValue* value, BestEpsilon* best_epsilon,
+                                  std::int64_t* evaluations) {
+  SearchProblem problem;
+  problem.objective = &objective;
+  problem.best = start;
+  problem.best_value = SumOfSquares(objective, start);
+  problem.best_epsilon = best_epsilon;
+  ++problem.evaluations;
+  if (problem.best_value.feasible) best_epsilon->Offer(problem.best_value.epsilon_rad_s, start);
+  const std::size_t n = objective.num_free();
+  if (n > 0 && max_evaluations > 1) {
+    const Eigen::VectorXd lower = objective.FreeLower(), upper = objective.FreeUpper();
+    const Eigen::VectorXd x0 = objective.FreeValues(start);
+    std::vector<double> x(n), lb(n), ub(n), dx(n), xtol(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto k = static_cast<Eigen::Index>(i);
+      lb[i] = lower[k];
+      ub[i] = upper[k];
+      x[i] = std::clamp(x0[k], lb[i], ub[i]);
+      dx[i] = std::min(step[static_cast<std::size_t>(objective.free_ids()[i])], 0.5 * (ub[i] - lb[i]));
+      xtol[i] = 1e-3 * dx[i];
+    }
+    try {
+      nlopt::opt opt(nlopt::LN_NELDERMEAD, static_cast<unsigned>(n));
+      opt.set_lower_bounds(lb);
+      opt.set_upper_bounds(ub);
+      opt.set_min_objective(SearchObjective, &problem);
+      opt.set_initial_step(dx);
+      opt.set_xtol_abs(xtol);
+      opt.set_ftol_rel(kSumOfSquaresFtolRel);
+      opt.set_maxeval(max_evaluations - 1);
+      double f = 0.0;
+      opt.optimize(x, f);
+    } catch (const std::exception&) {
+      // roundoff_limited, forced_stop, …: the best point evaluated is the answer.
+    }
+  }
+  *value = problem.best_value;
+  *evaluations += problem.evaluations;
+  return problem.best;
+}
+
+struct ProfilePoint {
+  double value = 0.0;
+  double sum_sq = kInfeasibleSumOfSquares;
+  bool feasible = false;
+  bool at_bound = false;
+};
+
+// One side of the profile of `id`: offsets of 1, 2, then growing by options.profile_growth times `step` from
+// the centre, the other free parameters re-fitted at each (warm-started from the previous point), until S rises
+// above `stop_sum_sq`, the model fails, or the bound is reached.
+std::vector<ProfilePoint> ProfileSide(const Objective& objective, const ParameterSet& centre, ParameterId id,
+                                      double direction, double step, double stop_sum_sq, const PerParameter& refit_step,
+                                      const IntervalOptions& options, BestEpsilon* best_epsilon,
+                                      std::int64_t* evaluations) {
+  std::vector<ProfilePoint> points;
+  const Parameter& p = objective.parameters()[id];
+  const double bound = direction > 0 ? p.upper : p.lower;
+  ParameterSet previous = centre;
+  double offset = 1.0;
+  for (int i = 0; i < options.profile_points; ++i) {
+    ProfilePoint point;
+    point.value = centre.value(id) + direction * offset * step;
+    if (direction * (point.value - bound) >= 0.0) {
+      point.value = bound;
+      point.at_bound = true;
+    }
+    if (point.value == centre.value(id)) break;  // the centre sits on the bound
+    ParameterSet set = objective.parameters();
+    for (ParameterId other : kAllParameters) set[other].value = previous.value(other);
+    set[id].value = point.value;
+    set[id].fixed = true;
+    const Objective held = objective.WithParameters(set);
+    SumOfSquaresValue v;
+    previous = MinimizeSumOfSquares(held, set, refit_step, options.profile_evaluations, &v, best_epsilon, evaluations);
+    point.sum_sq = v.sum_sq;
+    point.feasible = v.feasible;
+    points.push_back(point);
+    if (!v.feasible || v.sum_sq > stop_sum_sq || point.at_bound) break;
+    offset = i == 0 ? 2.0 : offset * options.profile_growth;
+  }
+  return points;
+}
+
+// Where the profile (centre first, then the side's points outwards) first rises above z (signed-root scale
+// ρ = √(ΔS/s²_eff)), by linear interpolation in ρ; NaN when it never does (open end).
+double ProfileCrossing(double centre_value, double centre_rho, const std::vector<ProfilePoint>& side, double sum_sq_min,
+                       double s2_eff, double z) {
+  double previous_value = centre_value, previous_rho = centre_rho;
+  for (const ProfilePoint& point : side) {
+    const double rho = point.feasible ? std::sqrt(std::max(0.0, point.sum_sq - sum_sq_min) / s2_eff)
+                                      : std::numeric_limits<double>::infinity();
+    if (rho > z) {
+      if (!std::isfinite(rho)) return point.value;  // the model fails beyond: end there (conservatively)
+      const double t = previous_rho >= z ? 0.0 : (z - previous_rho) / (rho - previous_rho);
+      return previous_value + std::clamp(t, 0.0, 1.0) * (point.value - previous_value);
+    }
+    previous_value = point.value;
+    previous_rho = rho;
+  }
+  return kNaN;
+}
+
+}  // namespace
+
+const char* ToString(Determination d) {
+  switch (d) {
+    case Determination::kYes: return "yes";
+    case Determination::kSignOnly: return "sign only";
+    case Determination::kNo: return "no";
+  }
+  return "?";
+}
+
+bool WeightedResiduals(const Objective& objective, const ParameterSet& at, std::vector<Eigen::Vector3d>* residuals,
+                       double* epsilon_rad_s) {
+  ErrorNodes nodes;
+  ModelOutput output;
+  const Evaluation e = objective.EvaluateDetailed(at, &nodes, &output);
+  if (epsilon_rad_s != nullptr) *epsilon_rad_s = e.epsilon_rad_s;
+  if (!e.feasible || output.w_B.size() != nodes.size()) return false;
+  residuals->resize(nodes.size());
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    (*residuals)[k] = std::sqrt(nodes.weight_s[k]) * (nodes.w_m_B[k] - output.w_B[k]);
+  }
+  return true;
+}
+
+double LongRunVarianceFactor(const std::vector<Eigen::Vector3d>& r, int max_lag) {
+  const std::size_t n = r.size();
+  double lag0 = 0.0;
+  for (const Eigen::Vector3d& x : r) lag0 += x.squaredNorm();
+  if (n < 2 || !(lag0 > 0.0)) return 1.0;
+  const int lags = std::min<int>(max_lag, static_cast<int>(n) - 1);
+  double sum = 0.0;
+  for (int l = 1; l <= lags; ++l) {
+    double c = 0.0;
+    for (std::size_t k = static_cast<std::size_t>(l); k < n; ++k) c += r[k].dot(r[k - static_cast<std::size_t>(l)]);
+    const double bartlett = 1.0 - static_cast<double>(l) / static_cast<double>(lags + 1);
+    sum += bartlett * c / lag0;
+  }
+  return std::max(1.0, 1.0 + 2.0 * sum);  // (the long-run variance never taken below the white-noise one)
+}
+
+Eigen::VectorXd SandwichInflation(const Linearisation& lin, int max_lag) {
+  const Eigen::Index n = static_cast<Eigen::Index>(lin.ids.size());
+  Eigen::VectorXd kappa = Eigen::VectorXd::Ones(n);
+  if (!lin.available()) return kappa;
+  const Eigen::Index slots = lin.residuals.size() / 3;
+  // Score contributions per sample: g_k = Σ_c J_(k,c)ᵀ r_(k,c).
+  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(n, slots);
+  double sum_sq = 0.0;
+  for (Eigen::Index k = 0; k < slots; ++k) {
+    for (Eigen::Index c = 0; c < 3; ++c) {
+      const double r = lin.residuals[3 * k + c];
+      g.col(k) += lin.jacobian.row(3 * k + c).transpose() * r;
+      sum_sq += r * r;
+    }
+  }
+  Eigen::MatrixXd b = g * g.transpose();
+  const Eigen::Index lags = std::min<Eigen::Index>(max_lag, slots - 1);
+  for (Eigen::Index l = 1; l <= lags; ++l) {
+    const double bartlett = 1.0 - static_cast<double>(l) / static_cast<double>(lags + 1);
+    const Eigen::MatrixXd gamma = g.rightCols(slots - l) * g.leftCols(slots - l).transpose();
+    b += bartlett * (gamma + gamma.transpose());
+  }
+  // Residuals at rows that are no node (before t0) are 0 and carry no information: count the others.
+  Eigen::Index used = 0;
+  for (Eigen::Index i = 0; i < lin.residuals.size(); ++i) used += lin.residuals[i] != 0.0 ? 1 : 0;
+  const double dof = static_cast<double>(used - n);
+  if (!(dof > 0.0) || !(sum_sq > 0.0)) return kappa;
+  const double s2 = sum_sq / dof;
+  const double small_sample = static_cast<double>(used) / dof;
+  const Eigen::MatrixXd& m = lin.inverse_normal_matrix;
+  const Eigen::MatrixXd sandwich = small_sample * m * b * m;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const double white = s2 * m(j, j);
+    if (white > 0.0 && std::isfinite(sandwich(j, j))) kappa[j] = std::max(1.0, sandwich(j, j) / white);
+  }
+  return kappa;
+}
+
+Determination Determine(const Interval& i95, double lower_bound, double upper_bound, double undetermined_range_fraction) {
+  const bool open = std::isnan(i95[0]) || std::isnan(i95[1]);
+  if (std::isnan(i95[0]) && std::isnan(i95[1])) return Determination::kNo;
+  const double range = upper_bound - lower_bound;
+  const bool wide = !open && std::isfinite(range) && i95[1] - i95[0] > undetermined_range_fraction * range;
+  if (!open && !wide) return Determination::kYes;
+  const bool zero_possible = lower_bound < 0.0 && upper_bound > 0.0;
+  const bool excludes_zero = (!std::isnan(i95[0]) && i95[0] > 0.0) || (!std::isnan(i95[1]) && i95[1] < 0.0);
+  return zero_possible && excludes_zero ? Determination::kSignOnly : Determination::kNo;
+}
+
+std::string IntervalJson(const Interval& interval, bool fixed) {
+  if (fixed) return "null";
+  nlohmann::json j = nlohmann::json::array();
+  for (double v : interval) j.push_back(std::isnan(v) ? nlohmann::json() : nlohmann::json(v));
+  return j.dump();
+}
+
+std::string CorrelationJson(const UncertaintySummary& u, const ParameterSet& parameters) {
+  nlohmann::json names = nlohmann::json::array(), matrix = nlohmann::json::array();
+  const std::vector<ParameterId> free = parameters.FreeIds();
+  for (ParameterId a : free) {
+    names.push_back(Name(a));
+    nlohmann::json row = nlohmann::json::array();
+    for (ParameterId b : free) {
+      const double c = u.correlation.rows() == static_cast<Eigen::Index>(kNumParameters)
+                           ? u.correlation(static_cast<int>(a), static_cast<int>(b))
+                           : kNaN;
+      row.push_back(std::isfinite(c) ? nlohmann::json(c) : nlohmann::json());
+    }
+    matrix.push_back(row);
+  }
+  return nlohmann::json{{"parameters", names}, {"matrix", matrix}}.dump();
+}
+
+std::string NoiseInflationJson(const UncertaintySummary& u, const ParameterSet& parameters) {
+  nlohmann::json j = nlohmann::json::object();
+  for (ParameterId id : parameters.FreeIds()) {
+    const double k = u.noise_inflation[static_cast<std::size_t>(id)];
+    j[Name(id)] = std::isfinite(k) ? nlohmann::json(k) : nlohmann::json();
+  }
+  return j.dump();
+}
+
+std::vector<std::string> DescribeUncertainty(const UncertaintySummary& u, const ParameterSet& parameters) {
+  std::vector<std::string> out;
+  const std::vector<ParameterId> free = parameters.FreeIds();
+  if (u.correlation.rows() == static_cast<Eigen::Index>(kNumParameters)) {
+    for (std::size_t a = 0; a < free.size(); ++a) {
+      for (std::size_t b = a + 1; b < free.size(); ++b) {
+        const double c = u.correlation(static_cast<int>(free[a]), static_cast<int>(free[b]));
+        if (!(std::abs(c) >= kStrongCorrelation)) continue;
+        const bool fall = free[a] == ParameterId::kT0 && free[b] == ParameterId::kAlpha;
+        out.push_back(fmt::format("{} and {}: only {} is fixed (correlation {:.3f})", Name(free[a]), Name(free[b]),
+                                  fall ? "t0 + T(α), the time of the first impact," : "a combination of the two", c));
+      }
+    }
+  }
+  auto end = [](double v) { return std::isnan(v) ? std::string("open") : fmt::format("{:.4g}", v); };
+  for (ParameterId id : free) {
+    const auto& d = u.determined[static_cast<std::size_t>(id)];
+    if (!d || *d == Determination::kYes) continue;
+    const Interval& i = u.interval_95[static_cast<std::size_t>(id)];
+    if (*d == Determination::kSignOnly) {
+      out.push_back(fmt::format("{}: only the sign is fixed ({} {} 0; 95 % interval [{}, {}])", Name(id), Name(id),
+                                parameters.value(id) > 0.0 ? ">" : "<", end(i[0]), end(i[1])));
+    } else {
+      out.push_back(fmt::format("{}: not fixed by the data (95 % interval [{}, {}])", Name(id), end(i[0]), end(i[1])));
+    }
+  }
+  return out;
+}
+
+UncertaintySummary ComputeUncertainty(const Objective& objective, const ParameterSet& fitted, double fitted_epsilon_rad_s,
+                                      const std::array<bool, kNumParameters>& identifiable, const Linearisation& lin,
+                                      const std::vector<ParameterSet>& alternatives, const IntervalOptions& options,
+                                      int num_threads) {
+  const Eigen::MatrixXd& inverse_normal_matrix = lin.inverse_normal_matrix;
+  const std::vector<ParameterId>& covariance_ids = lin.ids;
+  options.Validate();
+  const auto clock_start = std::chrono::steady_clock::now();
+  const std::int64_t runs_before = objective.counters().runs();
+  UncertaintySummary u;
+  u.method = options.method;
+  for (auto& i : u.interval_68) i = {kNaN, kNaN};
+  for (auto& i : u.interval_95) i = {kNaN, kNaN};
+  const auto P = static_cast<Eigen::Index>(kNumParameters);
+  u.correlation = Eigen::MatrixXd::Constant(P, P, kNaN);
+  const auto n_cov = static_cast<Eigen::Index>(covariance_ids.size());
+  const bool have_cov = inverse_normal_matrix.rows() == n_cov && n_cov > 0;
+  if (have_cov) {
+    for (Eigen::Index a = 0; a < n_cov; ++a) {
+      for (Eigen::Index b = 0; b < n_cov; ++b) {
+        const double d = inverse_normal_matrix(a, a) * inverse_normal_matrix(b, b);
+        u.correlation(static_cast<int>(covariance_ids[static_cast<std::size_t>(a)]),
+                      static_cast<int>(covariance_ids[static_cast<std::size_t>(b)])) =
+            d > 0.0 ? inverse_normal_matrix(a, b) / std::sqrt(d) : kNaN;
+      }
+    }
+  }
+  if (options.method == IntervalMethod::kNone) {
+    u.description = "none (standard errors only)";
+    return u;
+  }
+
+  // The least-squares form of the problem: non-identifiable parameters held (they do not act on (28)).
+  ParameterSet base = objective.parameters();
+  for (ParameterId id : kAllParameters) base[id].value = fitted.value(id);
+  std::vector<ParameterId> profiled;
+  for (ParameterId id : objective.free_ids()) {
+    if (identifiable[static_cast<std::size_t>(id)]) {
+      profiled.push_back(id);
+    } else {
+      base[id].fixed = true;  // both ends stay open: the data say nothing about it
+      u.determined[static_cast<std::size_t>(id)] = Determination::kNo;
+    }
+  }
+  const Objective ls = objective.WithParameters(base);
+  BestEpsilon best_epsilon;
+  std::int64_t evaluations = 0;
+
+  // The effective noise level from the residuals at the fit.
+  std::vector<Eigen::Vector3d> r;
+  if (profiled.empty() || !WeightedResiduals(ls, base, &r)) {
+    u.description = "not available: the model fails at the fit";
+    return u;
+  }
+  double sum_sq_fit = 0.0, weight_sum = 0.0;
+  for (const Eigen::Vector3d& x : r) sum_sq_fit += x.squaredNorm();
+  {
+    ErrorNodes nodes;
+    BuildErrorNodes(objective.signal(), fitted.value(ParameterId::kT0), objective.t_end_s(), &nodes);
+    for (double w : nodes.weight_s) weight_sum += w;
+  }
+  const double dt_s = weight_sum / static_cast<double>(std::max<std::size_t>(r.size() - 1, 1));
+  const int max_lag = std::max(1, static_cast<int>(std::lround(options.noise_correlation_window_s / dt_s)));
+  // κ_j per parameter: the sandwich where the Jacobian is there, else the long-run factor of the residuals.
+  PerParameter kappa;
+  kappa.fill(LongRunVarianceFactor(r, max_lag));
+  u.noise_inflation.fill(kNaN);
+  if (lin.available()) {
+    const Eigen::VectorXd k = SandwichInflation(lin, max_lag);
+    for (std::size_t a = 0; a < lin.ids.size(); ++a) kappa[static_cast<std::size_t>(lin.ids[a])] = k[static_cast<Eigen::Index>(a)];
+  }
+  for (double& k : kappa) k *= options.model_error_allowance;
+  u.correlation_factor = 1.0;
+  for (ParameterId id : profiled) {
+    u.noise_inflation[static_cast<std::size_t>(id)] = kappa[static_cast<std::size_t>(id)];
+    u.correlation_factor = std::max(u.correlation_factor, kappa[static_cast<std::size_t>(id)]);
+  }
+  const double dof = 3.0 * static_cast<double>(r.size()) - static_cast<double>(profiled.size());
+  double sum_sq_min = sum_sq_fit;  // the lowest S known (the profiles may find lower)
+  if (!(dof > 0.0)) {
+    u.description = "not available: fewer residuals than free parameters";
+    return u;
+  }
+
+  // Linearised σ with the effective noise level (the fast intervals; the profile's step sizes).
+  PerParameter sigma;
+  sigma.fill(kNaN);
+  auto linearised_sigma = [&](double s2) {
+    if (!have_cov) return;
+    for (Eigen::Index a = 0; a < n_cov; ++a) {
+      const double v = inverse_normal_matrix(a, a) * s2 * kappa[static_cast<std::size_t>(covariance_ids[static_cast<std::size_t>(a)])];
+      sigma[static_cast<std::size_t>(covariance_ids[static_cast<std::size_t>(a)])] = v >= 0.0 ? std::sqrt(v) : kNaN;
+    }
+  };
+
+  if (options.method == IntervalMethod::kFast) {
+    u.noise_rms_rad_s = std::sqrt(sum_sq_fit / dof / dt_s);
+    linearised_sigma(sum_sq_fit / dof);
+    for (ParameterId id : profiled) {
+      const std::size_t k = static_cast<std::size_t>(id);
+      const Parameter& p = objective.parameters()[id];
+      const double c = fitted.value(id);
+      if (std::isfinite(sigma[k])) {
+        auto clip = [&](double v) { return v < p.lower || v > p.upper ? kNaN : v; };
+        u.interval_68[k] = {clip(c - kZ68 * sigma[k]), clip(c + kZ68 * sigma[k])};
+        u.interval_95[k] = {clip(c - kZ95 * sigma[k]), clip(c + kZ95 * sigma[k])};
+      }
+      u.determined[k] = Determine(u.interval_95[k], p.lower, p.upper, options.undetermined_range_fraction);
+    }
+    u.description = fmt::format("fast: linearised, value ± z·σ with the residual noise level {:.3g} rad/s, variances "
+                                "inflated by up to κ = {:.2f} for its correlation in time and model error",
+                                u.noise_rms_rad_s, u.correlation_factor);
+  } else {
+    // The least-squares optimum the profiles start from (close to the optimum of (28)).
+    PerParameter refit_step = kFallbackStep;
+    linearised_sigma(sum_sq_fit / dof);
+    for (ParameterId id : kAllParameters) {
+      const std::size_t k = static_cast<std::size_t>(id);
+      if (std::isfinite(sigma[k])) refit_step[k] = std::clamp(sigma[k], options.min_step[k], kFallbackStep[k]);
+    }
+    SumOfSquaresValue centre_value;
+    const ParameterSet centre = MinimizeSumOfSquares(ls, base, refit_step, options.centre_evaluations, &centre_value,
+                                                     &best_epsilon, &evaluations);
+    const double sum_sq_centre = centre_value.sum_sq;
+    const double s2_centre = sum_sq_centre / dof;
+    linearised_sigma(s2_centre);
+
+    // Both sides of every profiled parameter, in parallel (independent: deterministic in any thread count).
+    const std::size_t sides = 2 * profiled.size();
+    std::vector<std::vector<ProfilePoint>> points(sides);
+    std::vector<BestEpsilon> side_best(sides);
+    std::vector<std::int64_t> side_evaluations(sides, 0);
+    ParallelFor(sides, num_threads, [&](std::size_t s) {
+      const ParameterId id = profiled[s / 2];
+      const std::size_t k = static_cast<std::size_t>(id);
+      const double step = std::isfinite(sigma[k]) ? std::max(sigma[k], options.min_step[k]) : kFallbackStep[k];
+      // Far enough past the 95 % threshold to interpolate it, with margin for a lower minimum found later.
+      const double stop = sum_sq_centre + 1.5 * kZ95 * kZ95 * kappa[k] * s2_centre;
+      points[s] = ProfileSide(ls, centre, id, s % 2 == 0 ? -1.0 : +1.0, step, stop, refit_step, options, &side_best[s],
+                              &side_evaluations[s]);
+    });
+    sum_sq_min = sum_sq_centre;
+    for (std::size_t s = 0; s < sides; ++s) {
+      evaluations += side_evaluations[s];
+      best_epsilon.Merge(side_best[s]);
+      for (const ProfilePoint& pt : points[s]) {
+        if (pt.feasible) sum_sq_min = std::min(sum_sq_min, pt.sum_sq);
+      }
+    }
+    u.noise_rms_rad_s = std::sqrt(sum_sq_min / dof / dt_s);
+    for (std::size_t j = 0; j < profiled.size(); ++j) {
+      const ParameterId id = profiled[j];
+      const std::size_t k = static_cast<std::size_t>(id);
+      const double s2_eff = kappa[k] * sum_sq_min / dof;
+      const double centre_rho = std::sqrt(std::max(0.0, sum_sq_centre - sum_sq_min) / s2_eff);
+      const Parameter& p = objective.parameters()[id];
+      const double c = centre.value(id), v = fitted.value(id);
+      auto ends = [&](double z) {
+        Interval i = {ProfileCrossing(c, centre_rho, points[2 * j], sum_sq_min, s2_eff, z),
+                      ProfileCrossing(c, centre_rho, points[2 * j + 1], sum_sq_min, s2_eff, z)};
+        // The reported value (the optimum of (28)) always lies inside its intervals.
+        if (!std::isnan(i[0])) i[0] = std::min(i[0], v);
+        if (!std::isnan(i[1])) i[1] = std::max(i[1], v);
+        return i;
+      };
+      u.interval_68[k] = ends(kZ68);
+      u.interval_95[k] = ends(kZ95);
+      u.determined[k] = Determine(u.interval_95[k], p.lower, p.upper, options.undetermined_range_fraction);
+    }
+    u.description = fmt::format("thorough: profile of the sum of squares of (28)'s residuals, the others re-fitted; "
+                                "residual noise level {:.3g} rad/s, inflated by up to κ = {:.2f} for its correlation in time and "
+                                "model error",
+                                u.noise_rms_rad_s, u.correlation_factor);
+    if (best_epsilon.at && best_epsilon.epsilon_rad_s < (1.0 - kBetterPointFraction) * fitted_epsilon_rad_s) {
+      u.better_point = best_epsilon.at;
+      u.better_epsilon_rad_s = best_epsilon.epsilon_rad_s;
+    }
+  }
+  // Other basins within the thresholds widen the intervals (see the header); SS relative to the lowest known.
+  {
+    double sum_sq_ref = sum_sq_min;
+    std::vector<std::pair<SumOfSquaresValue, ParameterSet>> alt;
+    for (const ParameterSet& a : alternatives) {
+      ParameterSet set = base;
+      for (ParameterId id : profiled) set[id].value = a.value(id);
+      const SumOfSquaresValue v = SumOfSquares(ls, set);
+      if (!v.feasible) continue;
+      sum_sq_ref = std::min(sum_sq_ref, v.sum_sq);
+      alt.emplace_back(v, set);
+    }
+    const std::array<Interval, kNumParameters> profile_95 = u.interval_95;
+    for (const auto& [v, set] : alt) {
+      bool apart = set.value(ParameterId::kLambdaLat) * fitted.value(ParameterId::kLambdaLat) < 0.0;
+      bool within_all = true;
+      for (ParameterId id : profiled) {
+        const std::size_t k = static_cast<std::size_t>(id);
+        const double rho = std::sqrt(std::max(0.0, v.sum_sq - sum_sq_ref) / (kappa[k] * sum_sq_ref / dof));
+        const double x = set.value(id);
+        for (auto [z, interval] : {std::pair{kZ68, &u.interval_68[k]}, std::pair{kZ95, &u.interval_95[k]}}) {
+          if (rho > z) continue;
+          if (!std::isnan((*interval)[0])) (*interval)[0] = std::min((*interval)[0], x);
+          if (!std::isnan((*interval)[1])) (*interval)[1] = std::max((*interval)[1], x);
+        }
+        if (rho > kZ95) within_all = false;
+        const Interval& p = profile_95[k];
+        const double w = p[1] - p[0];
+        if (std::isfinite(w) && (x < p[0] - w || x > p[1] + w)) apart = true;
+      }
+      if (within_all && apart && (!u.second_solution || v.epsilon_rad_s < u.second_solution_epsilon_rad_s)) {
+        u.second_solution = set;
+        u.second_solution_epsilon_rad_s = v.epsilon_rad_s;
+      }
+    }
+    for (ParameterId id : profiled) {
+      const std::size_t k = static_cast<std::size_t>(id);
+      const Parameter& p = objective.parameters()[id];
+      u.determined[k] = Determine(u.interval_95[k], p.lower, p.upper, options.undetermined_range_fraction);
+    }
+  }
+  u.statements = DescribeUncertainty(u, fitted);
+  u.evaluations = objective.counters().runs() - runs_before;
+  u.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return u;
+}
+
+}  // namespace rockfit::fitting

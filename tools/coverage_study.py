@@ -1,0 +1,243 @@
+#!/usr/bin/env python3
+"""Coverage study of rockfit's parameter intervals (fitting/README.md, "Intervals").
+
+Makes random synthetic trials with `rockfit synth` (noise, gyro bias, quantisation, ringing after impacts and
+attitude drift, all on), fits each with `rockfit fit --json` for every interval method asked for, evaluates (28)
+at the true parameters with `rockfit fit --evaluate` over the same window, and reports per method and
+parameter:
+
+  * how often the parameter is reported `determined` yes / sign only / no;
+  * among the `yes` ones, how often the 68 % and the 95 % interval hold the true value (targets 60–80 % and
+    ≥ 90 %) and the median width of each;
+  * among the `sign only` ones, how often the sign is right; among the `no` ones, how often the 95 %
+    interval (with its open ends) still holds the truth;
+  * ε of the fit over ε of the truth: the fraction ≤ 1.02 and every miss with its ε;
+  * the cost (simulations and wall time per fit).
+
+Random ranges (one seed gives the same trials): b1 = 5 cm, b2 = 2.5–7 cm (narrow to deep), h = 15–25 cm, tilt
+α = 0.5–0.97 θ_c, λ = 0.3–2.5, λ_lon = 0.1–1.4, |λ_lat| of either sign: 0.05–0.5 in one trial in three (weak
+lateral motion), 0.5–3 otherwise; t0 = 0.8–1.6 s; a gyro bias of up to 0.3 deg/s per axis.
+
+`--ringing-scale F` multiplies the ringing frequency, gain and decay time of `synth`'s default measurement model
+(38 Hz, 0.25, 0.03 s) by F, because real ringing will not match the generator.
+
+Usage (from the repository root, after building):
+
+  nice tools/coverage_study.py --rockfit build/tools/rockfit --trials 100 --seed 1 \\
+      --methods fast,thorough --out build/coverage-1 [--ringing-scale 2]
+
+Writes OUT/trials.jsonl (one line per trial and method: truth, fit JSON, ε of the truth) and prints the tables
+(also in OUT/report.md). `--report-only` re-prints the tables from an existing trials.jsonl. Each fit runs
+on one thread (`--threads 1`); run one study per core at most.
+"""
+import argparse
+import json
+import math
+import os
+import random
+import statistics
+import subprocess
+import sys
+import time
+
+PARAMETERS = ["t0", "alpha", "lambda", "lambda_lat", "lambda_lon"]
+SYNTH_RINGING = {"--ringing-frequency-hz": 38.0, "--ringing-gain": 0.25, "--ringing-decay-time-s": 0.03}
+EPSILON_RATIO_TARGET = 1.02
+
+
+def random_trial(rng, index):
+    b1, b2, h = 0.05, rng.uniform(0.025, 0.07), rng.uniform(0.15, 0.25)
+    theta_c = math.atan(b1 / h)
+    weak = rng.random() < 1.0 / 3.0
+    magnitude = rng.uniform(0.05, 0.5) if weak else rng.uniform(0.5, 3.0)
+    return {
+        "index": index,
+        "b1": b1, "b2": b2, "h": h, "theta_c": theta_c,
+        "t0": rng.uniform(0.8, 1.6),
+        "alpha": rng.uniform(0.5, 0.97) * theta_c,
+        "lambda": rng.uniform(0.3, 2.5),
+        "lambda_lat": magnitude * rng.choice([-1.0, 1.0]),
+        "lambda_lon": rng.uniform(0.1, 1.4),
+        "bias_dps": [rng.uniform(-0.3, 0.3) for _ in range(3)],
+        "seed": rng.randrange(1, 2**31),
+        "weak_lateral": weak,
+    }
+
+
+def run(cmd):
+    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    return r.returncode, r.stdout, r.stderr
+
+
+def block_args(t):
+    return ["--b1", repr(t["b1"]), "--b2", repr(t["b2"]), "--h", repr(t["h"]), "--density", "2692"]
+
+
+def study_trial(args, t, workdir):
+    prefix = os.path.join(workdir, f"trial{t['index']:03d}")
+    synth = [args.rockfit, "synth", "-o", prefix, "--t0", repr(t["t0"]), "--duration", repr(t["t0"] + 2.5),
+             "--alpha", repr(t["alpha"]), "--lambda", repr(t["lambda"]), "--lambda-lat", repr(t["lambda_lat"]),
+             "--lambda-lon", repr(t["lambda_lon"]), "--seed", str(t["seed"]), "--no-rotation-matrix",
+             "--gyro-bias-dps=" + ",".join(repr(b) for b in t["bias_dps"])] + block_args(t)
+    if args.ringing_scale != 1.0:
+        for option, value in SYNTH_RINGING.items():
+            synth += [option, repr(value * args.ringing_scale)]
+    code, _, err = run(synth)
+    if code != 0:
+        return [{"trial": t, "error": "synth: " + err.strip()}]
+    rows = []
+    for method in args.methods:
+        started = time.time()
+        code, out, err = run([args.rockfit, "fit", prefix, "--json", "--threads", "1", "--intervals", method]
+                             + block_args(t))
+        wall = time.time() - started
+        if code != 0:
+            rows.append({"trial": t, "method": method, "error": f"fit exit {code}: {err.strip()}"})
+            continue
+        fit = json.loads(out)
+        code, out, err = run([args.rockfit, "fit", prefix, "--json", "--evaluate", "--t-end", repr(fit["t_end"]),
+                              "--t0", repr(t["t0"]), "--alpha", repr(t["alpha"]), "--lambda", repr(t["lambda"]),
+                              "--lambda-lat", repr(t["lambda_lat"]), "--lambda-lon", repr(t["lambda_lon"])]
+                             + block_args(t))
+        truth_eps = json.loads(out)["epsilon"] if code == 0 else None
+        rows.append({"trial": t, "method": method, "fit": fit, "epsilon_truth": truth_eps, "process_wall_s": wall})
+    for suffix in ["_CalInertialAndMag.csv", "_EulerAngles.csv", "_Quaternion.csv", "_Registers.csv",
+                   "_DateTime.csv", "_truth.json"]:
+        try:
+            os.remove(prefix + suffix)
+        except OSError:
+            pass
+    return rows
+
+
+def contains(interval, value):
+    lo, hi = interval
+    return (lo is None or lo <= value) and (hi is None or value <= hi)
+
+
+def width(interval):
+    lo, hi = interval
+    return None if lo is None or hi is None else hi - lo
+
+
+def coverage_failures(rows, min_coverage_95, min_epsilon_fraction):
+    """Reasons why the study misses the given thresholds (for the CTest version); empty when it passes."""
+    failures = []
+    for method in sorted({r["method"] for r in rows if "method" in r}):
+        mine = [r for r in rows if r.get("method") == method and "fit" in r]
+        if len(mine) < len([r for r in rows if r.get("method") == method]):
+            failures.append(f"{method}: some fits failed")
+        for name in PARAMETERS:
+            yes = [r for r in mine if r["fit"]["parameters"][name].get("determined") == "yes"]
+            held = sum(contains(r["fit"]["parameters"][name]["interval_95"], r["trial"][name]) for r in yes)
+            if yes and held < min_coverage_95 * len(yes):
+                failures.append(f"{method}: the 95 % interval of {name} holds the truth in {held}/{len(yes)}")
+            for r in mine:
+                p = r["fit"]["parameters"][name]
+                if p.get("determined") == "sign only" and p["value"] * r["trial"][name] <= 0:
+                    failures.append(f"{method}: {name} of trial {r['trial']['index']} has the wrong sign")
+        ratios = [r["fit"]["epsilon"] / r["epsilon_truth"] for r in mine if r.get("epsilon_truth")]
+        ok = sum(q <= EPSILON_RATIO_TARGET for q in ratios)
+        if ratios and ok < min_epsilon_fraction * len(ratios):
+            failures.append(f"{method}: ε ≤ {EPSILON_RATIO_TARGET} × ε(truth) in only {ok}/{len(ratios)}")
+    return failures
+
+
+def report(rows, ringing_scale):
+    lines = []
+    methods = sorted({r["method"] for r in rows if "method" in r})
+    n_trials = len({r["trial"]["index"] for r in rows})
+    lines.append(f"{n_trials} trials, ringing scale {ringing_scale:g}")
+    for method in methods:
+        mine = [r for r in rows if r.get("method") == method and "fit" in r]
+        failed = [r for r in rows if r.get("method") == method and "error" in r]
+        lines.append("")
+        lines.append(f"### --intervals {method}: {len(mine)} fits, {len(failed)} failed")
+        lines.append("")
+        lines.append("| parameter | yes | 68 % holds | 95 % holds | median width 68 % | median width 95 % "
+                     "| sign only (sign right) | no (95 % holds) |")
+        lines.append("|---|---|---|---|---|---|---|---|")
+        for name in PARAMETERS:
+            yes, sign, no = [], [], []
+            for r in mine:
+                p = r["fit"]["parameters"][name]
+                d = p.get("determined")
+                (yes if d == "yes" else sign if d == "sign only" else no).append(r)
+            truth = lambda r: r["trial"][name]
+            in68 = sum(contains(r["fit"]["parameters"][name]["interval_68"], truth(r)) for r in yes)
+            in95 = sum(contains(r["fit"]["parameters"][name]["interval_95"], truth(r)) for r in yes)
+            w68 = [width(r["fit"]["parameters"][name]["interval_68"]) for r in yes]
+            w95 = [width(r["fit"]["parameters"][name]["interval_95"]) for r in yes]
+            sign_right = sum(r["fit"]["parameters"][name]["value"] * truth(r) > 0 for r in sign)
+            no_holds = sum(contains(r["fit"]["parameters"][name]["interval_95"] or [None, None], truth(r)) for r in no)
+            pct = lambda k, n: f"{k}/{n} ({100.0 * k / n:.0f} %)" if n else "—"
+            med = lambda w: f"{statistics.median([x for x in w if x is not None]):.3g}" if any(
+                x is not None for x in w) else "—"
+            lines.append(f"| {name} | {len(yes)} | {pct(in68, len(yes))} | {pct(in95, len(yes))} | {med(w68)} | "
+                         f"{med(w95)} | {len(sign)} ({sign_right}) | {len(no)} ({no_holds}) |")
+        ratios = [(r["fit"]["epsilon"] / r["epsilon_truth"], r) for r in mine if r.get("epsilon_truth")]
+        ok = sum(q <= EPSILON_RATIO_TARGET for q, _ in ratios)
+        lines.append("")
+        lines.append(f"ε ≤ {EPSILON_RATIO_TARGET} × ε(truth): {ok}/{len(ratios)}"
+                     + (f" ({100.0 * ok / len(ratios):.1f} %)" if ratios else ""))
+        for q, r in sorted(ratios, key=lambda x: -x[0]):
+            if q > EPSILON_RATIO_TARGET:
+                t = r["trial"]
+                lines.append(f"  miss: trial {t['index']} ε = {r['fit']['epsilon']:.5g} rad/s, truth {r['epsilon_truth']:.5g} "
+                             f"(ratio {q:.3f}); α/θc = {t['alpha'] / t['theta_c']:.3f}, λ_lat = {t['lambda_lat']:.3f}, "
+                             f"λ = {t['lambda']:.3f}, b2 = {t['b2']:.3f}")
+        sims = [r["fit"]["simulations"] for r in mine]
+        unc_sims = [r["fit"].get("uncertainty", {}).get("simulations", 0) for r in mine]
+        walls = [r["fit"]["wall_s"] for r in mine]
+        unc_walls = [r["fit"].get("uncertainty", {}).get("wall_s", 0.0) for r in mine]
+        if mine:
+            lines.append(f"cost per fit (median): {statistics.median(sims):.0f} simulations, {statistics.median(walls):.2f} s; "
+                         f"of which intervals {statistics.median(unc_sims):.0f} simulations, "
+                         f"{statistics.median(unc_walls):.2f} s")
+            moved = sum(any(w["kind"] == "moved_by_intervals" for w in r["fit"]["warnings"]) for r in mine)
+            lines.append(f"fits moved to a lower (28) by the profiles: {moved}")
+    return "\n".join(lines)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--rockfit", default="build/tools/rockfit")
+    parser.add_argument("--trials", type=int, default=100)
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--methods", default="fast,thorough")
+    parser.add_argument("--ringing-scale", type=float, default=1.0)
+    parser.add_argument("--out", required=True)
+    parser.add_argument("--report-only", action="store_true")
+    parser.add_argument("--check-coverage-95", type=float, default=None,
+                        help="exit 1 unless every parameter's 95 %% interval holds the truth in at least this "
+                             "fraction of the trials where it is determined (and every 'sign only' sign is right)")
+    parser.add_argument("--check-epsilon-fraction", type=float, default=0.0,
+                        help="with --check-coverage-95: also require ε ≤ 1.02 ε(truth) in this fraction")
+    args = parser.parse_args()
+    args.methods = [m for m in args.methods.split(",") if m]
+    os.makedirs(args.out, exist_ok=True)
+    path = os.path.join(args.out, "trials.jsonl")
+    if not args.report_only:
+        rng = random.Random(args.seed)
+        trials = [random_trial(rng, i) for i in range(args.trials)]
+        with open(path, "w") as out:
+            for t in trials:
+                for row in study_trial(args, t, args.out):
+                    out.write(json.dumps(row) + "\n")
+                    out.flush()
+    with open(path) as f:
+        rows = [json.loads(line) for line in f if line.strip()]
+    text = report(rows, args.ringing_scale)
+    with open(os.path.join(args.out, "report.md"), "w") as f:
+        f.write(text + "\n")
+    print(text)
+    if args.check_coverage_95 is not None:
+        failures = coverage_failures(rows, args.check_coverage_95, args.check_epsilon_fraction)
+        for f in failures:
+            print("FAILED: " + f)
+        return 1 if failures else 0
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
