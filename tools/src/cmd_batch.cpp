@@ -301,7 +301,10 @@ int RunBatch(const BatchCommand& cmd) {
       o.trial = TrialNameFrom(spec.id);
       try {
         const core::Block block = manifest.FindBlock(spec.block_id).ToBlock();
-        const std::string hash = SettingsHash(FitSettingsText(block, fit_args));
+        // The trial's mounting as the manifest gives it ("auto" included) changes what is fitted.
+        const std::string settings = FitSettingsText(block, fit_args) + "; mounting=" +
+                                     (spec.mounting.empty() ? "identity" : spec.mounting);
+        const std::string hash = SettingsHash(settings);
         const auto it = stored.find(o.trial);
         if (it != stored.end() && it->second == hash) {
           o.ok = o.skipped = true;
@@ -310,7 +313,8 @@ int RunBatch(const BatchCommand& cmd) {
           o.mounting = recording.mounting;
           o.mounting_disagreement_deg = io::MountingDisagreementDeg(recording.mounting_check);
           o.mounting_warning = recording.mounting_check.warning;
-          const PreparedFit prepared = PrepareFit(recording, block, fit_args);
+          PreparedFit prepared = PrepareFit(recording, block, fit_args);
+          prepared.settings = settings;
           const fitting::FitSummary summary = fitting::Fit(prepared.objective, prepared.start, prepared.options);
           o.epsilon_rad_s = summary.epsilon_rad_s;
           o.wall_s = summary.wall_time_s;
