@@ -46,7 +46,13 @@ for t in "${targets[@]}"; do
   result=ok
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     "$build_dir/tests/fuzz/fuzz_$t" "${args[@]}" "$corpus" "$here/tests/fuzz/corpus/$t" >"$log" 2>&1 || result="FINDING (see $log)"
-  [ "$result" = ok ] || status=1
+  # A report whose innermost frames (#0, #1) lie in Debian's libhdf5 is a finding against HDF5, which rockfit
+  # cannot fix (tests/fuzz/README.md, "What the targets do not prove"): reported, kept, not failed on.
+  if [ "$result" != ok ] && grep -E '^ +#[01] .*libhdf5' "$log" >/dev/null; then
+    result="libhdf5 finding (not rockfit's; see $log)"
+  elif [ "$result" != ok ]; then
+    status=1
+  fi
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | tail -1 | grep -o '[0-9]*$' || true)
   edges=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*$' || true)
   features=$(grep -o 'ft: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*$' || true)
