@@ -77,6 +77,9 @@ struct WriterCase {
   bool needs_optimised_build = false;  // whole fits
 };
 
+// Test names and messages show the case's name rather than its bytes.
+void PrintTo(const WriterCase& c, std::ostream* os) { *os << c.name; }
+
 std::vector<std::string> Concat(std::vector<std::string> a, const std::vector<std::string>& b) {
   a.insert(a.end(), b.begin(), b.end());
   return a;

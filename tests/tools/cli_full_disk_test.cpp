@@ -38,6 +38,8 @@ struct FullDiskCase {
   std::string output;  // the file checked (old intact); every file of the directory is checked for leftovers
 };
 
+void PrintTo(const FullDiskCase& c, std::ostream* os) { *os << c.name; }
+
 std::vector<FullDiskCase> FullDiskCases() {
   const std::vector<std::string> simulate = {"simulate",  "--b1", "0.05",     "--b2", "0.04",   "--h", "0.2",
                                              "--density", "2692", "--lambda", "0.9",  "--stop", "rest"};
