@@ -4,7 +4,8 @@
 #   tools/bootstrap.sh run    install what is missing, build, analyse the bundled sample campaign
 #   tools/bootstrap.sh test   install what is missing, build, run every test
 #
-# Installs missing Debian packages with --no-install-recommends (as root, or through sudo).
+# Installs missing Debian packages with --no-install-recommends (as root, or through sudo). clang and
+# libclang-rt-14-dev are for the libFuzzer targets of tests/fuzz (tools/fuzz.sh); the build itself uses g++.
 # Environment: BUILD_DIR (default build), JOBS (default: number of cores), CMAKE_ARGS (extra).
 set -euo pipefail
 
@@ -20,6 +21,7 @@ packages=(
   libcli11-dev libfmt-dev libtomlplusplus-dev nlohmann-json3-dev libtbb-dev
   gnuplot-nox python3 python3-h5py python3-numpy ccache
   python3-dev python3-pybind11 pybind11-dev python3-pytest python3-matplotlib
+  clang libclang-rt-14-dev
 )
 
 missing=()

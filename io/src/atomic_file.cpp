@@ -1,11 +1,13 @@
 #include "rockfit/io/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 
@@ -28,15 +30,33 @@ void Fsync(const std::filesystem::path& path, int flags) {
 
 }  // namespace
 
+void RemoveStaleTemporaries(const std::filesystem::path& target) {
+  const std::filesystem::path dir = target.has_parent_path() ? target.parent_path() : ".";
+  const std::string prefix = "." + target.filename().string() + kTemporaryMarker;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    const std::string rest = name.substr(prefix.size());  // "<pid>-<serial>"
+    const std::size_t dash = rest.find('-');
+    if (dash == std::string::npos) continue;
+    char* end = nullptr;
+    const long pid = std::strtol(rest.substr(0, dash).c_str(), &end, 10);
+    if (pid <= 0 || pid == static_cast<long>(::getpid())) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) == -1 && errno == ESRCH) std::filesystem::remove(entry.path(), ec);
+  }
+}
+
 void WriteFileAtomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write) {
   if (path.filename().empty()) throw OutputError(fmt::format("'{}' is not a file name", path.string()));
   const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   const std::filesystem::path temporary =
-      dir / fmt::format(".{}.rockfit-tmp-{}-{}", path.filename().string(), ::getpid(), g_serial++);
+      dir / fmt::format(".{}{}{}-{}", path.filename().string(), kTemporaryMarker, ::getpid(), g_serial++);
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
     throw OutputError(fmt::format("{} is a directory; give a file name", path.string()));
   }
+  RemoveStaleTemporaries(path);
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) {

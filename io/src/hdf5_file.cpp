@@ -96,6 +96,29 @@ File File::Create(const std::filesystem::path& path) {
   return File(Handle(id, CloseFile), path);
 }
 
+File File::CreateInMemory(const std::filesystem::path& name) {
+  SilenceHdf5();
+  // Memory grows in steps of this many bytes.
+  constexpr std::size_t kMemoryIncrement = std::size_t{1} << 20;
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), ClosePlist);
+  H5Pset_fclose_degree(fapl.id(), H5F_CLOSE_STRONG);
+  if (H5Pset_fapl_core(fapl.id(), kMemoryIncrement, 0) < 0) FailWrite(name.string(), "cannot set up an in-memory file");
+  const hid_t id = H5Fcreate(name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id());
+  if (id < 0) FailWrite(name.string(), "cannot create the HDF5 file in memory");
+  return File(Handle(id, CloseFile), name);
+}
+
+std::string File::Image() const {
+  Flush();
+  const ssize_t size = H5Fget_file_image(handle_.id(), nullptr, 0);
+  if (size < 0) FailWrite(path_.string(), "cannot get the size of the file image");
+  std::string image(static_cast<std::size_t>(size), '\0');
+  if (H5Fget_file_image(handle_.id(), image.data(), image.size()) != size) {
+    FailWrite(path_.string(), "cannot get the file image");
+  }
+  return image;
+}
+
 File File::Open(const std::filesystem::path& path, bool writable) {
   SilenceHdf5();
   if (!std::filesystem::exists(path)) {

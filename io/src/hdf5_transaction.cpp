@@ -8,18 +8,18 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 
 #include <fmt/format.h>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/io/atomic_file.hpp"
 
 namespace rockfit::io::hdf5 {
 
 namespace {
 
 std::atomic<unsigned> g_serial{0};
-
-const char* kTemporaryMarker = ".rockfit-tmp-";
 
 // "/trials/T1" → {"trials", "T1"}.
 std::vector<std::string> Split(const std::string& path) {
@@ -56,30 +56,6 @@ void CopyExcept(const Group& from, const Group& to, const std::vector<std::vecto
   }
 }
 
-void RemoveStaleTemporaries(const std::filesystem::path& target) {
-  const std::filesystem::path dir = target.has_parent_path() ? target.parent_path() : ".";
-  const std::string prefix = "." + target.filename().string() + kTemporaryMarker;
-  std::error_code ec;
-  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
-    const std::string name = entry.path().filename().string();
-    if (name.rfind(prefix, 0) != 0) continue;
-    const std::string rest = name.substr(prefix.size());  // "<pid>-<serial>"
-    const std::size_t dash = rest.find('-');
-    if (dash == std::string::npos) continue;
-    char* end = nullptr;
-    const long pid = std::strtol(rest.substr(0, dash).c_str(), &end, 10);
-    if (pid <= 0 || pid == static_cast<long>(::getpid())) continue;
-    if (::kill(static_cast<pid_t>(pid), 0) == -1 && errno == ESRCH) std::filesystem::remove(entry.path(), ec);
-  }
-}
-
-void SyncPath(const std::filesystem::path& path, int flags) {
-  const int fd = ::open(path.c_str(), flags);
-  if (fd < 0) return;
-  ::fsync(fd);
-  ::close(fd);
-}
-
 }  // namespace
 
 std::filesystem::path TemporaryPathFor(const std::filesystem::path& target, long pid, unsigned serial) {
@@ -99,7 +75,20 @@ Transaction::Transaction(std::filesystem::path target, std::vector<std::string> 
   }
   RemoveStaleTemporaries(target_);
   temporary_ = TemporaryPathFor(target_, static_cast<long>(::getpid()), g_serial++);
-  file_.emplace(File::Create(temporary_));
+  {
+    // The new version is built in memory (File::CreateInMemory) and written by Commit(); a file created and
+    // removed here makes an unwritable directory an error before any work is done.
+    std::ofstream probe(temporary_, std::ios::binary);
+    if (!probe) {
+      throw OutputError(fmt::format("cannot write {}: cannot create a file in {}: {}; check that the directory exists "
+                                    "and is writable",
+                                    target_.string(),
+                                    target_.has_parent_path() ? target_.parent_path().string() : std::string("."),
+                                    std::strerror(errno)));
+    }
+  }
+  std::filesystem::remove(temporary_, ec);
+  file_.emplace(File::CreateInMemory(temporary_));
   if (exists) {
     std::vector<std::vector<std::string>> parts;
     for (const auto& path : replaced) {
@@ -135,18 +124,12 @@ Group Transaction::Root() const {
 
 void Transaction::Commit() {
   if (!file_) throw OutputError(fmt::format("{}: the transaction is closed", target_.string()));
+  const std::string image = file_->Image();
   file_->Close();
   file_.reset();
-  SyncPath(temporary_, O_RDONLY);
-  if (std::rename(temporary_.c_str(), target_.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::error_code ec;
-    std::filesystem::remove(temporary_, ec);
-    throw OutputError(fmt::format("cannot rename {} to {}: {}; the previous file is unchanged", temporary_.string(),
-                                  target_.string(), reason));
-  }
+  // Temporary file beside the target, flushed, fsync'ed and renamed; OutputError (target unchanged) otherwise.
+  WriteFileAtomically(target_, [&image](std::ostream& out) { out.write(image.data(), static_cast<std::streamsize>(image.size())); });
   committed_ = true;
-  SyncPath(target_.has_parent_path() ? target_.parent_path() : std::filesystem::path("."), O_RDONLY | O_DIRECTORY);
 }
 
 }  // namespace rockfit::io::hdf5

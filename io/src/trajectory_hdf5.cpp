@@ -11,6 +11,7 @@
 #include <hdf5.h>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/io/atomic_file.hpp"
 
 namespace rockfit::io {
 namespace {
@@ -33,6 +34,9 @@ class Handle {
   hid_t id_;
   herr_t (*close_)(hid_t);
 };
+
+// The in-memory file grows in steps of this many bytes.
+constexpr std::size_t kMemoryIncrement = std::size_t{1} << 20;
 
 class Writer {
  public:
@@ -290,22 +294,25 @@ void WriteHdf5File(const std::filesystem::path& path, const core::Block& block, 
     throw OutputError("cannot write " + path.string() + ": the directory " + directory.string() +
                       " does not exist; create it or choose another -o path");
   }
-  const std::filesystem::path temporary =
-      directory / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()));
-  const Writer writer(temporary);
-  try {
-    {
-      Handle file(H5Fcreate(temporary.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), &H5Fclose);
-      writer.Check(file.ok(), "the file header (is the directory writable?)");
-      WriteContents(writer, file.get(), block, params, options, trajectory, extra);
-      writer.Check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL) >= 0, "the file contents");
-    }
-    std::filesystem::rename(temporary, path, ec);
-    if (ec) throw OutputError("cannot move the finished HDF5 file to " + path.string() + ": " + ec.message());
-  } catch (...) {
-    std::filesystem::remove(temporary, ec);
-    throw;
+  // Built in memory (HDF5's core driver) and written in one go through WriteFileAtomically: a full disk is then
+  // an error of that write, never one inside libhdf5 (hdf5_file.hpp, File::CreateInMemory).
+  const Writer writer(path);
+  std::string image;
+  {
+    Handle fapl(H5Pcreate(H5P_FILE_ACCESS), &H5Pclose);
+    writer.Check(fapl.ok() && H5Pset_fapl_core(fapl.get(), kMemoryIncrement, 0) >= 0, "an in-memory file");
+    Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), &H5Fclose);
+    writer.Check(file.ok(), "the file header");
+    WriteContents(writer, file.get(), block, params, options, trajectory, extra);
+    writer.Check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL) >= 0, "the file contents");
+    const ssize_t size = H5Fget_file_image(file.get(), nullptr, 0);
+    writer.Check(size >= 0, "the file image");
+    image.resize(static_cast<std::size_t>(size));
+    writer.Check(H5Fget_file_image(file.get(), image.data(), image.size()) == size, "the file image");
   }
+  WriteFileAtomically(path, [&image](std::ostream& out) {
+    out.write(image.data(), static_cast<std::streamsize>(image.size()));
+  });
 }
 
 }  // namespace

@@ -1,13 +1,20 @@
 #include "rockfit/io/ximu_gui_writer.hpp"
 
+#include <unistd.h>
+
+#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <utility>
 
+#include <fmt/format.h>
+
 #include "rockfit/core/errors.hpp"
+#include "rockfit/io/atomic_file.hpp"
 #include "rockfit/io/dotnet_float_format.hpp"
 #include "rockfit/io/synth_random.hpp"
 #include "rockfit/io/ximu_register_map.hpp"
@@ -90,13 +97,20 @@ std::int64_t TicksPerPacket(double inertial_rate_hz, double rate_hz, const char*
   return static_cast<std::int64_t>(ratio);
 }
 
+std::atomic<unsigned> g_temporary_serial{0};
+
 void WriteFilesAtomically(const std::vector<CsvFile>& files) {
   std::vector<std::string> temporaries;
   const auto remove_temporaries = [&temporaries] {
     for (const auto& t : temporaries) std::remove(t.c_str());
   };
   for (const CsvFile& file : files) {
-    const std::string temporary = file.path + ".tmp";
+    RemoveStaleTemporaries(file.path);
+    const std::filesystem::path target(file.path);
+    const std::string temporary =
+        (target.parent_path() / fmt::format(".{}{}{}-{}", target.filename().string(), kTemporaryMarker, ::getpid(),
+                                            g_temporary_serial++))
+            .string();
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) {
       const std::string reason = std::strerror(errno);

@@ -11,12 +11,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include <fmt/format.h>
 
 #include "output_kind.hpp"
 #include "rockfit/core/errors.hpp"
+#include "rockfit/io/atomic_file.hpp"
 
 namespace rockfit::tools {
 
@@ -38,6 +40,22 @@ bool IsExecutable(const std::filesystem::path& path) {
 const char* kInstallHint =
     "gnuplot is needed for plots and was not found; install it with `sudo apt-get install gnuplot-nox` (Debian/Ubuntu), "
     "or set ROCKFIT_GNUPLOT to its path";
+
+// True when gnuplot finished the picture: a PNG ends with its IEND chunk (length 0, "IEND", CRC), an SVG with
+// "</svg>". A full disk or a file-size limit can leave gnuplot's output cut short while gnuplot still exits 0.
+bool IsCompleteImage(const std::filesystem::path& path, ImageFormat format) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (format == ImageFormat::kPng) {
+    static const std::string kSignature("\x89PNG\r\n\x1a\n", 8);
+    static const std::string kEnd("\0\0\0\0IEND\xae\x42\x60\x82", 12);
+    return content.size() >= kSignature.size() + kEnd.size() && content.compare(0, 8, kSignature) == 0 &&
+           content.compare(content.size() - kEnd.size(), kEnd.size(), kEnd) == 0;
+  }
+  const std::size_t end = content.rfind("</svg>");
+  return end != std::string::npos && content.find_first_not_of(" \t\r\n", end + 6) == std::string::npos;
+}
 
 }  // namespace
 
@@ -118,8 +136,9 @@ void GnuplotFigure::Render(const std::string& body, const std::filesystem::path&
   if (!std::filesystem::is_directory(dir, ec)) {
     throw OutputError(fmt::format("cannot write {}: the directory {} does not exist", output.string(), dir.string()));
   }
+  io::RemoveStaleTemporaries(output);
   const std::filesystem::path temporary =
-      dir / fmt::format(".{}.rockfit-tmp-{}-{}", output.filename().string(), ::getpid(), g_serial++);
+      dir / fmt::format(".{}{}{}-{}", output.filename().string(), io::kTemporaryMarker, ::getpid(), g_serial++);
   const std::string terminal =
       format == ImageFormat::kPng
           ? fmt::format("set terminal pngcairo size {},{} enhanced font 'Sans,10' linewidth 1.2", width_px, height_px)
@@ -136,7 +155,7 @@ void GnuplotFigure::Render(const std::string& body, const std::filesystem::path&
                               ShellQuote(messages.string()) + " 2>&1";
   const int status = std::system(command.c_str());
   const bool ok = status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
-  if (!ok || !std::filesystem::exists(temporary, ec) || std::filesystem::file_size(temporary, ec) == 0) {
+  if (!ok || !IsCompleteImage(temporary, format)) {
     std::ifstream in(messages);
     std::stringstream text;
     text << in.rdbuf();

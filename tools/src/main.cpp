@@ -1,4 +1,5 @@
 // rockfit — experimental rocking dynamics from the command line. Subcommands live in cmd_*.cpp.
+#include <csignal>
 #include <exception>
 #include <iostream>
 
@@ -24,6 +25,10 @@ int ExitCode() { return g_exit_code; }
 
 int main(int argc, char** argv) {
   using namespace rockfit::tools;
+  // A file-size limit (ulimit -f, RLIMIT_FSIZE) would otherwise kill rockfit with SIGXFSZ in the middle of a
+  // write; ignored, the write fails with EFBIG and the writers report it (exit code 4) and remove their
+  // temporary file, as for a full disk.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"rockfit — IMU recordings, 3D impact maps, simulation and fitting of rocking blocks\n"
                "(Várkonyi, Kocsis & Ther 2021, Nonlinear Dynamics). Run `rockfit SUBCOMMAND --help` for details."};
   app.set_version_flag("--version", std::string("rockfit ") + ROCKFIT_VERSION);

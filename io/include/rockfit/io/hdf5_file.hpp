@@ -105,6 +105,11 @@ class File {
  public:
   // Creates (truncates) a file. OutputError when it cannot.
   static File Create(const std::filesystem::path& path);
+  // Creates a file held in memory only (HDF5's core driver, no backing store); `name` identifies it in messages.
+  // Image() gives its bytes. Writers build their output this way and write it to disk in one go
+  // (hdf5_transaction.hpp), so a full disk is an error of rockfit's own write, never one inside libhdf5 (whose
+  // error paths crash on EFBIG, HDF5 1.10).
+  static File CreateInMemory(const std::filesystem::path& name);
   // Opens an existing file. BadInput when it is missing or not HDF5.
   static File Open(const std::filesystem::path& path, bool writable = false);
   // True when `path` is a readable HDF5 file.
@@ -114,6 +119,8 @@ class File {
   const std::filesystem::path& path() const { return path_; }
   Handle::Id id() const { return handle_.id(); }
   void Flush() const;
+  // The bytes of the whole file (flushed first). OutputError when HDF5 cannot give them.
+  std::string Image() const;
   // Closes the file and every object still open in it. OutputError when buffered data cannot be written.
   void Close();
 

@@ -1,6 +1,7 @@
-// Atomic (re)writing of an HDF5 file (DESIGN §8): everything is written to a temporary file in the same
-// directory, which Commit() renames over the target. A crash, a kill or an exception before Commit() leaves the
-// target exactly as it was.
+// Atomic (re)writing of an HDF5 file (DESIGN §8): everything is built in memory (File::CreateInMemory), and
+// Commit() writes the image to a temporary file in the same directory and renames it over the target
+// (atomic_file.hpp). A crash, a kill, a full disk or an exception before the rename leaves the target exactly
+// as it was. The memory used is the size of the new file.
 //
 // Re-writing keeps what the file held: the temporary file starts as a copy of the existing target minus the
 // objects the caller says it replaces (e.g. "/summary", "/trials/T1"), so a second `rockfit summary -o x.h5`
