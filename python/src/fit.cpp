@@ -14,6 +14,7 @@
 
 #include "bindings.hpp"
 #include "fit_setup.hpp"
+#include "mounting_report.hpp"
 #include "recording_input.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/fitting/fitter.hpp"
@@ -170,6 +171,7 @@ struct FitOutcome {
   fitting::FitSummary summary;
   fitting::ErrorNodes nodes;
   fitting::ModelOutput output;
+  nlohmann::json mounting;  // as `rockfit fit --json` reports it
   std::string error_type;  // empty when the fit ran; else the Python exception it would raise
   std::string message;
 };
@@ -179,6 +181,7 @@ FitOutcome RunFit(const std::string& trial, const io::Recording& recording, cons
                   const tools::FitArgs& args, const Flag& interrupted) {
   FitOutcome o;
   o.trial = tools::TrialNameFrom(trial);
+  o.mounting = tools::MountingJson(recording);
   o.prepared = std::make_unique<tools::PreparedFit>(tools::PrepareFit(recording, block, args));
   const fitting::Objective objective = Interruptible(o.prepared->objective, interrupted);
   o.summary = fitting::Fit(objective, o.prepared->start, o.prepared->options);
@@ -197,6 +200,7 @@ py::object FitRecord(FitOutcome& o) {
       merged[key] = value;
     }
   }
+  merged["mounting"] = o.mounting;
   py::dict d = FromJson(merged).cast<py::dict>();
   py::dict parameters;
   py::dict values;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "bindings.hpp"
+#include "mounting_report.hpp"
 #include "metrics_options.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/trial_metrics.hpp"
@@ -75,6 +76,7 @@ py::object Metrics(const TrialRecording& r, const std::optional<core::Block>& gi
   d["phi_x_anchor_times"] = OwnedArray(std::move(x_anchor_times));
   d["uplift_formula"] = io::ToString(options.avrf.uplift);
   d["anchor_method"] = io::ToString(options.correction.anchor_method);
+  d["mounting"] = FromJson(tools::MountingJson(rec));
   d["block"] = BlockDict(block);
   d["warnings"] = m.correction.warnings;
   d["units"] = py::dict(py::arg("rate_hz") = "Hz", py::arg("max_abs_phi_x") = "rad", py::arg("max_abs_phi_y") = "rad",
