@@ -113,7 +113,7 @@ if [ "$made" -eq 0 ]; then
 fi
 [ "$print_only" -eq 1 ] && exit 0
 
-# The campaign manifest (DESIGN §8), from the same table.
+# The campaign manifest (docs/design.md §8), from the same table.
 {
   echo "# Sample campaign: synthetic x-IMU recordings made by tools/make_samples.sh with \`rockfit synth\`."
   echo "# The data are synthetic (simulated motion + a measurement model); the truth of every trial is in"

@@ -52,7 +52,7 @@ void TestFeasibility(const Block& block, const ImpactGeometry& g, const Eigen::V
   c.impulse_lifts = v_plus.z() - v_minus.z() > v_tol;             // (22)
   c.no_penetration = true;
   for (int i = 1; i <= 4; ++i) {
-    // (23) with the errata of DESIGN §3: the velocity of V_i is v⁺ + ω⁺ × (r_i − r_c).
+    // (23) with the errata of docs/design.md §3: the velocity of V_i is v⁺ + ω⁺ × (r_i − r_c).
     const double v_i_up = (v_plus + c.w_plus.cross(block.p_BV_B(i) - g.p_C)).z();
     if (v_i_up < -v_tol) c.no_penetration = false;
   }

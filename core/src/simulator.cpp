@@ -1,4 +1,4 @@
-// The hybrid simulator of free 3D rocking (DESIGN §4, paper Sect. 4.1 and Fig. 7): continuous segments in
+// The hybrid simulator of free 3D rocking (docs/design.md §4, paper Sect. 4.1 and Fig. 7): continuous segments in
 // the Edge and Vertex modes (detail/contact_modes.hpp, detail/hybrid_segment.hpp) joined by the impact maps
 // of impact_maps.hpp, with Zeno handling, rest and overturning, and the stop conditions of Sect. 5.1.
 #include "rockfit/core/simulator.hpp"
@@ -268,7 +268,7 @@ void HybridRun::Run() {
       next = Next::kEdge;
     }
   } else {
-    // Release from rest on the release edge, tilted by α (DESIGN §2).
+    // Release from rest on the release edge, tilted by α (docs/design.md §2).
     edge_start_.edge = Contact::Edge(release_.first, release_.second);
     edge_start_.q_yaw = Eigen::Quaterniond::Identity();
     edge_start_.y = EdgeDynamics::State(params_.alpha_rad, 0.0);
@@ -508,7 +508,7 @@ HybridRun::Next HybridRun::AfterEdgeImpact(const VertexMode& mode, double t, con
                      edge_impacts_.LastIntervalBelow(kZenoFloorFactor * options_.event_time_tol_s));
   if (zeno) {
     // Accumulating edge impacts on one edge: continue as rocking about that edge with the angular momentum
-    // about the edge line of the post-impact rotation about V_a (DESIGN §4).
+    // about the edge line of the post-impact rotation about V_a (docs/design.md §4).
     const Contact edge = Contact::Edge(pivot, landing);
     const int a = map.contact_after.first;
     edge_start_ = MakeEdgeStart(edge, q_WB, record.w_plus_B, block_.p_BV_B(a));

@@ -154,7 +154,7 @@ void MeasurementOptions::Validate() const {
 }
 
 Eigen::Vector3f XimuEulerDegFromFileQuaternion(const Eigen::Vector4f& q) {
-  // ximu-formats.md §1.6 (QuaternionData.cs:106-109): single-precision arguments, double-precision functions.
+  // The x-IMU GUI's formulas (docs/file-formats.md §1.6): single-precision arguments, double-precision functions.
   const float phi = static_cast<float>(std::atan2(2.0f * (q[2] * q[3] - q[0] * q[1]), 2.0f * q[0] * q[0] - 1.0f + 2.0f * q[3] * q[3]));
   const double s = 2.0 * static_cast<double>(q[1] * q[3] + q[0] * q[2]);
   const double b = 2.0 * q[1] * q[3] + 2.0 * q[0] * q[2];

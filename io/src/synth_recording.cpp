@@ -130,7 +130,7 @@ json TruthJson(const core::Block& block, const core::ModelParameters& params, co
   if (!t.message.empty()) j["simulation"]["message"] = t.message;
 
   // Summary of the true motion: impact counts and the out-of-plane motion after the first impact (the OPMF
-  // of DESIGN §6 on the true, drift-free Euler angles).
+  // of docs/design.md §6 on the true, drift-free Euler angles).
   std::size_t facet = 0;
   std::size_t edge = 0;
   std::size_t zeno = 0;
@@ -231,7 +231,7 @@ SynthRecording Synthesize(const core::Block& block, const core::ModelParameters&
   r.mounting.p_BS_B = o.sensor_position_B.value_or(Eigen::Vector3d(0.0, 0.0, 2.0 * block.h()));
   r.device = MeasureMotion(r.motion, r.mounting, o.measurement);
 
-  // Phase 4 ends with the first impact on the release side after the first facet impact (DESIGN §4).
+  // Phase 4 ends with the first impact on the release side after the first facet impact (docs/design.md §4).
   core::SimulationOptions phase4 = sim;
   phase4.stop = core::StopCondition::kPhase4;
   phase4.sample_times_s = {0.0};

@@ -22,7 +22,7 @@
 namespace rockfit::io {
 namespace {
 
-// Verbatim headers of the x-IMU GUI v13 (CSVfileWriter.cs; ximu-formats.md §1.2).
+// Verbatim headers of the x-IMU GUI v13 (docs/file-formats.md §1.2).
 constexpr const char* kRegistersHeader = "Packet number,Address,Value,Fixed-point value,Name";
 constexpr const char* kDateTimeHeader = "Packet number,Year,Month,Day,Hours,Minutes,Seconds";
 constexpr const char* kBatteryHeader = "Packet number,Battery voltage (V),Thermometer (degrees C)";

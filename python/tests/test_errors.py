@@ -1,5 +1,5 @@
 """rockfit's errors as Python exceptions with the library's messages: InputError with file, line and column,
-OutputError, ValueError for bad arguments; the real x-IMU recordings when ../shared is present."""
+OutputError, ValueError for bad arguments; the real x-IMU recordings when they are present beside the checkout."""
 import os
 import pathlib
 
@@ -45,7 +45,7 @@ def test_wrong_argument_types_are_type_errors(rockfit):
         rockfit.metrics("not a recording")
 
 
-@pytest.mark.skipif(not REAL_IMU.is_dir(), reason="../shared/real-imu not present")
+@pytest.mark.skipif(not REAL_IMU.is_dir(), reason="the real x-IMU recordings beside the checkout are not present")
 def test_real_ximu_set_without_registers_says_which_rate_to_pass(rockfit):
     prefix = REAL_IMU / "Oscillatory-Motion-Tracking-With-x-IMU" / "LoggedData" / "LoggedData"
     with pytest.raises(rockfit.InputError, match="suggests --rate 256") as info:
@@ -55,7 +55,7 @@ def test_real_ximu_set_without_registers_says_which_rate_to_pass(rockfit):
     assert rec.rate_hz == 256 and rec.rate_source == "option" and len(rec) > 1000
 
 
-@pytest.mark.skipif(not REAL_IMU.is_dir(), reason="../shared/real-imu not present")
+@pytest.mark.skipif(not REAL_IMU.is_dir(), reason="the real x-IMU recordings beside the checkout are not present")
 def test_real_ximu3_directory_loads(rockfit):
     rec = rockfit.load_recording(str(REAL_IMU / "x-IMU3-CSV" / "Logged Data"))
     assert rec.format == "ximu3" and rec.rate_source == "timestamps" and rec.w_B.shape[1] == 3

@@ -1,4 +1,4 @@
-// Fitting speed (DESIGN §11): one five-parameter fit of a synthetic trial from no starting point on one core
+// Fitting speed (docs/design.md §11): one five-parameter fit of a synthetic trial from no starting point on one core
 // (target ≤ 2 s), one evaluation of (28) (one simulation of the window), and the bundled sample campaign
 // (data-samples/manifest.toml) on two cores (target: 80 trials in ≤ 1 min); each with the interval settings of
 // `--intervals` (none, fast, thorough).

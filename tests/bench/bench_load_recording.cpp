@@ -1,4 +1,4 @@
-// Loading speed of a recording (issue 4: a 45 s, 256 Hz file set should load in well under a
+// Loading speed of a recording (docs/design.md §12: a 45 s, 256 Hz file set should load in well under a
 // second). The files are written once to a temporary directory, as the x-IMU GUI writes them.
 #include <unistd.h>
 

@@ -1,4 +1,4 @@
-// Speed of the hybrid simulator (DESIGN §11: the paper's Fig. 14 window — about 1 s of motion, 25 impacts,
+// Speed of the hybrid simulator (docs/design.md §11: the paper's Fig. 14 window — about 1 s of motion, 25 impacts,
 // 256 Hz output — in at most 0.5 ms on one core). Simulations per second are reported as items/s; run with
 // --benchmark_repetitions=N --benchmark_report_aggregates_only=true for the median.
 #include <benchmark/benchmark.h>

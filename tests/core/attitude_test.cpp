@@ -29,7 +29,7 @@ TEST(Attitude, EulerZyxRecoversTheAnglesOfRzRyRx) {
 }
 
 TEST(Attitude, ReleaseTiltIsNegativePitch) {
-  // DESIGN §2: the block tilted about edge V1V2 with the +x side lifted has φy = −α.
+  // docs/design.md §2: the block tilted about edge V1V2 with the +x side lifted has φy = −α.
   const double alpha = 0.2;
   const Eigen::Vector3d euler = EulerZyxFromRotation(Ry(-alpha));
   EXPECT_NEAR(euler[1], -alpha, kAngleTol);

@@ -1,4 +1,4 @@
-// Rotation about a base edge (the Edge(i,j) mode): sign conventions of DESIGN §2, the planar rocking
+// Rotation about a base edge (the Edge(i,j) mode): sign conventions of docs/design.md §2, the planar rocking
 // equation, energy, yaw/tilt decomposition and the projection that keeps angular momentum about the edge.
 #include "rockfit/core/edge_dynamics.hpp"
 

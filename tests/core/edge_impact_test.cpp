@@ -17,7 +17,7 @@
 namespace rockfit::core {
 namespace {
 
-constexpr double kBalanceRelTol = 1e-12;   // (17) residual, the acceptance level
+constexpr double kBalanceRelTol = 1e-12;   // (17) residual, the acceptance level of docs/design.md §12
 constexpr double kVectorRelTol = 1e-12;    // two evaluations of the same linear map
 
 // Tilt 0 (flat base), 1e-8 (nearly flat) and a generic tilt [rad].
@@ -77,7 +77,7 @@ TEST(EdgeImpactAttitude, LiftsTheRestOfTheBaseByTheTiltAboutTheEdge) {
 }
 
 TEST(EdgeImpactAttitude, OnEdgeV1V2ItIsTheReleaseAttitudeOfDesign) {
-  // DESIGN §2: resting on V1V2 with the +x side lifted by α is φy = −α, R_WB = R_y(−α).
+  // docs/design.md §2: resting on V1V2 with the +x side lifted by α is φy = −α, R_WB = R_y(−α).
   const Block block = Fig11Block();
   const double alpha = 0.2;
   const Eigen::Matrix3d expected = Eigen::AngleAxisd(-alpha, Eigen::Vector3d::UnitY()).toRotationMatrix();

@@ -1,5 +1,5 @@
 // EvaluateFacetRegions (the paper's Fig. 11 over a grid), ZeroContour and ChainSegments: against the errata sign
-// rule of DESIGN §3, the mirror symmetry of the block, the planar map (6), the definition of the contour and
+// rule of docs/design.md §3, the mirror symmetry of the block, the planar map (6), the definition of the contour and
 // a closed form of the determinant of (18).
 #include "rockfit/core/facet_impact_regions.hpp"
 
@@ -40,7 +40,7 @@ TEST(FacetImpactRegions, NoSpinClassificationEqualsTheErrataSignRuleEverywhere) 
         ASSERT_EQ(cell.status, ImpactStatus::kOk) << "b=" << b << " at " << lat << "," << grid.lambda_lon[j];
         const Contact expected = lat > 0.0   ? Contact::Vertex(b + 2)
                                  : lat < 0.0 ? Contact::Vertex(b + 1)
-                                             : Contact::Edge(b + 1, b + 2);  // DESIGN §3 errata
+                                             : Contact::Edge(b + 1, b + 2);  // docs/design.md §3 errata
         EXPECT_EQ(cell.contact, expected) << "b=" << b << " at " << lat << "," << grid.lambda_lon[j];
         EXPECT_TRUE(cell.has_energy);
       }
@@ -91,7 +91,7 @@ TEST(FacetImpactRegions, FixedTauRegionsAreMirrorImagesWhenTauChangesSign) {
   }
 }
 
-// At λ_lat = 0 the facet map is the planar map (6) with λ = λ_lon (DESIGN §3): ω⁺ = r ω⁻ about the opposite edge,
+// At λ_lat = 0 the facet map is the planar map (6) with λ = λ_lon (docs/design.md §3): ω⁺ = r ω⁻ about the opposite edge,
 // whose moment of inertia equals that about the pivot edge, so ΔE = (r² − 1)·E⁻.
 TEST(FacetImpactRegions, EnergyAtZeroLambdaLatIsThatOfThePlanarMap) {
   const Block block = Fig11Block();

@@ -15,13 +15,13 @@
 namespace rockfit::core {
 namespace {
 
-constexpr double kBalanceRelTol = 1e-12;  // (17) residual, the acceptance level
+constexpr double kBalanceRelTol = 1e-12;  // (17) residual, the acceptance level of docs/design.md §12
 constexpr double kVectorRelTol = 1e-12;   // two evaluations of the same linear map
 
 Block Fig11Block() { return Block::FromMass(0.05, 0.03, 0.20, 1.0); }
 
 // Falling onto the facet about V_{b−1}V_b: ω⁻ is a positive multiple of r_b − r_{b−1} (core/README.md).
-// For b = 2 this is (0, +ω, 0). The paper's Fig. 11 writes ω⁻ = [0, −1, 0]ᵀ; in rockfit's frame (DESIGN §2)
+// For b = 2 this is (0, +ω, 0). The paper's Fig. 11 writes ω⁻ = [0, −1, 0]ᵀ; in rockfit's frame (docs/design.md §2)
 // that ω⁻ lifts the +x side off the ground (see FallingDirectionOfFig11IsPositiveY below).
 Eigen::Vector3d FallingOmega(const Block& block, int b, double omega) {
   return omega * (block.p_BV_B(b) - block.p_BV_B(b - 1)).normalized();
@@ -103,7 +103,7 @@ TEST(FacetImpact, FeasibilityFlagsFollowConditions22And23) {
 }
 
 TEST(FacetImpact, WithLambdaLatZeroEqualsThePlanarMap6) {
-  // DESIGN §3 erratum: λ_lat = 0 gives (6) with λ = λ_lon, b = b1, θ = Θ_yy (pivot edge V1V2) — and, by the
+  // docs/design.md §3 erratum: λ_lat = 0 gives (6) with λ = λ_lon, b = b1, θ = Θ_yy (pivot edge V1V2) — and, by the
   // cyclic labelling, b = b2, θ = Θ_xx for the pivot edges V2V3 and V4V1.
   const Block block = Fig11Block();
   for (int b = 1; b <= 4; ++b) {
@@ -123,7 +123,7 @@ TEST(FacetImpact, WithLambdaLatZeroEqualsThePlanarMap6) {
 }
 
 // Counts the grid points of (λ_lat, λ_lon) ∈ [−3, 3]² (2n+1 values each, exact zero included) where the unified
-// map does not give the outcome of DESIGN §3: λ_lat > 0 → V_{b+2}, λ_lat < 0 → V_{b+1} (one feasible vertex
+// map does not give the outcome of docs/design.md §3: λ_lat > 0 → V_{b+2}, λ_lat < 0 → V_{b+1} (one feasible vertex
 // each), λ_lat = 0 → edge V_{b+1}V_{b+2} (two). Reports the first failure.
 int CountUnifiedMapViolations(const Block& block, int b, int n) {
   int violations = 0;
@@ -146,7 +146,7 @@ int CountUnifiedMapViolations(const Block& block, int b, int n) {
 }
 
 TEST(FacetImpact, UnifiedMapHasExactlyOneFeasibleOutcomeWithTheVertexSideOfDesign) {
-  // The vertex is picked by feasibility; the sign rule of DESIGN §3 is only checked here. Step 0.1 for the
+  // The vertex is picked by feasibility; the sign rule of docs/design.md §3 is only checked here. Step 0.1 for the
   // Fig. 11 block falling about V1V2, step 0.5 for the other pivot edges and two other blocks (a square base
   // and a deep one) to keep the sanitizer run short.
   EXPECT_EQ(CountUnifiedMapViolations(Fig11Block(), 2, 30), 0);
@@ -192,7 +192,7 @@ TEST(FacetImpact, FixedTauGivesInfeasibleAndAmbiguousRegionsForTheBlockOfFig11) 
 }
 
 TEST(FacetImpact, NoSpinTauIsZeroOnlyForASquareBaseOrLambdaLatZero) {
-  // DESIGN §3 erratum to Sect. 4.5 ("τ = 0 for a homogeneous cuboid").
+  // docs/design.md §3 erratum to Sect. 4.5 ("τ = 0 for a homogeneous cuboid").
   const Block slender = Fig11Block();
   const Block square = Block::FromMass(0.05, 0.05, 0.20, 1.0);
   for (int b = 1; b <= 4; ++b) {
@@ -302,7 +302,7 @@ TEST(FacetImpact, EnergyIsTheKineticEnergyAboutPivotAndNewSupport) {
 
 TEST(FacetImpact, FallingDirectionOfFig11IsPositiveY) {
   // In rockfit's frame ω⁻ = (0, −1, 0) about V1V2 raises V3 and V4: it is no impact, and no candidate is
-  // feasible. The block falls onto its base with ω⁻ = (0, +1, 0) (DESIGN §2: w_B ≈ (0, +ω, 0)).
+  // feasible. The block falls onto its base with ω⁻ = (0, +1, 0) (docs/design.md §2: w_B ≈ (0, +ω, 0)).
   const Block block = Fig11Block();
   const Eigen::Vector3d lifting(0.0, -1.0, 0.0);
   EXPECT_GT(lifting.cross(block.p_BV_B(3) - block.p_BV_B(2)).z(), 0.0);

@@ -10,7 +10,7 @@
 namespace rockfit::core {
 namespace {
 
-// ω⁺ from (18) must satisfy (17) to this relative residual (the acceptance level).
+// ω⁺ from (18) must satisfy (17) to this relative residual (the acceptance level of docs/design.md §12).
 constexpr double kBalanceRelTol = 1e-12;
 
 Eigen::Vector3d RandomVector(std::mt19937& rng, double scale) {

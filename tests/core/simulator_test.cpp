@@ -1,4 +1,4 @@
-// The hybrid simulator against closed forms and defining equations (issue 3, DESIGN §4): the release time
+// The hybrid simulator against closed forms and defining equations (docs/design.md §4, §12): the release time
 // T(α), planar motion from (6), energy per segment, mirror symmetry, ΔE ≤ 0 within the bounds, Zeno switches
 // that keep the angular momentum about the edge, events inside one step, overturning, and robustness.
 #include "rockfit/core/simulator.hpp"
@@ -21,11 +21,11 @@ namespace rockfit::core {
 namespace {
 
 constexpr double kG = kStandardGravity;
-// DESIGN §4 accuracy targets.
+// docs/design.md §4 accuracy targets.
 constexpr double kReleaseTimeTol_s = 1e-9;
 constexpr double kPlanarTimeTol_s = 1e-8;
 constexpr double kEnergyDriftTol = 1e-9;
-// No vertex may end below the ground by more than this [m] (issue 3).
+// No vertex may end below the ground by more than this [m] (docs/design.md §12).
 constexpr double kGroundTol_m = 1e-9;
 
 using testing::Fig14Block;
@@ -78,7 +78,7 @@ TEST(Simulator, FirstFacetImpactIsAtTheQuadratureTimeT) {
 }
 
 TEST(Simulator, ReleaseFallsBackWithPositiveOmegaY) {
-  // DESIGN §2: on edge V1V2 with the +x side lifted (φy = −α), falling back turns with w_B = (0, +ω, 0).
+  // docs/design.md §2: on edge V1V2 with the +x side lifted (φy = −α), falling back turns with w_B = (0, +ω, 0).
   const Trajectory tr = Simulate(Fig14Block(), Fig14Parameters(), SimulationOptions{});
   ASSERT_GT(tr.t_s.size(), 10u);
   EXPECT_NEAR(tr.euler_zyx[0][1], -0.197, 1e-15);
@@ -330,7 +330,7 @@ TEST(Simulator, ZenoSwitchKeepsTheAngularMomentumAboutTheEdge) {
 
 TEST(Simulator, EdgeContactAfterAnEdgeImpactContinuesAsEdgeRocking) {
   // λ far above (25) reverses the rocking at an edge impact; V_b then stays down and the block keeps edge
-  // contact V_aV_b (DESIGN §3), turning about the edge with the angular momentum about the edge line.
+  // contact V_aV_b (docs/design.md §3), turning about the edge with the angular momentum about the edge line.
   const Block block = Fig14Block();
   ModelParameters params = WithinBoundsParameters();
   params.lambda = 40.0;

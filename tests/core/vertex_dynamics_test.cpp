@@ -174,7 +174,7 @@ TEST(VertexDynamics, PointHeightRateIsTheDerivativeOfThePointHeight) {
 }
 
 TEST(VertexDynamics, PivotAtAnEdgeMidpointStartedPlanarReproducesTheEdgeModel) {
-  // DESIGN §4 / issue 3: the 3-DOF model about the midpoint of V1V2, released from rest at tilt α with the
+  // docs/design.md §4: the 3-DOF model about the midpoint of V1V2, released from rest at tilt α with the
   // +x side lifted, must move exactly as the 1-DOF rotation about the edge.
   const Block block = TestBlock();
   const double alpha = 0.2;

@@ -16,7 +16,7 @@ namespace {
 using testing::MakeAnalyticTrial;
 using testing::RealisticDisturbances;
 
-// The acceptance criterion of issue 6: ε no larger than 1.05 × ε at the true parameters.
+// The acceptance criterion of docs/design.md §12: ε no larger than 1.05 × ε at the true parameters.
 constexpr double kEpsilonRatio = 1.05;
 
 struct Tolerances {

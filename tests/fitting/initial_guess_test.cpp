@@ -47,7 +47,7 @@ testing::SyntheticSignal MakeTrial(const core::Block& block, const Truth& truth,
   return testing::MakeSyntheticSignal(model, truth.Model(), options);
 }
 
-// The simulator's phase-4 stop: the first impact on the release side after the first facet impact (DESIGN §4).
+// The simulator's phase-4 stop: the first impact on the release side after the first facet impact (docs/design.md §4).
 core::Trajectory SimulateToPhase4End(const core::Block& block, const Truth& truth) {
   core::SimulationOptions options;
   options.stop = core::StopCondition::kPhase4;

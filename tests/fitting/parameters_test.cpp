@@ -1,4 +1,4 @@
-// Parameter sets: the default bound sets of DESIGN §7 and validation messages.
+// Parameter sets: the default bound sets of docs/design.md §7 and validation messages.
 #include "rockfit/fitting/parameters.hpp"
 
 #include <gtest/gtest.h>

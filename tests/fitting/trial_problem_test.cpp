@@ -1,6 +1,6 @@
 // The problem of a recorded trial (bias, window, start), and system tests of whole fits on synthetic x-IMU
 // trials made by the simulator and the measurement model of `rockfit synth` with parameters the fitter is not
-// told: the acceptance criteria of issue 6. A whole fit runs the real simulator a few thousand times
+// told: the acceptance criteria of docs/design.md §12. A whole fit runs the real simulator a few thousand times
 // (0.1–0.5 s in a Release build, minutes in the Debug sanitizer build): those tests run in optimised builds
 // only; EveryStageRunsOnTheSimulator covers the same code cheaply in every build.
 #include "rockfit/fitting/trial_problem.hpp"

@@ -17,7 +17,7 @@ Eigen::Matrix3d Rz(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::Unit
 Eigen::Matrix3d Ry(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitY()).toRotationMatrix(); }
 
 TEST(Attitude, MatchesTheXimuEulerFormulasOfItsQuaternion) {
-  // ximu-formats.md §1.6: from the file quaternion q (Earth relative to sensor), φ = atan2(2(q2q3 − q0q1),
+  // docs/file-formats.md §1.6: from the file quaternion q (Earth relative to sensor), φ = atan2(2(q2q3 − q0q1),
   // 2q0² − 1 + 2q3²), θ = −asin(2(q1q3 + q0q2)), ψ = atan2(2(q1q2 − q0q3), 2q0² − 1 + 2q1²); R_WS = R(conj q).
   const Eigen::Quaterniond q = Eigen::Quaterniond(0.9, -0.2, 0.3, 0.25).normalized();
   const double phi = std::atan2(2 * (q.y() * q.z() - q.w() * q.x()), 2 * q.w() * q.w() - 1 + 2 * q.z() * q.z());

@@ -15,7 +15,7 @@ using testing::PaperLikeBlock;
 using testing::PlanarRockingSpec;
 using testing::SimulatePlanarRocking;
 
-// The targets: r_Cha(λ) to 2e-3 without noise and 1e-2 with realistic IMU errors.
+// The targets of docs/design.md §12: r_Cha(λ) to 2e-3 without noise and 1e-2 with realistic IMU errors.
 constexpr double kCleanAvrfTolerance = 2e-3;
 constexpr double kNoisyAvrfTolerance = 1e-2;
 

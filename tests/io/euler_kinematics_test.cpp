@@ -14,7 +14,7 @@ constexpr double kTolerance = 1e-8;  // rad/s
 Eigen::Vector3d Unskew(const Eigen::Matrix3d& s) { return {s(2, 1), s(0, 2), s(1, 0)}; }
 
 TEST(EulerKinematics, PositivePitchTiltsTheBodyXAxisDown) {
-  // DESIGN §2: the release φy = −α lifts the +x side.
+  // docs/design.md §2: the release φy = −α lifts the +x side.
   const Eigen::Matrix3d Ry = RotationFromEulerZyx({0.0, 0.2, 0.0});
   EXPECT_LT((Ry * Eigen::Vector3d::UnitX()).z(), 0.0);
 }

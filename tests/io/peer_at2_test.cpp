@@ -86,7 +86,7 @@ TEST(PeerAt2, WrittenRecordsReadBackExactlyToSevenDigits) {
 
 TEST(PeerAt2, AllFiveSharedRealRecordsLoadWithTheirHeaderValues) {
   const std::filesystem::path dir = rockfit::testing::GroundMotionsDir();
-  if (dir.empty()) GTEST_SKIP() << "../shared/ground-motions not present";
+  if (dir.empty()) GTEST_SKIP() << "the real ground-motion records beside the checkout are not present";
   struct Expected { std::size_t npts; double dt; double pga_g; };
   // NPTS and DT of the headers; the peaks as read (|a| max, g).
   const std::map<std::string, Expected> expected{{"A-ELC180.AT2", {4000, 0.01, 0.1301}},

@@ -51,7 +51,7 @@ TEST(RockingSignals, ImpactsFollowChatzisMapAndAlternateSides) {
       EXPECT_LT(motion.omega_minus_rad_s[i] * motion.omega_minus_rad_s[i - 1], 0.0);
     }
   }
-  // The first fall starts from rest at φy = −α and has ω_y > 0 (DESIGN §2).
+  // The first fall starts from rest at φy = −α and has ω_y > 0 (docs/design.md §2).
   EXPECT_GT(motion.omega_minus_rad_s[0], 0.0);
 }
 

@@ -28,7 +28,7 @@ double SinglePrecisionAngleToleranceDeg(double pitch_rad) {
 // differences of smooth test motions are exact or nearly so.
 constexpr double kAccelToleranceG = 1e-6;
 
-// ZYX Euler angles (φz, φy, φx) of R = Rz(φz)·Ry(φy)·Rx(φx) (DESIGN §2), for the expected values.
+// ZYX Euler angles (φz, φy, φx) of R = Rz(φz)·Ry(φy)·Rx(φx) (docs/design.md §2), for the expected values.
 Eigen::Vector3d EulerZyxFromRotation(const Eigen::Matrix3d& R) {
   return {std::atan2(R(1, 0), R(0, 0)), std::asin(-R(2, 0)), std::atan2(R(2, 1), R(2, 2))};
 }

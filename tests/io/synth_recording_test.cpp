@@ -71,7 +71,7 @@ TEST(SynthRecording, BlockRestsAtTheReleaseTiltUntilT0AndMovesAfter) {
   for (std::size_t n = 0; n < r.release_sample; ++n) {
     ASSERT_EQ(r.motion.w_B[n], Eigen::Vector3d::Zero());
     const Eigen::Vector3d zyx = io::EulerZyxFromQuaternion(r.motion.q_WB[n]);
-    ASSERT_NEAR(zyx[1], -0.2, 1e-12) << "φy = −α (DESIGN §2)";
+    ASSERT_NEAR(zyx[1], -0.2, 1e-12) << "φy = −α (docs/design.md §2)";
   }
   EXPECT_GT(r.motion.w_B[r.release_sample + 20].y(), 0.0);  // falling back: ω_y > 0
   ASSERT_FALSE(r.trajectory.impacts.empty());

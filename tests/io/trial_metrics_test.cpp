@@ -69,7 +69,7 @@ double SimulatedOpmf(const testing::MeasuredRecording& m, double from_s, double 
 }
 
 TEST(TrialMetricsOfSimulatedRocking, PlanarRockingGivesChatzisAvrfOfLambdaLon) {
-  // λ_lat = 0: every facet impact is the planar map (6) with λ = λ_lon, b = b1, θ = Θ_yy (DESIGN §3).
+  // λ_lat = 0: every facet impact is the planar map (6) with λ = λ_lon, b = b1, θ = Θ_yy (docs/design.md §3).
   const core::Block block = testing::PaperLikeBlock(0.05);
   for (double lambda_lon : {0.3, 0.6, 1.0}) {
     core::Trajectory run;

@@ -22,7 +22,7 @@ namespace {
 using ::testing::HasSubstr;
 using testing::ScratchDir;
 
-// Issue 4: angles from Euler and quaternion outputs agree to this.
+// docs/design.md §12: angles from Euler and quaternion outputs agree to this.
 constexpr double kEulerVsQuaternion_rad = 1e-4;
 
 std::string LoadError(const std::filesystem::path& dir, const LoadOptions& options = {}) {

@@ -27,7 +27,7 @@ using testing::ScratchDir;
 constexpr double kPrintedAngle_rad = 2e-6;
 // The quaternion printed with 7 digits: each element ±5e-8, an angle error of ~2e-7 rad.
 constexpr double kPrintedQuaternion_rad = 1e-6;
-// Issue 4: angles from the Euler file and from the quaternion file agree to this.
+// docs/design.md §12: angles from the Euler file and from the quaternion file agree to this.
 constexpr double kEulerVsQuaternion_rad = 1e-4;
 
 double Wrapped(double angle) { return std::remainder(angle, 2.0 * kPi); }
@@ -237,7 +237,7 @@ TEST(ReadXimuGuiRecording, RawCountsOnlyAreRefusedWithTheReason) {
               AllOf(HasSubstr("only raw sensor counts (lsb)"), HasSubstr("SensorDataMode")));
 }
 
-// --- the real recordings of ../shared/real-imu -------------------------------------------------
+// --- the real recordings beside the checkout (RealImuDir(), skipped when absent) --------------
 
 struct QuaternionRow {
   double packet = 0;
@@ -255,7 +255,7 @@ TEST(ReadXimuGuiRecording, RealOscillatoryEulerAnglesAgreeWithItsQuaternions) {
   double worst = 0.0;
   for (std::size_t k = 0; k < r.size(); ++k) {
     const double q0 = quaternions[k][1], q1 = quaternions[k][2], q2 = quaternions[k][3], q3 = quaternions[k][4];
-    // The GUI's own formulas (ximu-formats.md §1.6) on the file quaternion, Earth relative to sensor.
+    // The GUI's own formulas (docs/file-formats.md §1.6) on the file quaternion, Earth relative to sensor.
     const double phi = std::atan2(2 * (q2 * q3 - q0 * q1), 2 * q0 * q0 - 1 + 2 * q3 * q3);
     const double s = 2 * (q1 * q3 + q0 * q2);
     const double theta = -std::atan(s / std::sqrt(1 - s * s));

@@ -80,7 +80,7 @@ TEST(XimuGuiWriter, WritesTheSetWithTheGuiHeadersVerbatim) {
   TempDir dir;
   const auto paths = WriteXimuGuiCsv((dir.path() / "trial").string(), MakeSamples(600, 256.0), XimuGuiWriterOptions{});
   EXPECT_EQ(paths.size(), 7u);
-  // ximu-formats.md §1.2 (note the leading spaces).
+  // docs/file-formats.md §1.2 (note the leading spaces).
   const std::map<std::string, std::string> headers = {
       {"Registers", "Packet number,Address,Value,Fixed-point value,Name"},
       {"DateTime", "Packet number,Year,Month,Day,Hours,Minutes,Seconds"},
@@ -142,7 +142,7 @@ TEST(XimuGuiWriter, PacketNumbersAreOneCounterSharedByAllFilesInArrivalOrder) {
   EXPECT_EQ(owner[111], "DateTime");
   EXPECT_EQ(owner[112], "CalBattAndTherm");
   // Each quaternion packet immediately follows its inertial packet; inertial steps are 2, or 3–4 where
-  // housekeeping packets fall (ximu-formats.md §1.4).
+  // housekeeping packets fall (docs/file-formats.md §1.4).
   ASSERT_EQ(layout.inertial.size(), count);
   ASSERT_EQ(layout.quaternion.size(), count);
   std::set<std::int64_t> steps;
@@ -203,7 +203,7 @@ TEST(XimuGuiWriter, RotationMatrixIsTheGuiMatrixOfTheFileQuaternion) {
   WriteXimuGuiCsv((dir.path() / "t").string(), samples, XimuGuiWriterOptions{});
   const auto rows = ReadRows(dir.path() / "t_RotationMatrix.csv");
   for (std::size_t n = 0; n < samples.size(); ++n) {
-    // ximu-formats.md §1.6: R = R_Hamilton(conj(q_file)) maps sensor vectors to Earth, row-major.
+    // docs/file-formats.md §1.6: R = R_Hamilton(conj(q_file)) maps sensor vectors to Earth, row-major.
     const Eigen::Vector4f& q = samples.quaternion[n];
     const Eigen::Matrix3d R = Eigen::Quaterniond(q[0], -q[1], -q[2], -q[3]).toRotationMatrix();
     for (int k = 0; k < 9; ++k) EXPECT_NEAR(std::strtod(rows[n + 1][1 + k].c_str(), nullptr), R(k / 3, k % 3), 1e-6);

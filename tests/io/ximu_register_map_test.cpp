@@ -11,7 +11,7 @@ namespace rockfit::io {
 namespace {
 
 TEST(XimuRegisterMap, RateRegisterValueIsLogTwoOfTheRatePlusOne) {
-  // ximu-formats.md §1.4: value v ↔ 2^(v−1) Hz, 0 = disabled.
+  // docs/file-formats.md §1.4: value v ↔ 2^(v−1) Hz, 0 = disabled.
   EXPECT_EQ(XimuRateRegisterValue(0.0, "r"), 0);
   EXPECT_EQ(XimuRateRegisterValue(1.0, "r"), 1);
   EXPECT_EQ(XimuRateRegisterValue(128.0, "r"), 8);

@@ -26,7 +26,7 @@ TEST(XimuRateFromRegisterValue, IsTwoToTheValueMinusOneHertz) {
 }
 
 TEST(ReadXimuRegisters, ReadsRegisters69And70AmongOthers) {
-  // The example row of ximu-formats.md §1.2 plus two other registers.
+  // The example row of docs/file-formats.md §1.2 plus two other registers.
   const XimuRegisterSettings rates = ReadXimuRegisters(Registers(
       "68,8,3,NaN,GyroscopeFullScale\n70,69,9,NaN,InertialAndMagneticDataRate\n71,70,8,NaN,QuaternionDataRate\n"
       "72,67,1,NaN,DateTimeDataRate\n70,69,9,NaN,InertialAndMagneticDataRate\n"));

@@ -1,4 +1,4 @@
-// The crafted bad-file corpus of issue 4 item 2: one small recording per case, written into a
+// The crafted bad-file corpus (docs/design.md §12): one small recording per case, written into a
 // scratch directory by the io tests (LoadRecording) and the CLI tests (rockfit inspect). Each case
 // names the fragments its message must contain: the file, "line:column" where one applies, what was
 // found. Cases marked `repaired` load, with the fragments in a warning (a documented repair).

@@ -1,4 +1,4 @@
-// The acceptance criteria of the automatic fit (issue 6, "Done when"), shared by the library's system tests
+// The acceptance criteria of the automatic fit (docs/design.md §12), shared by the library's system tests
 // (tests/fitting/trial_problem_test.cpp) and the command-line ones (tests/tools/cli_fit_recovery_test.cpp).
 #pragma once
 

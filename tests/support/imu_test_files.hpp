@@ -1,5 +1,5 @@
 // Small IMU files of known content for tests: an x-IMU GUI set of a steady spin, written the way the
-// GUI writes it (headers verbatim from ximu-formats.md §1.2, shared packet counter, 7 significant
+// GUI writes it (headers verbatim from docs/file-formats.md §1.2, shared packet counter, 7 significant
 // digits), and an x-IMU3 Inertial.csv.
 #pragma once
 

@@ -3,7 +3,7 @@
 // PlanarRocking integrates the 1-DOF rocking of a rigid block in the xz plane (Housner's equation of motion)
 // about alternating base edges, with Chatzis' AVRF (6) at each impact, to round-off accuracy (RK4 with 32 steps
 // per output sample, impacts located to 1e-13 s). It stands in for the hybrid simulator (core, not on main yet)
-// with λ_lat = 0, where the facet map equals (6) (DESIGN §3). MakeRecording adds what an IMU adds: linear and
+// with λ_lat = 0, where the facet map equals (6) (docs/design.md §3). MakeRecording adds what an IMU adds: linear and
 // random-walk drift of the Euler angles, white gyro noise and gyro ringing after impacts, with fixed seeds.
 #pragma once
 
@@ -31,7 +31,7 @@ inline double ChatzisAvrfAboutY(const core::Block& block, double lambda) {
 }
 
 struct PlanarRockingSpec {
-  double alpha_rad = 0.20;    // release tilt (φy = −α, +x side lifted, DESIGN §2)
+  double alpha_rad = 0.20;    // release tilt (φy = −α, +x side lifted, docs/design.md §2)
   double lambda = 0.6;        // Chatzis' λ of every impact
   double rate_hz = 256.0;     // the paper's IMU rate
   double release_s = 0.5;     // at rest on the release edge until then

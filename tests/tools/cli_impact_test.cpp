@@ -34,7 +34,7 @@ TEST(CliImpact, FacetJsonHasTheDocumentedKeysAndTheNoSpinOutcome) {
   EXPECT_EQ(j["kind"], "facet");
   EXPECT_EQ(j["status"], "ok");
   EXPECT_EQ(j["contact_before"], "V1V2");
-  EXPECT_EQ(j["contact_after"], "V4");  // λ_lat > 0 → V_{b+2} (DESIGN §3 erratum)
+  EXPECT_EQ(j["contact_after"], "V4");  // λ_lat > 0 → V_{b+2} (docs/design.md §3 erratum)
   EXPECT_EQ(j["tau_rule"], "no-spin");
   EXPECT_EQ(j["omega_plus"][2].get<double>(), 0.0);  // (24)
   EXPECT_TRUE(j["within_bounds"].get<bool>());

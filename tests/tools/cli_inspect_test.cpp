@@ -1,4 +1,4 @@
-// rockfit inspect through the real binary: the JSON keys of issue 4, exit codes, and the bad-file corpus.
+// rockfit inspect through the real binary: the JSON keys of docs/file-formats.md §9, exit codes, and the bad-file corpus.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 

@@ -37,7 +37,7 @@ TEST_F(CliMetrics, JsonHasTheDocumentedKeysAndRecoversTheAvrf) {
   EXPECT_EQ(json["status"], "ok");
   EXPECT_EQ(json["avrf_peaks_used"], 10);
   EXPECT_EQ(json["avrf_ratios"].size(), 9u);
-  EXPECT_NEAR(json["avrf"].get<double>(), t.r, 1e-2);  // realistic IMU errors: the 1e-2
+  EXPECT_NEAR(json["avrf"].get<double>(), t.r, 1e-2);  // realistic IMU errors: the 1e-2 of docs/design.md §12
   EXPECT_NEAR(json["lambda_equivalent"].get<double>(), t.lambda, 0.15);
   EXPECT_GT(json["impact_times"].size(), 15u);
   EXPECT_GT(json["opmf"].get<double>(), 0.05);

@@ -84,7 +84,7 @@ TEST(CliRespond, GroundMotionSynthWritesAnAt2FileThatInspectReads) {
 
 TEST(CliRespond, RealRecordsRespondAtAnIncidenceAngle) {
   const std::filesystem::path dir = GroundMotionsDir();
-  if (dir.empty()) GTEST_SKIP() << "../shared/ground-motions not present";
+  if (dir.empty()) GTEST_SKIP() << "the real ground-motion records beside the checkout are not present";
   const CommandResult r = RunRockfit(Respond({"--record", (dir / "ARL360.at2").string(), "--angle", "30", "--json"}));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);

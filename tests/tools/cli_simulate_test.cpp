@@ -1,4 +1,4 @@
-// `rockfit simulate` run as a real binary: the JSON keys of issue 3, CSV, HDF5 (checked with h5py), exit codes.
+// `rockfit simulate` run as a real binary: the JSON keys of docs/file-formats.md §9, CSV, HDF5 (checked with h5py), exit codes.
 #include <unistd.h>
 
 #include <algorithm>
@@ -55,7 +55,7 @@ TEST(CliSimulate, Fig14CaseGivesTheDocumentedJsonKeys) {
   const auto& first = json["impacts"][0];
   EXPECT_EQ(first["kind"], "facet");
   EXPECT_EQ(first["contact_before"], "V1V2");
-  // The first facet impact is at the quadrature time T(α) (DESIGN §4).
+  // The first facet impact is at the quadrature time T(α) (docs/design.md §4).
   const core::Block block = core::Block::FromDensity(std::stod(kB1), 0.04, 0.2, 2692.0);
   EXPECT_NEAR(first["t"].get<double>(), core::FallTime(core::PlanarRockerAboutEdge(block, 1, 2), 0.197), 1e-9);
   const auto& samples = json["samples"];

@@ -12,7 +12,7 @@
 
 namespace rockfit::tools {
 
-// Exit codes of DESIGN §9.
+// Exit codes of docs/design.md §9.
 enum ExitCodes : int {
   kExitOk = 0,
   kExitUsage = 1,

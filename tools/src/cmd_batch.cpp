@@ -1,4 +1,4 @@
-// `rockfit batch MANIFEST -o fits.h5`: fit every trial of a campaign in parallel into one HDF5 file (DESIGN §7,
+// `rockfit batch MANIFEST -o fits.h5`: fit every trial of a campaign in parallel into one HDF5 file (docs/design.md §7,
 // §8). Each finished trial is committed through an atomic transaction before the next one is written (a mutex
 // serialises the writers), so killing the batch at any moment loses at most the trials still running, and
 // `--resume` skips the trials the file already holds with the same settings.

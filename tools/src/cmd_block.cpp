@@ -1,4 +1,4 @@
-// `rockfit block`: the block model of DESIGN §2 — mass, inertia and base vertices.
+// `rockfit block`: the block model of docs/design.md §2 — mass, inertia and base vertices.
 #include <iostream>
 
 #include <fmt/format.h>

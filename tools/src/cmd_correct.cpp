@@ -1,4 +1,4 @@
-// `rockfit correct PATH -o OUT`: drift correction of the Euler angles (paper Sect. 3.1, DESIGN §6), written as
+// `rockfit correct PATH -o OUT`: drift correction of the Euler angles (paper Sect. 3.1, docs/design.md §6), written as
 // rockfit HDF5 (/trials/<id>, with the raw and corrected angles, the impacts and the metrics) or as CSV.
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // `rockfit fit PATH` / `rockfit fit MANIFEST --trial ID`: fit t0, α, λ, λ_lat, λ_lon of one trial (paper Sect. 5,
-// DESIGN §7) from no starting point, or `--evaluate` the error (28) at given parameters.
+// docs/design.md §7) from no starting point, or `--evaluate` the error (28) at given parameters.
 #include <iostream>
 
 #include <fmt/format.h>

@@ -1,4 +1,4 @@
-// `rockfit impact edge|facet`: evaluate one impact map of the paper (Sect. 4.4–4.7, DESIGN §3) for a given
+// `rockfit impact edge|facet`: evaluate one impact map of the paper (Sect. 4.4–4.7, docs/design.md §3) for a given
 // block, contact, pre-impact angular velocity and impact parameters.
 #include <cmath>
 #include <cstdlib>

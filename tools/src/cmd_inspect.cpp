@@ -1,5 +1,5 @@
 // `rockfit inspect PATH`: detect the format of a recording and show what was read — rate, duration,
-// samples, gaps, columns, value ranges, warnings (DESIGN §9, issue 4).
+// samples, gaps, columns, value ranges, warnings (docs/design.md §9).
 #include <algorithm>
 #include <iostream>
 #include <limits>

@@ -1,4 +1,4 @@
-// `rockfit metrics PATH`: drift correction, OPMF and AVRF of one trial (paper Sect. 3, DESIGN §6).
+// `rockfit metrics PATH`: drift correction, OPMF and AVRF of one trial (paper Sect. 3, docs/design.md §6).
 #include <iostream>
 
 #include <fmt/format.h>

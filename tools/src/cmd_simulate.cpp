@@ -1,4 +1,4 @@
-// `rockfit simulate`: the hybrid simulator of DESIGN §4 — trajectory, impact log and diagnostics as JSON,
+// `rockfit simulate`: the hybrid simulator of docs/design.md §4 — trajectory, impact log and diagnostics as JSON,
 // CSV or HDF5.
 
 #include <cmath>

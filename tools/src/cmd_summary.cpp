@@ -1,5 +1,5 @@
 // `rockfit summary MANIFEST`: OPMF and AVRF of every trial of a campaign and their statistics per block and
-// position (paper Sect. 3.2, Fig. 6; DESIGN §6).
+// position (paper Sect. 3.2, Fig. 6; docs/design.md §6).
 #include <algorithm>
 #include <iostream>
 

@@ -1,4 +1,4 @@
-// Figures through gnuplot (DESIGN §10): a figure writes its data files into a private temporary directory,
+// Figures through gnuplot (docs/design.md §10): a figure writes its data files into a private temporary directory,
 // generates a script, runs gnuplot on it and moves the picture atomically to the requested path. PNG
 // (pngcairo) or SVG by the output's extension. Without gnuplot, Render() fails with an OutputError saying how
 // to install it; nothing else in rockfit depends on gnuplot. Reusable by every plot (Euler angles, summary,

@@ -1,4 +1,4 @@
-// Attitude helpers: Euler angles ZYX (the x-IMU convention of DESIGN §2), yaw rotations and quaternion
+// Attitude helpers: Euler angles ZYX (the x-IMU convention of docs/design.md §2), yaw rotations and quaternion
 // conventions used in every output of rockfit.
 #pragma once
 

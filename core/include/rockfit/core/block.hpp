@@ -1,4 +1,4 @@
-// The rigid block: a homogeneous cuboid 2b1 × 2b2 × 2h (DESIGN §2).
+// The rigid block: a homogeneous cuboid 2b1 × 2b2 × 2h (docs/design.md §2).
 //
 // Body frame B: origin at the centre of the base facet, x along b1, y along b2, z up; the COM is at
 // (0, 0, h). Base vertices are numbered cyclically 1..4:

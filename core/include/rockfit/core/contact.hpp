@@ -1,4 +1,4 @@
-// Which base vertices of the block touch the ground: one vertex or one base edge (DESIGN §2, §3).
+// Which base vertices of the block touch the ground: one vertex or one base edge (docs/design.md §2, §3).
 #pragma once
 
 #include <string>

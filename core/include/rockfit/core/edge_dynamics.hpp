@@ -1,10 +1,10 @@
-// Rotation of the block about one of its base edges V_iV_j (1 DOF): the Edge(i,j) mode of DESIGN §4.
+// Rotation of the block about one of its base edges V_iV_j (1 DOF): the Edge(i,j) mode of docs/design.md §4.
 //
 // ψ ≥ 0 is the tilt of the base about the edge (ψ = 0: the base lies flat). With n_B the horizontal unit
 // vector from the edge towards the base centre and a_B = n_B × e_z the edge axis, the attitude is
 //   R_WB = R_yaw · Rot(a_B, ψ)   and   w_B = ψ̇ a_B,
 // so lifting the base (ψ̇ > 0) turns n_B towards +z. For the release edge V1V2, a_B = −e_y and R_WB = Ry(−ψ):
-// the +x side is lifted, and falling back (ψ̇ < 0) gives w_B = (0, +|ψ̇|, 0) as DESIGN §2 requires.
+// the +x side is lifted, and falling back (ψ̇ < 0) gives w_B = (0, +|ψ̇|, 0) as docs/design.md §2 requires.
 //
 // Equation of motion about the edge line: J_e ψ̈ = a·(p_PC × (−m g e_z)) with P on the edge and
 // J_e = a_Bᵀ J_P a_B. With d = |horizontal distance of the COM from the edge| (b1 or b2) and h,
@@ -61,7 +61,7 @@ class EdgeDynamics {
   // Any residual out-of-plane component (round-off of an event location) is dropped.
   void Decompose(const Eigen::Quaterniond& q_WB, Eigen::Quaterniond* q_yaw, double* psi_rad) const;
   // ψ̇ with the same angular momentum about the edge line as the rotation w_B about the body point
-  // p_BQ_B on the edge line (e.g. one of its vertices): ψ̇ = a·(J_Q w)/(a·J_Q a) (DESIGN §4, Zeno).
+  // p_BQ_B on the edge line (e.g. one of its vertices): ψ̇ = a·(J_Q w)/(a·J_Q a) (docs/design.md §4, Zeno).
   double ProjectAngularVelocity(const Eigen::Vector3d& w_B, const Eigen::Vector3d& p_BQ_B) const;
 
  private:

@@ -23,7 +23,7 @@ inline constexpr double kMaxEdgeImpactTilt = 1.5707963267948966;
 
 // R_WB of a block standing on the edge V_bV_a with the rest of its base lifted by `tilt_rad` ∈ [0, π/2]
 // (rotation about that edge), yaw chosen so that the edge keeps its body direction in the ground plane.
-// Tilt 0 is the flat block. For the edge V1V2 this is R_y(−tilt), the release attitude of DESIGN §2.
+// Tilt 0 is the flat block. For the edge V1V2 this is R_y(−tilt), the release attitude of docs/design.md §2.
 // Throws InvalidArgument if pivot and landing are not neighbours or the tilt is outside [0, π/2].
 Eigen::Matrix3d EdgeImpactAttitude(const Block& block, int pivot, int landing, double tilt_rad);
 

@@ -1,5 +1,5 @@
 // Error types shared by every rockfit library. Each maps to one exit code of the `rockfit` program
-// (DESIGN §9): usage 1, bad input data 2, numerical failure 3, cannot write output 4.
+// (docs/design.md §9): usage 1, bad input data 2, numerical failure 3, cannot write output 4.
 #pragma once
 
 #include <stdexcept>

@@ -1,4 +1,4 @@
-// Event location on one integrator step (DESIGN §4): a guard function g(t) (a vertex height, the margin of
+// Event location on one integrator step (docs/design.md §4): a guard function g(t) (a vertex height, the margin of
 // the COM over its support, a tilt) must not go below zero unnoticed, not even when it dips below and comes
 // back within the step. Steps are short against the rocking time scale, so g has at most one extremum per
 // step; the sign of ġ at the two step ends tells whether an interior minimum exists, and that minimum is

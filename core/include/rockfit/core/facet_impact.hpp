@@ -1,6 +1,6 @@
 // Facet impacts (18)+(21) of Sects. 4.5–4.7: the block rocking about the base edge V_{b−1}V_b lands flat.
 // With a given τ every candidate post-impact vertex is tested against (22)–(23); the unified map (default)
-// takes τ from the no-spin postulate (24). The errata of DESIGN §3 apply.
+// takes τ from the no-spin postulate (24). The errata of docs/design.md §3 apply.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,6 +1,6 @@
 // Impact maps of Várkonyi, Kocsis & Ther (2021): planar AVRFs (3)–(6), the general map (18), the edge
 // map (19)–(20), the facet map (18)+(21) with feasibility (22)–(23), the unified facet map with the
-// no-spin postulate (24), energy (26) and the bounds (25), (27). DESIGN §3, including its errata.
+// no-spin postulate (24), energy (26) and the bounds (25), (27). docs/design.md §3, including its errata.
 //
 // Every function is pure: it takes a const Block and the impact configuration and returns a value.
 // Numerical trouble is a status, never a NaN. This header includes one header per concept:

@@ -1,5 +1,5 @@
 // Planar rocking about a base edge in closed form and by quadrature: the release phase of the experiments
-// (DESIGN §4) and the reference for the simulator's tests. Energy gives the rate at any tilt,
+// (docs/design.md §4) and the reference for the simulator's tests. Energy gives the rate at any tilt,
 //   ½ J ψ̇² + m g R cos(θ_c − ψ) = m g R cos(θ_c − α)   (released from rest at tilt α),
 // and the time to fall flat is the quadrature
 //   T(α) = ∫₀^α dψ / √(K[cos(θ_c − α) − cos(θ_c − ψ)]),   K = 2 m g R / J,

@@ -1,4 +1,4 @@
-// The hybrid simulator of free 3D rocking (paper Sect. 4.1, Fig. 7; DESIGN §4).
+// The hybrid simulator of free 3D rocking (paper Sect. 4.1, Fig. 7; docs/design.md §4).
 //
 // Modes: Edge(i,j) (1 DOF about a base edge), Vertex(k) (3 DOF about a base vertex), Rest, and the
 // terminal states Overturned and Failed. Impacts go through the maps of impact_maps.hpp. The decisions the

@@ -1,4 +1,4 @@
-// Rotation of the block about a fixed point of its body (3 DOF): the Vertex(k) mode of DESIGN §4, and,
+// Rotation of the block about a fixed point of its body (3 DOF): the Vertex(k) mode of docs/design.md §4, and,
 // for tests and comparisons, rotation about any other body point P (e.g. the midpoint of a base edge).
 //
 // Newton–Euler about the fixed point P, in the body frame B:

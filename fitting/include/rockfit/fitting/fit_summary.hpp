@@ -1,5 +1,5 @@
 // The outcome of fitting one trial: values, bounds, fixed flags, standard errors, ε of (28) at the start and
-// the end, effort, termination and warnings (DESIGN §7).
+// the end, effort, termination and warnings (docs/design.md §7).
 #pragma once
 
 #include <array>

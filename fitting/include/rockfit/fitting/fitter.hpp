@@ -1,5 +1,5 @@
 // The fitting pipeline for one trial: (optional) global stage, then the local back end(s) of FitOptions::method,
-// keeping the point with the lowest (28); then identifiability, bounds and standard errors (DESIGN §7).
+// keeping the point with the lowest (28); then identifiability, bounds and standard errors (docs/design.md §7).
 //
 //   nelder-mead: global stage → Nelder–Mead
 //   ceres:       global stage → Ceres

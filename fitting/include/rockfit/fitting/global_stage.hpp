@@ -8,7 +8,7 @@
 //  1. First window [t0, t1 + first_window_s], t1 the first impact of the model at the estimate: Latin-hypercube
 //     starts (plus the estimate) over the parameters that matter there, evaluated in parallel; the best few
 //     distinct starts — always the best of each sign of λ_lat, because the sign selects the vertex the block
-//     rocks on after the facet impact (DESIGN §3) — are polished by Nelder–Mead in parallel.
+//     rocks on after the facet impact (docs/design.md §3) — are polished by Nelder–Mead in parallel.
 //  2. The best num_continued of them are carried to the full window through windows growing by a factor
 //     `continuation_growth` after t1, with a short Nelder–Mead run in each. Parameters that do not act yet in a
 //     window (λ before the first edge impact) are held fixed there; when one starts to act, it is first

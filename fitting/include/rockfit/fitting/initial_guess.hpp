@@ -1,4 +1,4 @@
-// The starting point of a fit from the recording alone (DESIGN §7: no manual starting point), and the end of
+// The starting point of a fit from the recording alone (docs/design.md §7: no manual starting point), and the end of
 // the fitting window.
 //
 //  * First base impact: the first peak of |ω_y| (io impact detection) that reaches a fraction of the largest.
@@ -30,7 +30,7 @@ struct InitialGuessOptions {
   // touches before the release are smaller than the landing from a release tilt.
   double first_impact_fraction = 0.5;
   // The base impact ending phase 4 is the n-th |ω_y| peak of at least `later_impact_fraction` of the
-  // first impact's peak (n = 2: the second base impact, DESIGN §7).
+  // first impact's peak (n = 2: the second base impact, docs/design.md §7).
   int window_end_impact = 2;
   double later_impact_fraction = 0.2;
   // A later base impact is on the release side (ω_y of the opposite sign to the first landing) and |ω_y| drops

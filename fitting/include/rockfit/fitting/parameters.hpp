@@ -1,4 +1,4 @@
-// The fitted quantities of one trial (paper Sect. 5.1, DESIGN §7): the release time t0 and tilt α (initial
+// The fitted quantities of one trial (paper Sect. 5.1, docs/design.md §7): the release time t0 and tilt α (initial
 // conditions) and the impact parameters λ (edge impacts (19)), λ_lat and λ_lon (facet impacts (21)), plus the
 // edge-impact torque τ_edge, fixed at 0 by default as in the paper. Each parameter has a value, bounds and a
 // fixed flag; a ParameterSet is a plain value type that the fitter copies and never shares.
@@ -46,7 +46,7 @@ BoundsSet ParseBoundsSet(const std::string& name);  // throws InvalidArgument
 
 class ParameterSet {
  public:
-  // The defaults of DESIGN §7: t0, α, λ, λ_lat, λ_lon free; τ_edge = 0 fixed; facet τ from the no-spin rule.
+  // The defaults of docs/design.md §7: t0, α, λ, λ_lat, λ_lon free; τ_edge = 0 fixed; facet τ from the no-spin rule.
   static ParameterSet Defaults(BoundsSet bounds = BoundsSet::kEmpirical);
 
   Parameter& operator[](ParameterId id) { return params_[static_cast<std::size_t>(id)]; }

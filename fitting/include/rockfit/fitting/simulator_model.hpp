@@ -1,6 +1,6 @@
 // The hybrid simulator of rockfit::core as the fitter's trajectory model: one run from the release at tilt α
 // per evaluation, sampled from the integrator's dense output exactly at the requested times after the release
-// (DESIGN §4, §7). Runs that overturn or fail become model failures with a short category for counting.
+// (docs/design.md §4, §7). Runs that overturn or fail become model failures with a short category for counting.
 #pragma once
 
 #include <cstddef>

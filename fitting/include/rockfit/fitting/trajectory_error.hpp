@@ -1,4 +1,4 @@
-// The error function (28) of the paper (Sect. 5.1), exactly as DESIGN §7 defines it:
+// The error function (28) of the paper (Sect. 5.1), exactly as docs/design.md §7 defines it:
 //
 //   ε(t0, α, …) = (t_end − t0)⁻¹ ∫_{t0}^{t_end} ‖ω_m(t) − ω_s(t − t0)‖₂ dt,
 //

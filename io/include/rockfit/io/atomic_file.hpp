@@ -1,5 +1,5 @@
 // Text files written atomically: to a temporary file in the same directory, flushed to disk and renamed over
-// the target, so that a crash never leaves a half-written file or damages an existing one (DESIGN §8).
+// the target, so that a crash never leaves a half-written file or damages an existing one (docs/design.md §8).
 #pragma once
 
 #include <filesystem>

@@ -1,4 +1,4 @@
-// Attitude conventions (DESIGN §2): R_WB = Rz(φz)·Ry(φy)·Rx(φx), Euler angles stored as (φz, φy, φx)
+// Attitude conventions (docs/design.md §2): R_WB = Rz(φz)·Ry(φy)·Rx(φx), Euler angles stored as (φz, φy, φx)
 // — the x-IMU's yaw ψ, pitch θ, roll φ. Quaternions are Hamilton, scalar first, q_WB maps body
 // vectors to world vectors.
 #pragma once

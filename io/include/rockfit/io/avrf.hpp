@@ -1,4 +1,4 @@
-// Angular velocity reduction factor measured from the peak inclinations (paper Sect. 3.2, DESIGN §6).
+// Angular velocity reduction factor measured from the peak inclinations (paper Sect. 3.2, docs/design.md §6).
 //
 // A block released from rest rocks in the plane with its energy held between impacts: at a peak inclination
 // φ_i the kinetic energy is zero and the COM stands u_i above its height at rest, so the pre-impact kinetic

@@ -1,4 +1,4 @@
-// rockfit's HDF5 layout for recordings, drift correction, metrics and campaign summaries (DESIGN §8). The full
+// rockfit's HDF5 layout for recordings, drift correction, metrics and campaign summaries (docs/design.md §8). The full
 // schema (names, shapes, units) is in io/README.md, "HDF5 layout". Writers take a group of an open file (use
 // hdf5::Transaction for atomic rewrites); readers take a path. /fits belongs to the fitting library and
 // /simulations to the simulator: these functions never touch them.

@@ -1,5 +1,5 @@
 // Metrics of every trial of a campaign and their statistics per (block, position) — the paper's Fig. 6
-// (DESIGN §6, §9 `rockfit summary`).
+// (docs/design.md §6, §9 `rockfit summary`).
 #pragma once
 
 #include <cstddef>

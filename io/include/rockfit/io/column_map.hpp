@@ -1,4 +1,4 @@
-// Which columns of a generic CSV file hold what, and in which units (DESIGN §5: "generic CSV with a
+// Which columns of a generic CSV file hold what, and in which units (docs/design.md §5: "generic CSV with a
 // header and a column map (time or rate, units given)").
 //
 // Text form, for --columns and manifests: entries "key=names@unit" separated by ';', e.g.

@@ -1,4 +1,4 @@
-// Drift correction of the Euler angles as in the paper's Sect. 3.1 (DESIGN §6).
+// Drift correction of the Euler angles as in the paper's Sect. 3.1 (docs/design.md §6).
 //
 // At every impact of the base detected as a peak of |ω_y| the block lands on a base edge along x or on the
 // whole base, so the true φ_y is zero there; the measured φ_y at those instants is the drift. The correction

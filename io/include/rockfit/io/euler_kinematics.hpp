@@ -1,4 +1,4 @@
-// Kinematics of the ZYX Euler angles of DESIGN §2 (R_WB = Rz(φz)·Ry(φy)·Rx(φx), stored as (φz, φy, φx);
+// Kinematics of the ZYX Euler angles of docs/design.md §2 (R_WB = Rz(φz)·Ry(φy)·Rx(φx), stored as (φz, φy, φx);
 // conversions between angles and rotations are in attitude.hpp): body rates from angle rates and back.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Which reader a path needs (DESIGN §5 "format detection from a path"; io/README.md):
+// Which reader a path needs (docs/design.md §5 "format detection from a path"; io/README.md):
 //  * a directory with Inertial.csv → x-IMU3 logger directory;
 //  * a directory with one x-IMU GUI set (<base>_CalInertialAndMag.csv) → that set; several → BadInput
 //    listing them;

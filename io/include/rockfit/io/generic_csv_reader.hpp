@@ -1,4 +1,4 @@
-// Reader of one generic CSV file with a header and a column map (DESIGN §5). Without a map the
+// Reader of one generic CSV file with a header and a column map (docs/design.md §5). Without a map the
 // columns are recognised from x-io style headers with units in parentheses ("Time (s)",
 // "Gyroscope X (deg/s)", "Roll (deg)", "Accelerometer X (g)") or rockfit-style names with the unit
 // in the name ("time_s", "gyro_x_dps", "gyro_x_rad_s", "roll_deg", "accel_x_g", "accel_x_m_s2").

@@ -1,4 +1,4 @@
-// A small RAII layer over the HDF5 C API for rockfit's files (DESIGN §8): files, groups, float64/int64/string
+// A small RAII layer over the HDF5 C API for rockfit's files (docs/design.md §8): files, groups, float64/int64/string
 // datasets of one or two dimensions with a `units` attribute, and scalar attributes. It hides <hdf5.h> so that
 // every library can use it; all failures are exceptions whose message names the file and the object:
 // BadInput when reading, OutputError when writing. Atomic rewrites are in hdf5_transaction.hpp.

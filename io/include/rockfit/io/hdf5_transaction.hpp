@@ -1,4 +1,4 @@
-// Atomic (re)writing of an HDF5 file (DESIGN §8): everything is built in memory (File::CreateInMemory), and
+// Atomic (re)writing of an HDF5 file (docs/design.md §8): everything is built in memory (File::CreateInMemory), and
 // Commit() writes the image to a temporary file in the same directory and renames it over the target
 // (atomic_file.hpp). A crash, a kill, a full disk or an exception before the rename leaves the target exactly
 // as it was. The memory used is the size of the new file.

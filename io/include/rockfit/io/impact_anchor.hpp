@@ -1,5 +1,5 @@
 // Where exactly an impact happened, and the value of a drifting Euler angle there (the "anchor" of the drift
-// correction, DESIGN §6).
+// correction, docs/design.md §6).
 //
 // The sample where |ω| peaks is within one sample period Δt of the impact, and the angle there differs from
 // the angle at the impact by up to |ω|·Δt (4e-3 rad at 1 rad/s and 256 Hz) — as much as the drift we remove,

@@ -1,4 +1,4 @@
-// Which candidate impacts really are instants where an Euler angle is zero (DESIGN §6 drift correction).
+// Which candidate impacts really are instants where an Euler angle is zero (docs/design.md §6 drift correction).
 //
 // A peak of |ω_y| marks a landing on a base edge along x or on the whole base, where φ_y = 0 — but in
 // three-dimensional rocking a block tilted about y that rolls from one vertex onto the neighbouring one (an

@@ -1,5 +1,5 @@
 // Impacts of the base seen in the gyro: local maxima of |ω_y| (and |ω_x|) with a prominence threshold and a
-// minimum separation, because the gyros ring for a few tens of milliseconds after each impact (DESIGN §6,
+// minimum separation, because the gyros ring for a few tens of milliseconds after each impact (docs/design.md §6,
 // paper Sect. 3.1).
 #pragma once
 

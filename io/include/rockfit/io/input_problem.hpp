@@ -1,5 +1,5 @@
 // One way to word every bad-input message of the readers: where (file:line:column), what was found,
-// what was expected, and what the user can do about it (DESIGN §5, brief "Bad input").
+// what was expected, and what the user can do about it (docs/design.md §5, brief "Bad input").
 #pragma once
 
 #include <cstddef>

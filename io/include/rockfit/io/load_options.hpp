@@ -1,4 +1,4 @@
-// What a caller may tell the readers beyond the path (DESIGN §5, §8: a trial's format, rate and
+// What a caller may tell the readers beyond the path (docs/design.md §5, §8: a trial's format, rate and
 // mounting come from the manifest or the command line).
 #pragma once
 

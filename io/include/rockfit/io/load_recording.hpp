@@ -1,4 +1,4 @@
-// The one entry point for reading a recording (DESIGN §5): detect the format from the path (or take
+// The one entry point for reading a recording (docs/design.md §5): detect the format from the path (or take
 // LoadOptions::format), run its reader, return a Recording in SI units and block axes.
 #pragma once
 

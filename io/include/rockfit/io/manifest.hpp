@@ -1,4 +1,4 @@
-// A campaign manifest (TOML, DESIGN §8): the blocks and the trials recorded with them.
+// A campaign manifest (TOML, docs/design.md §8): the blocks and the trials recorded with them.
 //
 //   [[blocks]]
 //   id = "B3"            # letters, digits, '-', '_', '.'

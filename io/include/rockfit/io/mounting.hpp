@@ -1,4 +1,4 @@
-// How the IMU sits on the block (DESIGN §2): the rotation R_BS from sensor axes S to block axes B.
+// How the IMU sits on the block (docs/design.md §2): the rotation R_BS from sensor axes S to block axes B.
 // Applied by every reader: w_B = R_BS·w_S, a_B = R_BS·a_S, R_WB = R_WS·R_BSᵀ.
 //
 // Text forms (io/README.md, "Mounting"):

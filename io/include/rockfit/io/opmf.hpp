@@ -1,4 +1,4 @@
-// Out-of-plane motion factor (paper Sect. 3.2, DESIGN §6):  Φ = max|φ_x| / max|φ_y|  over the corrected
+// Out-of-plane motion factor (paper Sect. 3.2, docs/design.md §6):  Φ = max|φ_x| / max|φ_y|  over the corrected
 // Euler angles after the first impact. The maxima are taken up to the last detected impact: after it the
 // drift is no longer tied down (the correction is constant there) and the block is at rest or nearly so.
 #pragma once

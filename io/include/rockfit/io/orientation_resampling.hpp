@@ -1,4 +1,4 @@
-// Orientation samples onto the gyro's time base (DESIGN §5: "orientation at another rate is
+// Orientation samples onto the gyro's time base (docs/design.md §5: "orientation at another rate is
 // resampled"). Attitude is interpolated on the rotation group (slerp between neighbouring samples),
 // never by averaging Euler angles, so that wrap-around at ±180° cannot corrupt it. Gyro samples
 // before the first or after the last orientation sample are not covered (no extrapolation).

@@ -1,6 +1,6 @@
 // Local maxima of a sampled signal with a prominence threshold and a minimum separation, and the
 // parabolic refinement of a peak between samples. Used for impact detection (peaks of |ω_y|, |ω_x|)
-// and for the AVRF (peaks of the corrected |φ_y|), DESIGN §6.
+// and for the AVRF (peaks of the corrected |φ_y|), docs/design.md §6.
 #pragma once
 
 #include <cstddef>

@@ -1,4 +1,4 @@
-// A Recording: uniform-time IMU samples of one trial, in SI units and the block frame (DESIGN §5).
+// A Recording: uniform-time IMU samples of one trial, in SI units and the block frame (docs/design.md §5).
 #pragma once
 
 #include <array>

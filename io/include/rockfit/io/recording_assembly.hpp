@@ -1,5 +1,5 @@
 // The last step of every reader: from what the files hold (SI units, sensor axes, attitude on the
-// gyro clock) to a Recording in block axes with unwrapped Euler angles of R_WB (DESIGN §2, §5).
+// gyro clock) to a Recording in block axes with unwrapped Euler angles of R_WB (docs/design.md §2, §5).
 #pragma once
 
 #include <vector>

@@ -46,7 +46,7 @@ struct SynthRecording {
   SensorMounting mounting;
   DeviceSamples device;
   std::size_t release_sample = 0;        // first inertial sample at or after t0
-  std::optional<double> phase4_end_s;    // recording time of the impact ending phase 4 (DESIGN §4), if any
+  std::optional<double> phase4_end_s;    // recording time of the impact ending phase 4 (docs/design.md §4), if any
 };
 
 // Simulates and measures one trial. Throws InvalidArgument for bad options, NumericalFailure when the

@@ -1,4 +1,4 @@
-// A simulated trajectory (core::Trajectory) as an HDF5 file, readable with h5py and MATLAB (DESIGN §8).
+// A simulated trajectory (core::Trajectory) as an HDF5 file, readable with h5py and MATLAB (docs/design.md §8).
 //
 // Layout (schema "rockfit.simulation", version kTrajectorySchemaVersion, attributes on the root group):
 //   /block        attributes b1_m, b2_m, h_m, mass_kg, density_kg_m3

@@ -1,4 +1,4 @@
-// The metrics of one trial: drift correction, then OPMF and AVRF (DESIGN §6). This is what `rockfit metrics`,
+// The metrics of one trial: drift correction, then OPMF and AVRF (docs/design.md §6). This is what `rockfit metrics`,
 // `rockfit summary` and the HDF5 store report per trial.
 #pragma once
 

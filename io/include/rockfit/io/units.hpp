@@ -1,4 +1,4 @@
-// Units at the file boundary (DESIGN §2): files hold deg/s, g, degrees, µs; rockfit holds SI.
+// Units at the file boundary (docs/design.md §2): files hold deg/s, g, degrees, µs; rockfit holds SI.
 // Each unit is converted once, where a reader takes a number out of a file.
 #pragma once
 
@@ -12,7 +12,7 @@ namespace rockfit::io {
 
 inline constexpr double kPi = 3.14159265358979323846;
 inline constexpr double kRadPerDeg = kPi / 180.0;
-// m/s² per g for accelerometer readings: the model's gravity (DESIGN §2, 9.81), so that a block at
+// m/s² per g for accelerometer readings: the model's gravity (docs/design.md §2, 9.81), so that a block at
 // rest reads exactly the g of the simulations. It differs from standard gravity 9.80665 by 0.03 %,
 // below the calibration accuracy of the x-IMU accelerometer.
 inline constexpr double kMetresPerSecond2PerG = core::kStandardGravity;

@@ -1,4 +1,4 @@
-// Reader of an x-IMU3 data-logger directory (DESIGN §5; reference ximu-formats.md §2): Inertial.csv
+// Reader of an x-IMU3 data-logger directory (docs/design.md §5; docs/file-formats.md §2): Inertial.csv
 // and the AHRS outputs EulerAngles.csv, Quaternion.csv, RotationMatrix.csv and the quaternion columns
 // of LinearAcceleration.csv / EarthAcceleration.csv (firmware of 2024). Decisions (io/README.md):
 //  * Columns by trimmed, case-insensitive name; units from the header ("(deg/s)", "(g)", "(us)").

@@ -1,5 +1,5 @@
 // The files of one original x-IMU GUI export: "<prefix>_<Type>.csv", one file per packet type
-// (reference ximu-formats.md §1.1, §1.7). Files are grouped by their known type suffix, never by
+// (docs/file-formats.md §1.1, §1.7). Files are grouped by their known type suffix, never by
 // the text before the first '_' (base names may contain '_'); names are compared case-insensitively.
 #pragma once
 

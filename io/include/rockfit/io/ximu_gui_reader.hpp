@@ -1,4 +1,4 @@
-// Reader of the original x-IMU GUI CSV set (DESIGN §5; reference ximu-formats.md §1):
+// Reader of the original x-IMU GUI CSV set (docs/design.md §5; docs/file-formats.md §1):
 // <prefix>_CalInertialAndMag.csv with <prefix>_EulerAngles.csv, _Quaternion.csv or
 // _RotationMatrix.csv. Decisions (io/README.md, "Reading recordings"):
 //  * Time is t_k = k / f_s per inertial row. Packet numbers are not time: they count packets of all

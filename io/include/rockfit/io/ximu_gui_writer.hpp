@@ -1,4 +1,4 @@
-// Writes DeviceSamples as the CSV set the original x-IMU GUI makes from a recording (ximu-formats.md §1):
+// Writes DeviceSamples as the CSV set the original x-IMU GUI makes from a recording (docs/file-formats.md §1):
 //
 //   <prefix>_Registers.csv         every register once, sent at start-up (rates in registers 67–70)
 //   <prefix>_DateTime.csv          the real-time clock: once at start-up, then at the date/time rate

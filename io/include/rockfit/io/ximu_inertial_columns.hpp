@@ -1,5 +1,5 @@
 // The inertial columns that the x-IMU GUI's CalInertialAndMag file and the x-IMU3's Inertial file share
-// (reference ximu-formats.md): gyroscope X–Z and accelerometer X–Z, each with its unit in the header.
+// (docs/file-formats.md): gyroscope X–Z and accelerometer X–Z, each with its unit in the header.
 // One reading of them for both readers.
 #pragma once
 

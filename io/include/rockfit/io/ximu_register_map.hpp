@@ -1,6 +1,6 @@
 // The register map of the original x-IMU (firmware 7, 110 registers, names as the x-IMU GUI v13 writes them
 // to <prefix>_Registers.csv) and the values of the synthetic device. The device sends every register once at
-// start-up; the rate registers tell a reader the sample rates (ximu-formats.md §1.4).
+// start-up; the rate registers tell a reader the sample rates (docs/file-formats.md §1.4).
 #pragma once
 
 #include <cstdint>

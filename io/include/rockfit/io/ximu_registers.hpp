@@ -1,4 +1,4 @@
-// Settings from an x-IMU GUI "<prefix>_Registers.csv" (reference ximu-formats.md §1.4, §1.5): register
+// Settings from an x-IMU GUI "<prefix>_Registers.csv" (docs/file-formats.md §1.4, §1.5): register
 // 69 InertialAndMagneticDataRate and 70 QuaternionDataRate hold a value v, the rate is 2^(v−1) Hz
 // (v = 1 … 10 → 1 … 512 Hz) and v = 0 means the output is disabled. The device sends every register
 // at start-up and whenever one is read or written, so a register may appear several times.

@@ -1,5 +1,5 @@
 // A cross-check of the x-IMU GUI rate with "<prefix>_DateTime.csv", the device's real-time clock
-// (1 s resolution; reference ximu-formats.md §1.4): the number of inertial packets between two
+// (1 s resolution; docs/file-formats.md §1.4): the number of inertial packets between two
 // consecutive changes of the clock's second is the inertial rate, unless packets were lost.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The continuous modes of the hybrid simulator with their event guards (DESIGN §4). Internal to the
+// The continuous modes of the hybrid simulator with their event guards (docs/design.md §4). Internal to the
 // simulator; exposed for its tests.
 //
 // Every guard is a scalar that is positive while the mode is valid and crosses zero downwards at its event:
