@@ -16,8 +16,8 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-20}"
 shift || true
 build_dir="${FUZZ_BUILD_DIR:-$here/build-fuzz}"
-# One per input surface; the ground-motion reader joins as ground_motion (tests/fuzz/README.md).
-all_targets=(ximu_gui ximu3 generic_csv option_grammars manifest rockfit_hdf5)
+# One per input surface (tests/fuzz/README.md).
+all_targets=(ximu_gui ximu3 generic_csv option_grammars manifest rockfit_hdf5 ground_motion)
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=("${all_targets[@]}")
 

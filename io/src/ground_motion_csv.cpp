@@ -34,18 +34,18 @@ std::string RoleOf(const std::string& bare) {
 
 }  // namespace
 
-AccelerationUnit ParseAccelerationUnit(const std::string& text) {
-  if (text == "g") return AccelerationUnit::kG;
-  if (text == "m/s2" || text == "m/s^2") return AccelerationUnit::kMetrePerSecond2;
-  if (text == "cm/s2" || text == "cm/s^2" || text == "gal") return AccelerationUnit::kCentimetrePerSecond2;
+GroundAccelerationUnit ParseGroundAccelerationUnit(const std::string& text) {
+  if (text == "g") return GroundAccelerationUnit::kG;
+  if (text == "m/s2" || text == "m/s^2") return GroundAccelerationUnit::kMetrePerSecond2;
+  if (text == "cm/s2" || text == "cm/s^2" || text == "gal") return GroundAccelerationUnit::kCentimetrePerSecond2;
   throw InvalidArgument("unknown acceleration unit '" + text + "'; use g, m/s2 or cm/s2");
 }
 
-double ToMetrePerSecond2(AccelerationUnit unit) {
+double ToMetrePerSecond2(GroundAccelerationUnit unit) {
   switch (unit) {
-    case AccelerationUnit::kG: return core::kRecordGravity;
-    case AccelerationUnit::kMetrePerSecond2: return 1.0;
-    case AccelerationUnit::kCentimetrePerSecond2: return 0.01;
+    case GroundAccelerationUnit::kG: return core::kRecordGravity;
+    case GroundAccelerationUnit::kMetrePerSecond2: return 1.0;
+    case GroundAccelerationUnit::kCentimetrePerSecond2: return 0.01;
   }
   return 1.0;
 }

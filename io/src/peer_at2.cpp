@@ -149,7 +149,9 @@ PeerRecord ParsePeerAt2(const std::string& text, const std::string& display_name
   for (std::size_t i = 0; i < header_index; ++i) record.header_lines.emplace_back(TrimSpaces(lines[i]));
   record.npts = static_cast<std::size_t>(header.npts);
   record.dt_s = header.dt_s;
-  record.accel_g.reserve(record.npts);
+  // NPTS comes from the file: reserve no more than the text can hold (a value takes at least two bytes, a digit
+  // and a separator), so that a damaged NPTS is a wrong count reported below, never a huge allocation.
+  record.accel_g.reserve(std::min(record.npts, text.size() / 2 + 1));
 
   std::vector<std::pair<std::size_t, std::string_view>> pieces;
   std::size_t last_data_line = header_index + 1;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "../fuzz/generic_csv_target.hpp"
+#include "../fuzz/ground_motion_target.hpp"
 #include "../fuzz/manifest_target.hpp"
 #include "../fuzz/option_grammars_target.hpp"
 #include "../fuzz/rockfit_hdf5_target.hpp"
@@ -29,7 +30,8 @@ struct FuzzTarget {
 const std::vector<FuzzTarget>& Targets() {
   static const std::vector<FuzzTarget> targets = {
       {"ximu_gui", fuzz::XimuGui},       {"ximu3", fuzz::Ximu3},       {"generic_csv", fuzz::GenericCsv},
-      {"option_grammars", fuzz::OptionGrammars}, {"manifest", fuzz::Manifest}, {"rockfit_hdf5", fuzz::RockfitHdf5}};
+      {"option_grammars", fuzz::OptionGrammars}, {"manifest", fuzz::Manifest}, {"rockfit_hdf5", fuzz::RockfitHdf5},
+      {"ground_motion", fuzz::GroundMotion}};
   return targets;
 }
 

@@ -34,7 +34,7 @@ TEST(GroundMotionCsv, WithoutTimeColumnNeedsTheStep) {
   EXPECT_THROW(ReadGroundMotionCsv(p, {}), BadInput);
   CsvGroundMotionOptions o;
   o.dt_s = 0.02;
-  o.unit = AccelerationUnit::kCentimetrePerSecond2;
+  o.unit = GroundAccelerationUnit::kCentimetrePerSecond2;
   const GroundMotionComponents c = ReadGroundMotionCsv(p, o);
   EXPECT_EQ(c.roles[0], "h1");
   EXPECT_DOUBLE_EQ(c.accel_m_s2[0][1], 0.02);

@@ -91,7 +91,7 @@ LoadedGroundMotion LoadGroundMotion(const GroundMotionArgs& a) {
     throw InvalidArgument("give a ground motion: --record FILE (PEER AT2 or CSV) or --synthetic SEED");
   } else if (IsCsv(a.record, a.record_format)) {
     io::CsvGroundMotionOptions o;
-    o.unit = io::ParseAccelerationUnit(a.units);
+    o.unit = io::ParseGroundAccelerationUnit(a.units);
     o.dt_s = a.csv_dt_s;
     const io::GroundMotionComponents csv = io::ReadGroundMotionCsv(a.record, o);
     for (std::size_t k = 0; k < csv.roles.size(); ++k) {
@@ -110,7 +110,7 @@ LoadedGroundMotion LoadGroundMotion(const GroundMotionArgs& a) {
     if (slot) throw InvalidArgument(std::string("the ") + role + " component is given twice");
     if (IsCsv(path, a.record_format)) {
       io::CsvGroundMotionOptions o;
-      o.unit = io::ParseAccelerationUnit(a.units);
+      o.unit = io::ParseGroundAccelerationUnit(a.units);
       o.dt_s = a.csv_dt_s;
       const io::GroundMotionComponents csv = io::ReadGroundMotionCsv(path, o);
       if (csv.roles.size() != 1) throw InvalidArgument(path + " must have one acceleration column for the " + role);

@@ -14,14 +14,14 @@
 
 namespace rockfit::io {
 
-enum class AccelerationUnit { kG, kMetrePerSecond2, kCentimetrePerSecond2 };
+enum class GroundAccelerationUnit { kG, kMetrePerSecond2, kCentimetrePerSecond2 };
 // "g", "m/s2", "cm/s2"; throws InvalidArgument for anything else (also accepts "m/s^2", "gal").
-AccelerationUnit ParseAccelerationUnit(const std::string& text);
+GroundAccelerationUnit ParseGroundAccelerationUnit(const std::string& text);
 // The factor to m/s² (g is standard gravity, 9.80665 m/s²).
-double ToMetrePerSecond2(AccelerationUnit unit);
+double ToMetrePerSecond2(GroundAccelerationUnit unit);
 
 struct CsvGroundMotionOptions {
-  AccelerationUnit unit = AccelerationUnit::kG;
+  GroundAccelerationUnit unit = GroundAccelerationUnit::kG;
   std::optional<double> dt_s;  // required when the file has no time column
 };
 
