@@ -8,6 +8,8 @@ import os
 import pathlib
 import subprocess
 
+import numpy as np
+
 import pytest
 
 SOURCE_DIR = pathlib.Path(os.environ.get("ROCKFIT_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
@@ -60,3 +62,14 @@ def sample_block(rockfit):
 def fig14_block(rockfit):
     # The paper's Fig. 14 block: granite, h = 0.20 m, b1 = h·tan 0.245, b2 = 0.04 m.
     return rockfit.Block(0.05000453, 0.04, 0.2, density=2692)
+
+
+def as_plain(value):
+    """A result as plain Python (lists, dicts, numbers) for comparison with the program's JSON."""
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, list):
+        return [as_plain(v) for v in value]
+    if hasattr(value, "to_dict") or isinstance(value, dict):
+        return {k: as_plain(v) for k, v in value.items()}
+    return value

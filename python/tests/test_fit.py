@@ -9,23 +9,12 @@ import time
 import numpy as np
 import pytest
 
-from conftest import MANIFEST, SAMPLE_TRIAL, SAMPLES, requires_optimised_build, run_cli
+from conftest import MANIFEST, SAMPLES, SAMPLE_TRIAL, as_plain, requires_optimised_build, run_cli
 
 pytestmark = requires_optimised_build
 
 OTHER_TRIAL = "block2-A-2"
 
-
-def as_plain(value):
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, list):
-        return [as_plain(v) for v in value]
-    if hasattr(value, "to_dict"):
-        return {k: as_plain(v) for k, v in value.items()}
-    if isinstance(value, dict):
-        return {k: as_plain(v) for k, v in value.items()}
-    return value
 
 
 def assert_equal_to_cli(result, cli):

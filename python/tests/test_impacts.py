@@ -3,19 +3,10 @@ energy balance (26)."""
 import numpy as np
 import pytest
 
-from conftest import run_cli
+from conftest import as_plain, run_cli
 
 BLOCK = ["--b1", "0.05", "--b2", "0.03", "--h", "0.20", "--mass", "1"]  # the paper's Fig. 11 block
 
-
-def as_plain(value):
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, list):
-        return [as_plain(v) for v in value]
-    if hasattr(value, "to_dict"):
-        return {k: as_plain(v) for k, v in value.items()}
-    return value
 
 
 @pytest.fixture(scope="module")

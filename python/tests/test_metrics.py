@@ -2,13 +2,10 @@
 import numpy as np
 import pytest
 
-from conftest import MANIFEST, SAMPLE_TRIAL, run_cli
+from conftest import MANIFEST, SAMPLE_TRIAL, as_plain, run_cli
 
 TRIAL = "block3-A-1"  # the README's metrics example
 
-
-def as_plain(value):
-    return value.tolist() if isinstance(value, np.ndarray) else value
 
 
 def test_metrics_equal_the_program_json_bit_for_bit(rockfit):

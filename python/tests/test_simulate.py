@@ -7,21 +7,12 @@ import threading
 import numpy as np
 import pytest
 
-from conftest import requires_optimised_build, run_cli
+from conftest import as_plain, requires_optimised_build, run_cli
 
 FIG14 = dict(alpha=0.197, lambda_=2.185, lambda_lat=-2.032, lambda_lon=0.197)
 FIG14_CLI = ["--b1", "0.05000453", "--b2", "0.04", "--h", "0.2", "--density", "2692", "--alpha", "0.197",
              "--lambda", "2.185", "--lambda-lat", "-2.032", "--lambda-lon", "0.197"]
 
-
-def as_plain(value):
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, list):
-        return [as_plain(v) for v in value]
-    if hasattr(value, "to_dict"):
-        return {k: as_plain(v) for k, v in value.items()}
-    return value
 
 
 def test_simulation_equals_the_program_json_bit_for_bit(rockfit, fig14_block):
