@@ -12,6 +12,14 @@ inline constexpr bool kOptimisedBuild = true;
 inline constexpr bool kOptimisedBuild = false;
 #endif
 
+// Whether AddressSanitizer instruments this build (CI's sanitizer build): its shadow memory and its quarantine of
+// freed blocks (256 MB by default) make resident-memory bounds meaningless there.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kAddressSanitizedBuild = true;
+#else
+inline constexpr bool kAddressSanitizedBuild = false;
+#endif
+
 }  // namespace rockfit::testing
 
 // Skips the current test outside optimised builds.
