@@ -7,7 +7,8 @@
 # CI runs `tools/fuzz.sh 20`. A long run (the release check: 10^7 executions or 1 hour per target):
 #   FUZZ_RUNS=10000000 tools/fuzz.sh 3600
 # Environment: FUZZ_BUILD_DIR (default build-fuzz), FUZZ_RUNS (stop after this many executions),
-# FUZZ_JOBS (parallel fuzzing processes per target, default 1).
+# FUZZ_JOBS (parallel fuzzing processes per target, default 1), FUZZ_SEED (libFuzzer seed, default 1, so that a
+# CI run repeats the same inputs).
 # New inputs that reach new code go to build-fuzz/corpus/TARGET (merge them into tests/fuzz/corpus
 # with -merge=1 when they are worth keeping); crashes, leaks, timeouts and out-of-memory inputs go to
 # build-fuzz/findings/TARGET and make the script exit with 1.
@@ -39,7 +40,7 @@ for t in "${targets[@]}"; do
   findings="$build_dir/findings/$t"
   mkdir -p "$corpus" "$findings"
   log="$build_dir/fuzz_$t.log"
-  args=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1
+  args=(-max_total_time="$seconds" -seed="${FUZZ_SEED:-1}" -timeout=10 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1
         -artifact_prefix="$findings/" -dict="$here/tests/fuzz/dict/$t.dict")
   [ -n "${FUZZ_RUNS:-}" ] && args+=(-runs="$FUZZ_RUNS")
   [ -n "${FUZZ_JOBS:-}" ] && args+=(-fork="$FUZZ_JOBS")
