@@ -113,7 +113,14 @@ GroundMotionComponents ReadGroundMotionCsv(const std::filesystem::path& path, co
   const double factor = ToMetrePerSecond2(options.unit);
   for (std::size_t c : columns) {
     std::vector<double> values(rows);
-    for (std::size_t r = 0; r < rows; ++r) values[r] = factor * table.Real(r, c);
+    for (std::size_t r = 0; r < rows; ++r) {
+      values[r] = factor * table.Real(r, c);
+      // A finite value in the file's unit can overflow in m/s² (1e308 g); such a cell is as bad as "inf".
+      if (!std::isfinite(values[r])) {
+        table.FailAt(r, c, "a value too large to convert to m/s²", "a ground acceleration",
+                     "Check the column's unit and the value on this line.");
+      }
+    }
     out.accel_m_s2.push_back(std::move(values));
   }
   return out;
