@@ -1,19 +1,19 @@
 #!/usr/bin/env bash
 # Fails when a comment or document in the repository cites something a reader of the repository cannot open:
-# the old specification ("DESIGN §n", "DESIGN.md"), the old format note ("ximu-formats.md"), files outside the
-# checkout ("../shared/…" in prose), issue numbers ("issue 4", "issue #4", "the issue's"), source files of other
+# the old specification and its section marks, the old x-IMU format note, files outside the checkout (the
+# shared data folder beside it, in prose), issue numbers ("issue 4", "issue #4"), source files of other
 # projects ("Foo.cs:12"), or a docs/*.md, <lib>/*.md or Markdown link whose file does not exist.
 #
 #   tools/check_doc_citations.sh [ROOT]      (ROOT: the checkout, default: the one holding this script)
 #
 # Prints FILE:LINE: what is cited and what to write instead, one line per finding; exits with 1 when there is
-# any, 0 when there is none. Most old forms are rewritten by tools/rewrite_doc_citations.sh.
+# any, 0 when there is none. docs/design.md and docs/file-formats.md keep the old section numbers.
 set -euo pipefail
 
 root="${1:-$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)}"
 cd "$root" || { echo "check_doc_citations: cannot enter $root" >&2; exit 2; }
 
-# Files that may name ../shared as a path the tests read at run time (not a citation), with a text the line
+# Files that may name the shared data folder as a path the tests read at run time (not a citation), with a text the line
 # must also contain. Keep this list short and explicit.
 allowed_shared=(
   "tests/CMakeLists.txt|ROCKFIT_SHARED_DIR"
@@ -28,10 +28,10 @@ search() {
   if [[ "$1" == -o ]]; then only=(-o); shift; fi
   if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
     git grep -n -I --untracked "${only[@]}" -E -e "$1" -- . ':!data-samples/recordings' \
-      ':!tools/check_doc_citations.sh' ':!tools/rewrite_doc_citations.sh' || true
+      ':!tools/check_doc_citations.sh' || true
   else
     grep -rnIE "${only[@]}" --exclude-dir=.git --exclude-dir='build*' --exclude-dir=recordings \
-      --exclude=check_doc_citations.sh --exclude=rewrite_doc_citations.sh -e "$1" . | sed 's|^\./||' || true
+      --exclude=check_doc_citations.sh -e "$1" . | sed 's|^\./||' || true
   fi
 }
 
@@ -59,7 +59,7 @@ findings="$(
           bar = index(entries[i], "|"); file = substr(entries[i], 1, bar - 1); text = substr(entries[i], bar + 1)
           if (parts[1] == file && index($0, text) > 0) next
         }
-        print where ": names ../shared, which is outside the repository; describe what is meant in docs/ and cite that " \
+        print where ": names the shared data folder, which is outside the repository; describe what is meant in docs/ and cite that " \
               "(a path the tests read at run time belongs in tests/support/test_paths.hpp and the allow-list of this check)"
       }'
 
@@ -94,7 +94,6 @@ findings="$(
 if [[ -n "$findings" ]]; then
   printf '%s\n' "$findings" >&2
   echo "check_doc_citations: $(wc -l <<<"$findings") citation(s) of documents that are not in the repository." >&2
-  echo "  tools/rewrite_doc_citations.sh rewrites the known old forms; fix the rest by hand." >&2
   exit 1
 fi
 echo "check_doc_citations: every cited document is in the repository"
