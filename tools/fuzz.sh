@@ -4,7 +4,8 @@
 #
 #   tools/fuzz.sh [SECONDS [TARGET...]]     default: 20 s each, every target
 #
-# CI runs `tools/fuzz.sh 20`. A long run (the release check: 10^7 executions or 1 hour per target):
+# CI runs `FUZZ_RUNS=20000 tools/fuzz.sh 120 TARGET...` (800 for rockfit_hdf5): a fixed number of executions from a fixed seed, so that a CI run
+# repeats the same inputs whatever the machine's speed (the time bound is only a guard). A long run (the release check: 10^7 executions or 1 hour per target):
 #   FUZZ_RUNS=10000000 tools/fuzz.sh 3600
 # Environment: FUZZ_BUILD_DIR (default build-fuzz), FUZZ_RUNS (stop after this many executions),
 # FUZZ_JOBS (parallel fuzzing processes per target, default 1), FUZZ_SEED (libFuzzer seed, default 1, so that a
@@ -53,6 +54,14 @@ for t in "${targets[@]}"; do
     result="libhdf5 finding (not rockfit's; see $log)"
   elif [ "$result" != ok ]; then
     status=1
+    # Enough of the report and of the input to reproduce the finding from a CI log alone.
+    echo "---- $t: the end of $log" >&2
+    grep -v -E '^#[0-9]+\s+(NEW|REDUCE|pulse|INITED|RELOAD)' "$log" | tail -60 >&2 || true
+    for artifact in "$findings"/*; do
+      [ -f "$artifact" ] || continue
+      echo "---- $t: $(basename "$artifact") ($(stat -c %s "$artifact") bytes), base64:" >&2
+      head -c 4096 "$artifact" | base64 >&2
+    done
   fi
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | tail -1 | grep -o '[0-9]*$' || true)
   edges=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*$' || true)
