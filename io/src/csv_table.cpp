@@ -310,6 +310,16 @@ double CsvTable::ParseCell(std::size_t row, std::size_t column, bool allow_nan) 
 
 double CsvTable::Real(std::size_t row, std::size_t column) const { return ParseCell(row, column, false); }
 
+double CsvTable::RealInSi(std::size_t row, std::size_t column, double to_si) const {
+  const double value = Real(row, column) * to_si;
+  if (!std::isfinite(value)) {
+    FailAt(row, column, "a value too large to convert to SI units", "a measured value within the sensor's range",
+           "An IMU cannot measure this value: export the recording again, or cut the file before line " +
+               std::to_string(Line(row)) + ".");
+  }
+  return value;
+}
+
 double CsvTable::RealOrNaN(std::size_t row, std::size_t column) const { return ParseCell(row, column, true); }
 
 std::int64_t CsvTable::Integer(std::size_t row, std::size_t column) const {

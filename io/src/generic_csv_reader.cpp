@@ -205,7 +205,7 @@ Recording ReadGenericCsvRecording(const std::filesystem::path& file, const LoadO
   }
   samples.w_S.resize(n);
   for (std::size_t row = 0; row < n; ++row) {
-    for (std::size_t k = 0; k < 3; ++k) samples.w_S[row][static_cast<Eigen::Index>(k)] = table.Real(row, gyro[k]) * gyro_scale[k];
+    for (std::size_t k = 0; k < 3; ++k) samples.w_S[row][static_cast<Eigen::Index>(k)] = table.RealInSi(row, gyro[k], gyro_scale[k]);
   }
   if (map.has_accel()) {
     std::array<double, 3> scale{};
@@ -214,7 +214,7 @@ Recording ReadGenericCsvRecording(const std::filesystem::path& file, const LoadO
     }
     samples.accel_S.resize(n);
     for (std::size_t row = 0; row < n; ++row) {
-      for (std::size_t k = 0; k < 3; ++k) samples.accel_S[row][static_cast<Eigen::Index>(k)] = table.Real(row, accel[k]) * scale[k];
+      for (std::size_t k = 0; k < 3; ++k) samples.accel_S[row][static_cast<Eigen::Index>(k)] = table.RealInSi(row, accel[k], scale[k]);
     }
   }
   if (use_euler) {
@@ -223,9 +223,9 @@ Recording ReadGenericCsvRecording(const std::filesystem::path& file, const LoadO
     samples.orientation.t_s = samples.t_s;
     samples.orientation.q_WS.resize(n);
     for (std::size_t row = 0; row < n; ++row) {
-      const double roll = table.Real(row, euler[0]) * scale[0];
-      const double pitch = table.Real(row, euler[1]) * scale[1];
-      const double yaw = table.Real(row, euler[2]) * scale[2];
+      const double roll = table.RealInSi(row, euler[0], scale[0]);
+      const double pitch = table.RealInSi(row, euler[1], scale[1]);
+      const double yaw = table.RealInSi(row, euler[2], scale[2]);
       samples.orientation.q_WS[row] = QuaternionFromEulerZyx({yaw, pitch, roll});
     }
     recording.orientation_source = file_name;

@@ -1,7 +1,6 @@
 #include "rockfit/io/ximu_inertial_columns.hpp"
 
 #include <array>
-#include <cmath>
 
 #include "rockfit/io/units.hpp"
 
@@ -27,19 +26,10 @@ void ReadXimuInertialColumns(const CsvTable& table, const std::vector<std::optio
     gyro_scale[k] = ToSi(HeaderUnit(table, *c[first + k], &ParseAngularRateUnit, "deg/s, rad/s"));
     accel_scale[k] = ToSi(HeaderUnit(table, *c[first + 3 + k], &ParseAccelerationUnit, "g, m/s^2"));
   }
-  // A finite value in the file's unit can overflow in SI (1e308 g); such a cell is as bad as "inf".
-  const auto in_si = [&table](std::size_t row, std::size_t column, double scale) {
-    const double value = table.Real(row, column) * scale;
-    if (!std::isfinite(value)) {
-      table.FailAt(row, column, "a value too large to convert to SI units", "a measured value within the sensor's range",
-                   "An IMU cannot measure this value: export the recording again, or cut the file before this line.");
-    }
-    return value;
-  };
   for (std::size_t row = 0; row < n; ++row) {
     for (std::size_t k = 0; k < 3; ++k) {
-      samples.w_S[row][static_cast<Eigen::Index>(k)] = in_si(row, *c[first + k], gyro_scale[k]);
-      samples.accel_S[row][static_cast<Eigen::Index>(k)] = in_si(row, *c[first + 3 + k], accel_scale[k]);
+      samples.w_S[row][static_cast<Eigen::Index>(k)] = table.RealInSi(row, *c[first + k], gyro_scale[k]);
+      samples.accel_S[row][static_cast<Eigen::Index>(k)] = table.RealInSi(row, *c[first + 3 + k], accel_scale[k]);
     }
   }
 }

@@ -63,6 +63,9 @@ class CsvTable {
   // The cell as a finite real number; anything else (text, empty, NaN, Inf, decimal comma in a
   // ','-file) throws BadInput naming file, line, column and header, with what to do.
   double Real(std::size_t row, std::size_t column) const;
+  // Real times the factor to SI units (ToSi); a finite value that overflows there (1e308 g) throws BadInput
+  // as a non-number would: no sensor measures it.
+  double RealInSi(std::size_t row, std::size_t column, double to_si) const;
   // As Real, but NaN is returned as NaN (callers that can repair it, e.g. the x-IMU pitch).
   double RealOrNaN(std::size_t row, std::size_t column) const;
   // The cell as a whole number (packet numbers, microsecond timestamps).
