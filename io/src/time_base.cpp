@@ -64,7 +64,9 @@ std::vector<Gap> FindGaps(const std::vector<double>& t_s, double nominal_step_s)
     gap.index = k;
     gap.t_s = t_s[k];
     gap.duration_s = step;
-    gap.missing = static_cast<std::size_t>(std::max(1.0, std::round(step / nominal_step_s) - 1.0));
+    // Clamped where a double still counts exactly (2^53): a time jump of 10^19 steps is a bad file, not a count.
+    constexpr double kMaxMissing = 9007199254740992.0;
+    gap.missing = static_cast<std::size_t>(std::clamp(std::round(step / nominal_step_s) - 1.0, 1.0, kMaxMissing));
     gaps.push_back(gap);
   }
   return gaps;
