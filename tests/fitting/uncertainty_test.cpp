@@ -171,6 +171,43 @@ TEST(Intervals, ANonIdentifiableParameterIsOpenAndNotDetermined) {
   EXPECT_EQ(s.uncertainty.determined[k], Determination::kNo);
 }
 
+// The thorough 95 % interval is the hull of the profile's and the linearised one: it contains the profile
+// interval (the same fit with the hull switched off) and the value ± the fast interval's half-widths.
+TEST(Intervals, ThoroughNinetyFivePercentIntervalIsTheHullOfProfileAndLinearised) {
+  const auto trial = MakeAnalyticTrial(0.2, 0.8, -2.0, 0.6, RealisticDisturbances(23));
+  const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
+  FitOptions options;
+  options.global.enabled = false;
+  options.method = FitMethod::kNelderMead;
+  options.intervals.method = IntervalMethod::kFast;
+  const FitSummary fast = Fit(objective, trial.truth, options);
+  options.intervals.method = IntervalMethod::kThorough;
+  const FitSummary hull = Fit(objective, trial.truth, options);
+  options.intervals.hull_with_linearised = false;
+  const FitSummary profile = Fit(objective, trial.truth, options);
+  ASSERT_TRUE(fast.feasible && hull.feasible && profile.feasible);
+  // The linearised σ of the hull uses the lowest sum of squares the profiles met, the fast one the fit's:
+  // they differ by the profiles' improvement of S, well below a percent here.
+  constexpr double kNoiseLevelTol = 0.01;
+  for (ParameterId id : hull.parameters.FreeIds()) {
+    const std::size_t k = static_cast<std::size_t>(id);
+    const double v = hull.parameters.value(id);
+    ASSERT_EQ(v, profile.parameters.value(id)) << Name(id);
+    ASSERT_EQ(v, fast.parameters.value(id)) << Name(id);
+    const Interval& f = fast.uncertainty.interval_95[k];
+    const Interval& h = hull.uncertainty.interval_95[k];
+    const Interval& p = profile.uncertainty.interval_95[k];
+    ASSERT_TRUE(std::isfinite(f[0]) && std::isfinite(f[1]) && std::isfinite(h[0]) && std::isfinite(h[1]) &&
+                std::isfinite(p[0]) && std::isfinite(p[1]))
+        << Name(id);
+    EXPECT_LE(h[0], p[0]) << Name(id);
+    EXPECT_GE(h[1], p[1]) << Name(id);
+    EXPECT_GE(v - h[0], (1.0 - kNoiseLevelTol) * (v - f[0])) << Name(id);
+    EXPECT_GE(h[1] - v, (1.0 - kNoiseLevelTol) * (f[1] - v)) << Name(id);
+    EXPECT_EQ(hull.uncertainty.interval_68[k], profile.uncertainty.interval_68[k]) << Name(id);
+  }
+}
+
 // Over independent noise realisations (white noise and ringing, as synth makes them) the 95 % profile
 // intervals hold the truth for nearly every parameter value: 5 parameters × kRealisations.
 TEST(Intervals, ProfileIntervalsHoldTheTruthOverNoiseRealisations) {
