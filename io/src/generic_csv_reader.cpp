@@ -177,6 +177,14 @@ Recording ReadGenericCsvRecording(const std::filesystem::path& file, const LoadO
     }
     for (double& t : times) t *= scale;
     TimestampTimeBase base = TimeBaseFromTimestamps(times);
+    // No IMU samples faster than 1 MHz: closer times are a wrong unit or a broken clock (and 1/step overflows).
+    constexpr double kMinMedianStep_s = 1e-6;
+    if (!(base.median_step_s >= kMinMedianStep_s)) {
+      ThrowBadInput({table.HeaderPosition(time_column), table.DescribeColumn(time_column),
+                     fmt::format("times {:.6g} s apart (median), too close for a sample rate", base.median_step_s),
+                     "times at least a microsecond apart",
+                     "Check the time column's unit in the column map (time=NAME@s, @ms or @us)."});
+    }
     recording.rate_hz = base.rate_hz;
     recording.rate_source = "timestamps";
     if (options.rate_hz && std::abs(*options.rate_hz / base.rate_hz - 1.0) > kGivenRateTolerance) {
