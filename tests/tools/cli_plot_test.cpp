@@ -1,4 +1,7 @@
 // `rockfit plot euler|summary`: real PNG/SVG pictures of the requested size; a clear message without gnuplot.
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cstdlib>
 #include <fstream>
 
@@ -84,6 +87,35 @@ TEST_F(CliPlot, WithoutGnuplotTheMessageSaysHowToInstallIt) {
   EXPECT_EQ(r.exit_code, 4);
   EXPECT_NE(r.err.find("apt-get install gnuplot-nox"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// A plot killed by a signal leaves its scratch directory in TMPDIR; the next plot removes those of processes
+// that no longer run and leaves the others alone.
+TEST_F(CliPlot, ScratchDirectoriesOfDeadProcessesAreRemovedByTheNextPlot) {
+  const ScratchDir tmp("cli_plot_tmpdir");
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) ::_exit(0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);  // `child` is a pid of no running process now
+  const auto orphan = tmp.path() / ("rockfit-plot-" + std::to_string(child) + "-0");
+  const auto alive = tmp.path() / ("rockfit-plot-" + std::to_string(::getpid()) + "-7");
+  std::filesystem::create_directories(orphan);
+  std::filesystem::create_directories(alive);
+  std::ofstream(orphan / "figure.gp") << "plot x\n";
+  const char* old_tmpdir = std::getenv("TMPDIR");
+  const std::string saved = old_tmpdir ? old_tmpdir : "";
+  ::setenv("TMPDIR", tmp.path().c_str(), 1);
+  const CommandResult r =
+      RunRockfit({"plot", "summary", Manifest(), "-o", (dir_->path() / "after-kill.png").string()});
+  if (old_tmpdir) ::setenv("TMPDIR", saved.c_str(), 1); else ::unsetenv("TMPDIR");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(orphan));
+  EXPECT_TRUE(std::filesystem::exists(alive));
+  // Its own scratch directory is gone too.
+  std::size_t left = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(tmp.path())) left += entry.path() != alive ? 1 : 0;
+  EXPECT_EQ(left, 0u);
 }
 
 TEST_F(CliPlot, WrongPictureExtensionIsAUsageError) {

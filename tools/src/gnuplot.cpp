@@ -1,5 +1,6 @@
 #include "gnuplot.hpp"
 
+#include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -7,12 +8,14 @@
 #include <algorithm>
 #include <atomic>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -30,6 +33,29 @@ std::string ShellQuote(const std::string& s) {
   std::string q = "'";
   for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return q + "'";
+}
+
+// Removes the scratch directories "rockfit-plot-<pid>-<n>" of processes that no longer run (a plot killed
+// by a signal cannot clean up after itself). Best effort: errors are ignored.
+void RemoveOrphanedScratchDirectories(const std::filesystem::path& temp_dir) {
+  constexpr std::string_view kPrefix = "rockfit-plot-";
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(temp_dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.compare(0, kPrefix.size(), kPrefix) != 0) continue;
+    const std::size_t dash = name.find('-', kPrefix.size());
+    if (dash == std::string::npos) continue;
+    long pid = 0;
+    try {
+      pid = std::stol(name.substr(kPrefix.size(), dash - kPrefix.size()));
+    } catch (const std::exception&) {
+      continue;
+    }
+    if (pid <= 0 || pid == static_cast<long>(::getpid())) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // alive, or not ours to judge
+    std::error_code remove_ec;
+    std::filesystem::remove_all(it->path(), remove_ec);
+  }
 }
 
 bool IsExecutable(const std::filesystem::path& path) {
@@ -89,6 +115,7 @@ std::string GnuplotString(const std::string& text) {
 }
 
 GnuplotFigure::GnuplotFigure() {
+  RemoveOrphanedScratchDirectories(std::filesystem::temp_directory_path());
   directory_ = std::filesystem::temp_directory_path() /
                fmt::format("rockfit-plot-{}-{}", ::getpid(), g_serial++);
   std::error_code ec;
