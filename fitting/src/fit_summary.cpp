@@ -93,6 +93,7 @@ std::string FitSummary::ToJson(const std::string& trial) const {
                       {"statements", uncertainty.statements},
                       {"simulations", uncertainty.evaluations},
                       {"wall_s", uncertainty.wall_time_s}};
+  j["lateral_motion"] = nlohmann::json::parse(LateralMotionJson(lateral_motion));
   j["epsilon"] = epsilon_rad_s;
   j["epsilon_initial"] = epsilon_initial_rad_s;
   j["feasible"] = feasible;

@@ -12,6 +12,7 @@
 #include "rockfit/fitting/global_stage.hpp"
 #include "rockfit/fitting/identifiability.hpp"
 #include "rockfit/fitting/local_optimizer.hpp"
+#include "rockfit/fitting/lateral_motion_check.hpp"
 #include "rockfit/fitting/uncertainty.hpp"
 
 namespace rockfit::fitting {
@@ -197,6 +198,24 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
          fmt::format("a second solution in another basin fits nearly as well: {} with ε = {:.6g} rad/s ({:+.2f} % of "
                      "the result's); the data do not decide between them, the intervals include both",
                      values, epsilon, 100.0 * (epsilon / summary.epsilon_rad_s - 1.0))});
+  }
+  // A fit that leaves the recorded out-of-plane motion unexplained sits on the plateau next to a needle-shaped
+  // basin of λ_lat (lateral_motion_check.hpp): its λ and λ_lat are those of the plateau, not fixed by the data.
+  if (summary.feasible) summary.lateral_motion = CheckLateralMotion(objective, summary.parameters, options.lateral_motion);
+  if (summary.lateral_motion.unexplained) {
+    const LateralMotionCheck& c = summary.lateral_motion;
+    summary.warnings.push_back(
+        {"lateral_motion_unexplained", "",
+         fmt::format("the model at the fit leaves {:.0f} % of the recorded out-of-plane motion unexplained (RMS of "
+                     "ω_x, ω_z {:.3g} rad/s measured, {:.3g} rad/s residual, noise at rest {:.3g} rad/s): the fit "
+                     "lies on the plateau of nearly planar motion, and the truth may lie in a narrow basin of λ_lat "
+                     "that the search missed; λ and λ_lat are not determined by this fit",
+                     100.0 * c.unexplained_fraction, c.measured_rms_rad_s, c.residual_rms_rad_s, c.rest_noise_rad_s)});
+    for (ParameterId id : {ParameterId::kLambda, ParameterId::kLambdaLat}) {
+      auto& d = summary.uncertainty.determined[static_cast<std::size_t>(id)];
+      if (d) d = Determination::kNo;
+    }
+    summary.uncertainty.statements = DescribeUncertainty(summary.uncertainty, summary.parameters);
   }
   for (ParameterId id : objective.free_ids()) {
     const auto& d = summary.uncertainty.determined[static_cast<std::size_t>(id)];

@@ -210,6 +210,7 @@ nlohmann::json FitResultJson(const std::string& trial, const fitting::FitSummary
           {"correlation", nlohmann::json::parse(fitting::CorrelationJson(s.uncertainty, s.parameters))},
           {"uncertainty_method", fitting::ToString(s.uncertainty.method)},
           {"uncertainty", uncertainty},
+          {"lateral_motion", nlohmann::json::parse(fitting::LateralMotionJson(s.lateral_motion))},
           {"epsilon", s.epsilon_rad_s},
           {"epsilon_initial", s.epsilon_initial_rad_s},
           {"t_end", s.t_end_s},

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 
+#include "rockfit/fitting/lateral_motion_check.hpp"
 #include "rockfit/fitting/parameters.hpp"
 
 namespace rockfit::fitting {
@@ -146,6 +147,9 @@ struct FitOptions {
   IdentifiabilityOptions identifiability;
   bool compute_std_errors = true;
   IntervalOptions intervals;
+  // Whether the model at the fit reproduces the recorded out-of-plane motion; if not, λ and λ_lat are reported
+  // not determined (lateral_motion_check.hpp).
+  LateralMotionCheckOptions lateral_motion;
   // Worker threads for the global stage; 0 = all cores (TBB default). Batches set 1 per trial.
   int num_threads = 0;
   // A value closer than this fraction of its range to a bound is reported "at bound".

@@ -10,13 +10,14 @@
 
 #include "rockfit/fitting/fit_options.hpp"
 #include "rockfit/fitting/parameters.hpp"
+#include "rockfit/fitting/lateral_motion_check.hpp"
 #include "rockfit/fitting/uncertainty.hpp"
 
 namespace rockfit::fitting {
 
 struct FitWarning {
   // "at_bound", "not_identifiable", "simulation_failures", "not_converged", "std_error_unavailable",
-  // "infeasible", "poor_fit", "second_basin", "not_determined".
+  // "infeasible", "poor_fit", "second_basin", "not_determined", "lateral_motion_unexplained".
   std::string kind;
   std::string parameter;  // empty when the warning is not about one parameter
   std::string message;    // one sentence for people
@@ -41,6 +42,8 @@ struct FitSummary {
   std::array<bool, kNumParameters> at_bound{};
   // 68 % / 95 % intervals, "determined", correlation and what the data fix (uncertainty.hpp).
   UncertaintySummary uncertainty;
+  // Whether the model at the fit reproduces the recorded out-of-plane motion (lateral_motion_check.hpp).
+  LateralMotionCheck lateral_motion;
 
   double epsilon_initial_rad_s = 0.0;  // (28) at `start`
   double epsilon_rad_s = 0.0;          // (28) at `parameters`
