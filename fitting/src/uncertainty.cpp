@@ -527,8 +527,9 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
     }
     u.description = fmt::format("thorough: profile of the sum of squares of (28)'s residuals, the others re-fitted; "
                                 "residual noise level {:.3g} rad/s, inflated by up to κ = {:.2f} for its correlation in time and "
-                                "model error",
-                                u.noise_rms_rad_s, u.correlation_factor);
+                                "model error{}",
+                                u.noise_rms_rad_s, u.correlation_factor,
+                                options.hull_with_linearised ? "; 95 % intervals at least as wide as the linearised ones" : "");
     if (best_epsilon.at && best_epsilon.epsilon_rad_s < (1.0 - kBetterPointFraction) * fitted_epsilon_rad_s) {
       u.better_point = best_epsilon.at;
       u.better_epsilon_rad_s = best_epsilon.epsilon_rad_s;
