@@ -8,6 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
+#include "rockfit/fitting/fitter.hpp"
 #include "rockfit/fitting/trial_problem.hpp"
 #include "synth_trial.hpp"
 
@@ -97,6 +100,51 @@ TEST(LateralMotionCheck, WithoutARestBeforeTheReleaseTheCheckIsNotAvailable) {
   LateralMotionCheckOptions off;
   off.enabled = false;
   EXPECT_FALSE(CheckLateralMotion(p.objective, truth, off).available);
+}
+
+}  // namespace
+}  // namespace rockfit::fitting
+
+namespace rockfit::fitting {
+namespace {
+
+// A fit that cannot reproduce the lateral motion (λ_lat held at 0.2 on a recording with λ_lat = −2: the model
+// barely leaves its plane, but λ acts through its edge impacts) warns and reports λ not determined, whatever
+// its interval says.
+TEST(LateralMotionCheck, AFitThatLeavesTheLateralMotionUnexplainedWarnsAndDeterminesNoLambda) {
+  ParameterSet truth;
+  const TrialProblem p = LateralTrial(&truth);
+  ParameterSet held = p.objective.parameters();
+  held[ParameterId::kLambdaLat].value = 0.2;
+  held[ParameterId::kLambdaLat].fixed = true;
+  FitOptions options;
+  options.global.enabled = false;
+  options.method = FitMethod::kNelderMead;
+  options.nelder_mead.max_evaluations = 200;  // the warning does not need a converged fit
+  ParameterSet start = truth;
+  start[ParameterId::kLambdaLat] = held[ParameterId::kLambdaLat];
+  const FitSummary s = Fit(p.objective.WithParameters(held), start, options);
+  ASSERT_TRUE(s.feasible);
+  ASSERT_TRUE(s.lateral_motion.available);
+  EXPECT_TRUE(s.lateral_motion.unexplained) << s.lateral_motion.unexplained_fraction;
+  bool warned = false;
+  for (const FitWarning& w : s.warnings) warned |= w.kind == "lateral_motion_unexplained";
+  EXPECT_TRUE(warned);
+  EXPECT_EQ(s.uncertainty.determined[static_cast<std::size_t>(ParameterId::kLambda)], Determination::kNo);
+  const auto json = nlohmann::json::parse(s.ToJson());
+  EXPECT_EQ(json["lateral_motion"]["unexplained"], true);
+  EXPECT_EQ(json["parameters"]["lambda"]["determined"], "no");
+  // Without the check, the same fit calls λ determined: the "no" above is the check's.
+  options.lateral_motion.enabled = false;
+  const FitSummary unchecked = Fit(p.objective.WithParameters(held), start, options);
+  ASSERT_TRUE(unchecked.identifiable[static_cast<std::size_t>(ParameterId::kLambda)]);
+  EXPECT_EQ(unchecked.uncertainty.determined[static_cast<std::size_t>(ParameterId::kLambda)], Determination::kYes);
+  options.lateral_motion.enabled = true;
+
+  // The truth's fit explains it.
+  options.nelder_mead.max_evaluations = 50;
+  const FitSummary good = Fit(p.objective, truth, options);
+  EXPECT_FALSE(good.lateral_motion.unexplained) << good.lateral_motion.unexplained_fraction;
 }
 
 }  // namespace
