@@ -3,19 +3,10 @@
 #include <cmath>
 #include <string>
 
+#include "rockfit/core/checks.hpp"
 #include "rockfit/core/errors.hpp"
 
 namespace rockfit::core {
-namespace {
-
-void RequirePositiveFinite(double value, const char* name, const char* unit) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    throw InvalidArgument(std::string("block ") + name + " must be a positive finite number of " + unit +
-                          ", got " + std::to_string(value));
-  }
-}
-
-}  // namespace
 
 Block::Block(double b1, double b2, double h, double mass) : b1_(b1), b2_(b2), h_(h), mass_(mass) {
   inertia_C_B_ = Eigen::Vector3d(b2 * b2 + h * h, b1 * b1 + h * h, b1 * b1 + b2 * b2).asDiagonal();
@@ -23,20 +14,20 @@ Block::Block(double b1, double b2, double h, double mass) : b1_(b1), b2_(b2), h_
 }
 
 Block Block::FromDensity(double b1_m, double b2_m, double h_m, double density_kg_m3) {
-  RequirePositiveFinite(b1_m, "b1", "metres");
-  RequirePositiveFinite(b2_m, "b2", "metres");
-  RequirePositiveFinite(h_m, "h", "metres");
-  RequirePositiveFinite(density_kg_m3, "density", "kg/m³");
+  RequirePositive(b1_m, "block b1", "metres");
+  RequirePositive(b2_m, "block b2", "metres");
+  RequirePositive(h_m, "block h", "metres");
+  RequirePositive(density_kg_m3, "block density", "kg/m³");
   const double mass_kg = 8.0 * density_kg_m3 * b1_m * b2_m * h_m;
-  RequirePositiveFinite(mass_kg, "mass (from density)", "kg");
+  RequirePositive(mass_kg, "block mass (from density)", "kg");
   return Block(b1_m, b2_m, h_m, mass_kg);
 }
 
 Block Block::FromMass(double b1_m, double b2_m, double h_m, double mass_kg) {
-  RequirePositiveFinite(b1_m, "b1", "metres");
-  RequirePositiveFinite(b2_m, "b2", "metres");
-  RequirePositiveFinite(h_m, "h", "metres");
-  RequirePositiveFinite(mass_kg, "mass", "kg");
+  RequirePositive(b1_m, "block b1", "metres");
+  RequirePositive(b2_m, "block b2", "metres");
+  RequirePositive(h_m, "block h", "metres");
+  RequirePositive(mass_kg, "block mass", "kg");
   return Block(b1_m, b2_m, h_m, mass_kg);
 }
 

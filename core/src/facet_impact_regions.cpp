@@ -9,23 +9,11 @@
 
 #include <Eigen/LU>
 
+#include "rockfit/core/checks.hpp"
 #include "rockfit/core/errors.hpp"
 
 namespace rockfit::core {
 namespace {
-
-void RequireFinite(double value, const char* name) {
-  if (!std::isfinite(value)) throw InvalidArgument(std::string("regions: ") + name + " must be finite, got " + std::to_string(value));
-}
-
-void RequireRange(double lo, double hi, const char* name) {
-  RequireFinite(lo, name);
-  RequireFinite(hi, name);
-  if (!(lo < hi)) {
-    throw InvalidArgument(std::string("regions: the range of ") + name + " must have min < max, got [" + std::to_string(lo) +
-                          ", " + std::to_string(hi) + "]");
-  }
-}
 
 void RequireCount(int n, const char* name) {
   if (n < 2 || n > kFacetRegionMaxPoints) {
@@ -54,10 +42,10 @@ Eigen::Vector2d Crossing(const Eigen::Vector2d& p, double f_p, const Eigen::Vect
 }  // namespace
 
 void FacetRegionOptions::Validate() const {
-  RequireFinite(tau, "τ");
+  RequireFinite(tau, "regions: τ");
   if (!w_minus_B.allFinite() || w_minus_B.norm() == 0.0) throw InvalidArgument("regions: ω⁻ must be finite and non-zero");
-  RequireRange(lambda_lat_min, lambda_lat_max, "λ_lat");
-  RequireRange(lambda_lon_min, lambda_lon_max, "λ_lon");
+  RequireIncreasingRange(lambda_lat_min, lambda_lat_max, "regions: λ_lat");
+  RequireIncreasingRange(lambda_lon_min, lambda_lon_max, "regions: λ_lon");
   RequireCount(n_lat, "λ_lat");
   RequireCount(n_lon, "λ_lon");
 }

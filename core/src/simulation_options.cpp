@@ -2,23 +2,11 @@
 #include <cmath>
 #include <string>
 
+#include "rockfit/core/checks.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/simulator.hpp"
 
 namespace rockfit::core {
-namespace {
-
-void RequireFinite(double value, const char* name) {
-  if (!std::isfinite(value)) throw InvalidArgument(std::string(name) + " must be a finite number, got " + std::to_string(value));
-}
-
-void RequirePositive(double value, const char* name, const char* unit) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    throw InvalidArgument(std::string(name) + " must be a positive finite number" + unit + ", got " + std::to_string(value));
-  }
-}
-
-}  // namespace
 
 std::string Mode::ToString() const {
   switch (kind) {
@@ -59,7 +47,7 @@ const char* ToString(EndReason reason) {
 }
 
 void ModelParameters::Validate(bool check_alpha) const {
-  if (check_alpha) RequirePositive(alpha_rad, "the release tilt alpha", " of radians");
+  if (check_alpha) RequirePositive(alpha_rad, "the release tilt alpha", "radians");
   RequireFinite(lambda, "the edge-impact parameter lambda");
   RequireFinite(tau_edge, "the edge-impact parameter tau_edge");
   RequireFinite(lambda_lat, "the facet-impact parameter lambda_lat");
@@ -70,7 +58,7 @@ void SimulationOptions::Validate() const {
   // More samples than this would exhaust memory long before the simulation finishes.
   constexpr double kMaxSamples = 1e8;
   if (sample_times_s.empty()) {
-    RequirePositive(rate_hz, "the sample rate", " of Hz");
+    RequirePositive(rate_hz, "the sample rate", "Hz");
   } else {
     for (std::size_t k = 0; k < sample_times_s.size(); ++k) {
       RequireFinite(sample_times_s[k], "every sample time");
@@ -80,7 +68,7 @@ void SimulationOptions::Validate() const {
       }
     }
   }
-  RequirePositive(t_max_s, "t_max", " of seconds");
+  RequirePositive(t_max_s, "t_max", "seconds");
   if (sample_times_s.empty() && t_max_s * rate_hz > kMaxSamples) {
     throw InvalidArgument("t_max × rate asks for more than 1e8 samples; lower --t-max or --rate");
   }
@@ -96,16 +84,16 @@ void SimulationOptions::Validate() const {
     throw InvalidArgument("rest_energy_height must be a non-negative number of metres, got " +
                           std::to_string(rest_energy_height_m));
   }
-  RequirePositive(gravity_m_s2, "gravity", " of m/s²");
+  RequirePositive(gravity_m_s2, "gravity", "m/s²");
   // Tolerances: below 1e-15 the requested accuracy is beyond double precision.
   if (!std::isfinite(rel_tol) || rel_tol < 1e-15 || rel_tol >= 1.0) {
     throw InvalidArgument("rel_tol must lie in [1e-15, 1), got " + std::to_string(rel_tol));
   }
-  RequirePositive(abs_tol, "abs_tol", "");
+  RequirePositive(abs_tol, "abs_tol");
   if (!std::isfinite(event_time_tol_s) || event_time_tol_s < 1e-15 || event_time_tol_s > 1e-3) {
     throw InvalidArgument("event_time_tol must lie in [1e-15, 1e-3] s, got " + std::to_string(event_time_tol_s));
   }
-  RequirePositive(max_step_s, "max_step", " of seconds");
+  RequirePositive(max_step_s, "max_step", "seconds");
   if (max_impacts == 0) throw InvalidArgument("max_impacts must be at least 1");
   if (initial_state) {
     const InitialState& s = *initial_state;

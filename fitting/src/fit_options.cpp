@@ -4,28 +4,22 @@
 
 #include <fmt/format.h>
 
+#include "rockfit/core/checks.hpp"
 #include "rockfit/core/errors.hpp"
 
 namespace rockfit::fitting {
 namespace {
 
-void RequirePositive(double value, const char* name) {
-  if (!(std::isfinite(value) && value > 0.0)) {
-    throw InvalidArgument(fmt::format("fit option {} must be a positive finite number, got {}", name, value));
-  }
-}
+// The shared checks (rockfit/core/checks.hpp) with the option's name as the user writes it.
+void RequirePositive(double value, const char* name) { rockfit::RequirePositive(value, fmt::format("fit option {}", name)); }
 
 void RequireAtLeast(int value, int minimum, const char* name) {
-  if (value < minimum) throw InvalidArgument(fmt::format("fit option {} must be at least {}, got {}", name, minimum, value));
+  rockfit::RequireAtLeast(value, minimum, fmt::format("fit option {}", name));
 }
 
 void RequirePositive(const PerParameter& values, const char* name) {
   for (ParameterId id : kAllParameters) {
-    const double v = values[static_cast<std::size_t>(id)];
-    if (!(std::isfinite(v) && v > 0.0)) {
-      throw InvalidArgument(
-          fmt::format("fit option {} for {} must be a positive finite number, got {}", name, Name(id), v));
-    }
+    rockfit::RequirePositive(values[static_cast<std::size_t>(id)], fmt::format("fit option {} for {}", name, Name(id)));
   }
 }
 
