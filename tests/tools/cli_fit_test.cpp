@@ -30,10 +30,11 @@ TEST(CliFit, JsonHasTheDocumentedKeysAndEpsilonNotAboveTheStart) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   for (const char* key : {"trial", "parameters", "correlation", "uncertainty_method", "uncertainty", "epsilon",
-                          "epsilon_initial", "t_end", "simulations", "wall_s", "termination", "warnings", "mounting"}) {
+                          "epsilon_initial", "t_end", "simulations", "wall_s", "termination", "warnings", "mounting",
+                          "lateral_motion"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
-  EXPECT_EQ(j.size(), 13u) << "only the documented keys";
+  EXPECT_EQ(j.size(), 14u) << "only the documented keys";
   EXPECT_EQ(j["trial"], "block2-A-1");
   for (const char* name : {"t0", "alpha", "lambda", "lambda_lat", "lambda_lon", "tau_edge"}) {
     ASSERT_TRUE(j["parameters"].contains(name)) << name;
