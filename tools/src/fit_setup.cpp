@@ -180,44 +180,24 @@ std::string SettingsHash(const std::string& settings) {
 }
 
 nlohmann::json FitResultJson(const std::string& trial, const fitting::FitSummary& s) {
-  nlohmann::json params = nlohmann::json::object();
-  for (fitting::ParameterId id : fitting::kAllParameters) {
-    const fitting::Parameter& p = s.parameters[id];
-    const std::size_t k = static_cast<std::size_t>(id);
-    params[fitting::Name(id)] = {{"value", p.value},
-                                 {"lower", OrNull(p.lower)},
-                                 {"upper", OrNull(p.upper)},
-                                 {"fixed", p.fixed},
-                                 {"std_error", OrNull(s.std_error[static_cast<std::size_t>(id)])},
-                                 {"interval_68", nlohmann::json::parse(fitting::IntervalJson(s.uncertainty.interval_68[k], p.fixed))},
-                                 {"interval_95", nlohmann::json::parse(fitting::IntervalJson(s.uncertainty.interval_95[k], p.fixed))},
-                                 {"determined", s.uncertainty.determined[k] ? nlohmann::json(fitting::ToString(*s.uncertainty.determined[k]))
-                                                                            : nlohmann::json()}};
+  // The fit's own JSON (FitSummary::ToJson), narrowed to the keys `fit --json` documents (fitting/README.md,
+  // "rockfit fit"): one JSON writer for the library, the command line and Python.
+  static const char* const kKeys[] = {"trial", "parameters", "correlation", "uncertainty_method", "uncertainty",
+                                      "lateral_motion", "epsilon", "epsilon_initial", "t_end", "simulations",
+                                      "wall_s", "termination", "warnings"};
+  static const char* const kParameterKeys[] = {"value",       "lower",       "upper",      "fixed",
+                                               "std_error",   "interval_68", "interval_95", "determined"};
+  const nlohmann::json full = nlohmann::json::parse(s.ToJson(trial));
+  nlohmann::json out = nlohmann::json::object();
+  for (const char* key : kKeys) {
+    if (full.contains(key)) out[key] = full[key];
   }
-  nlohmann::json warnings = nlohmann::json::array();
-  for (const fitting::FitWarning& w : s.warnings) {
-    warnings.push_back({{"kind", w.kind}, {"parameter", w.parameter}, {"message", w.message}});
+  for (auto& [name, parameter] : out["parameters"].items()) {
+    nlohmann::json narrowed = nlohmann::json::object();
+    for (const char* key : kParameterKeys) narrowed[key] = parameter[key];
+    parameter = std::move(narrowed);
   }
-  const nlohmann::json uncertainty = {{"description", s.uncertainty.description},
-                                      {"correlation_factor", s.uncertainty.correlation_factor},
-      {"noise_inflation", nlohmann::json::parse(fitting::NoiseInflationJson(s.uncertainty, s.parameters))},
-                                      {"noise_rms_rad_s", s.uncertainty.noise_rms_rad_s},
-                                      {"statements", s.uncertainty.statements},
-                                      {"simulations", s.uncertainty.evaluations},
-                                      {"wall_s", s.uncertainty.wall_time_s}};
-  return {{"trial", trial},
-          {"parameters", params},
-          {"correlation", nlohmann::json::parse(fitting::CorrelationJson(s.uncertainty, s.parameters))},
-          {"uncertainty_method", fitting::ToString(s.uncertainty.method)},
-          {"uncertainty", uncertainty},
-          {"lateral_motion", nlohmann::json::parse(fitting::LateralMotionJson(s.lateral_motion))},
-          {"epsilon", s.epsilon_rad_s},
-          {"epsilon_initial", s.epsilon_initial_rad_s},
-          {"t_end", s.t_end_s},
-          {"simulations", s.simulations},
-          {"wall_s", s.wall_time_s},
-          {"termination", s.termination},
-          {"warnings", warnings}};
+  return out;
 }
 
 std::string FitResultTable(const std::string& trial, const fitting::FitSummary& s) {
