@@ -13,7 +13,24 @@ nlohmann::json NumberOrNull(double value) { return std::isfinite(value) ? nlohma
 
 }  // namespace
 
-bool FitSummary::HasWarning(const std::string& kind, const std::string& parameter) const {
+const char* ToString(WarningKind kind) {
+  switch (kind) {
+    case WarningKind::kAtBound: return "at_bound";
+    case WarningKind::kNotIdentifiable: return "not_identifiable";
+    case WarningKind::kSimulationFailures: return "simulation_failures";
+    case WarningKind::kNotConverged: return "not_converged";
+    case WarningKind::kStdErrorUnavailable: return "std_error_unavailable";
+    case WarningKind::kInfeasible: return "infeasible";
+    case WarningKind::kPoorFit: return "poor_fit";
+    case WarningKind::kSecondBasin: return "second_basin";
+    case WarningKind::kNotDetermined: return "not_determined";
+    case WarningKind::kMovedByIntervals: return "moved_by_intervals";
+    case WarningKind::kLateralMotionUnexplained: return "lateral_motion_unexplained";
+  }
+  return "?";
+}
+
+bool FitSummary::HasWarning(WarningKind kind, const std::string& parameter) const {
   for (const FitWarning& w : warnings) {
     if (w.kind == kind && (parameter.empty() || w.parameter == parameter)) return true;
   }
@@ -107,7 +124,7 @@ std::string FitSummary::ToJson(const std::string& trial) const {
   j["kept_stage"] = kept_stage;
   nlohmann::json warnings_json = nlohmann::json::array();
   for (const FitWarning& w : warnings) {
-    warnings_json.push_back({{"kind", w.kind}, {"parameter", w.parameter}, {"message", w.message}});
+    warnings_json.push_back({{"kind", ToString(w.kind)}, {"parameter", w.parameter}, {"message", w.message}});
   }
   j["warnings"] = warnings_json;
   j["failures"] = failures_by_reason;

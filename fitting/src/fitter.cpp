@@ -139,11 +139,11 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
       const double margin = std::isfinite(range) ? options.at_bound_fraction * range : 0.0;
       summary.at_bound[k] = p.value <= p.lower + margin || p.value >= p.upper - margin;
       if (summary.at_bound[k]) {
-        summary.warnings.push_back({"at_bound", Name(id),
+        summary.warnings.push_back({WarningKind::kAtBound, Name(id),
                                     fmt::format("{} = {:.6g} {} is at its {} bound; the optimum may lie beyond it", Name(id),
                                                 p.value, Unit(id), p.value <= p.lower + margin ? "lower" : "upper")});
       }
-      if (!ident.identifiable[k]) summary.warnings.push_back({"not_identifiable", Name(id), ident.reason[k]});
+      if (!ident.identifiable[k]) summary.warnings.push_back({WarningKind::kNotIdentifiable, Name(id), ident.reason[k]});
       if (summary.at_bound[k] || !ident.identifiable[k]) for_covariance[id].fixed = true;
     }
 
@@ -162,7 +162,7 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
       if (se.inverse_normal_matrix.rows() > 0) {
         lin = {restricted.free_ids(), se.inverse_normal_matrix, se.jacobian, se.residuals};
       }
-      if (!se.available && options.compute_std_errors) summary.warnings.push_back({"std_error_unavailable", "", "standard errors: " + se.message});
+      if (!se.available && options.compute_std_errors) summary.warnings.push_back({WarningKind::kStdErrorUnavailable, "", "standard errors: " + se.message});
     }
 
     std::vector<ParameterSet> alternatives;
@@ -176,7 +176,7 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
     if (!(r.feasible && r.epsilon_rad_s < summary.epsilon_rad_s)) break;
     summary.warnings.resize(warnings_before);
     summary.warnings.push_back(
-        {"moved_by_intervals", "",
+        {WarningKind::kMovedByIntervals, "",
          fmt::format("the profiles of the intervals met a lower (28) than the global stage's result: ε {:.6g} → {:.6g} "
                      "rad/s; the fit moved there", summary.epsilon_rad_s, r.epsilon_rad_s)});
     summary.parameters = objective.WithFree(r.x);
@@ -194,7 +194,7 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
       values += fmt::format("{}{} = {:.5g}", values.empty() ? "" : ", ", Name(id), other.value(id));
     }
     summary.warnings.push_back(
-        {"second_basin", "",
+        {WarningKind::kSecondBasin, "",
          fmt::format("a second solution in another basin fits nearly as well: {} with ε = {:.6g} rad/s ({:+.2f} % of "
                      "the result's); the data do not decide between them, the intervals include both",
                      values, epsilon, 100.0 * (epsilon / summary.epsilon_rad_s - 1.0))});
@@ -205,7 +205,7 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
   if (summary.lateral_motion.unexplained) {
     const LateralMotionCheck& c = summary.lateral_motion;
     summary.warnings.push_back(
-        {"lateral_motion_unexplained", "",
+        {WarningKind::kLateralMotionUnexplained, "",
          fmt::format("the model at the fit leaves {:.0f} % of the recorded out-of-plane motion unexplained (RMS of "
                      "ω_x, ω_z {:.3g} rad/s measured, {:.3g} rad/s residual, noise at rest {:.3g} rad/s): the fit "
                      "lies on the plateau of nearly planar motion, and the truth may lie in a narrow basin of λ_lat "
@@ -220,7 +220,7 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
   for (ParameterId id : objective.free_ids()) {
     const auto& d = summary.uncertainty.determined[static_cast<std::size_t>(id)];
     if (d && *d != Determination::kYes && summary.identifiable[static_cast<std::size_t>(id)]) {
-      summary.warnings.push_back({"not_determined", Name(id),
+      summary.warnings.push_back({WarningKind::kNotDetermined, Name(id),
                                   fmt::format("{}: the data fix {} (see the intervals)", Name(id),
                                               *d == Determination::kSignOnly ? "only its sign" : "no useful range")});
     }
@@ -234,7 +234,7 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
   if (!failures.empty()) {
     std::int64_t total = 0;
     for (const auto& entry : failures) total += entry.second;
-    summary.warnings.push_back({"simulation_failures", "",
+    summary.warnings.push_back({WarningKind::kSimulationFailures, "",
                                 fmt::format("{} trial point(s) were infeasible and penalised: {}", total, FailureList(failures))});
   }
   // A fit whose mean error is a large part of the motion itself does not describe the recording.
@@ -244,7 +244,7 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
       const double mean_rate = TrajectoryError(nodes, std::vector<Eigen::Vector3d>(nodes.size(), Eigen::Vector3d::Zero()));
       if (summary.epsilon_rad_s > kPoorFitFraction * mean_rate) {
         summary.warnings.push_back(
-            {"poor_fit", "",
+            {WarningKind::kPoorFit, "",
              fmt::format("ε is {:.0f} % of the mean measured |ω| ({:.3g} rad/s) in the window: the model does not "
                          "describe this recording; check the block size, the sensor mounting and the window",
                          100.0 * summary.epsilon_rad_s / mean_rate, mean_rate)});
@@ -252,9 +252,9 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
     }
   }
   if (!summary.feasible) {
-    summary.warnings.push_back({"infeasible", "", "no feasible point found: the model fails everywhere it was tried"});
+    summary.warnings.push_back({WarningKind::kInfeasible, "", "no feasible point found: the model fails everywhere it was tried"});
   } else if (!summary.converged) {
-    summary.warnings.push_back({"not_converged", "", "the local search stopped before convergence: " + summary.termination});
+    summary.warnings.push_back({WarningKind::kNotConverged, "", "the local search stopped before convergence: " + summary.termination});
   }
 
   summary.simulations = objective.counters().runs() - runs_before;

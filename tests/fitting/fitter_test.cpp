@@ -88,7 +88,7 @@ TEST(Fit, TheoreticalBoundsRecoverParametersInsideThem) {
   const FitSummary s = Fit(objective, start, FitOptions{});
   EXPECT_LE(s.epsilon_rad_s, kEpsilonRatio * objective.Evaluate(trial.truth).epsilon_rad_s) << s.FullReport();
   ExpectRecovered(s, trial.truth);
-  EXPECT_FALSE(s.HasWarning("at_bound")) << s.FullReport();
+  EXPECT_FALSE(s.HasWarning(WarningKind::kAtBound)) << s.FullReport();
 }
 
 TEST(Fit, AParameterBeyondTheTheoreticalBoundEndsAtTheBoundWithAWarning) {
@@ -98,7 +98,7 @@ TEST(Fit, AParameterBeyondTheTheoreticalBoundEndsAtTheBoundWithAWarning) {
   const FitSummary s = Fit(objective, trial.Bounded(BoundsSet::kTheoretical), FitOptions{});
   EXPECT_NEAR(s.parameters.value(ParameterId::kLambdaLon), 1.0, 1e-5);
   EXPECT_TRUE(s.at_bound[static_cast<std::size_t>(ParameterId::kLambdaLon)]);
-  EXPECT_TRUE(s.HasWarning("at_bound", "lambda_lon")) << s.FullReport();
+  EXPECT_TRUE(s.HasWarning(WarningKind::kAtBound, "lambda_lon")) << s.FullReport();
   EXPECT_TRUE(std::isnan(s.std_error[static_cast<std::size_t>(ParameterId::kLambdaLon)]));
 }
 
@@ -110,14 +110,14 @@ TEST(Fit, SaysLambdaIsNotIdentifiableWithoutEdgeImpacts) {
   ParameterSet start = parameters;
   start[ParameterId::kAlpha].value = 0.195;
   const FitSummary s = Fit(objective, start, FitOptions{});
-  EXPECT_TRUE(s.HasWarning("not_identifiable", "lambda")) << s.FullReport();
+  EXPECT_TRUE(s.HasWarning(WarningKind::kNotIdentifiable, "lambda")) << s.FullReport();
   EXPECT_FALSE(s.identifiable[static_cast<std::size_t>(ParameterId::kLambda)]);
   EXPECT_TRUE(std::isnan(s.std_error[static_cast<std::size_t>(ParameterId::kLambda)]));
   EXPECT_TRUE(std::isfinite(s.std_error[static_cast<std::size_t>(ParameterId::kAlpha)]));
   bool mentions_edge_impacts = false;
   for (const FitWarning& w : s.warnings) mentions_edge_impacts |= w.message.find("no edge impact") != std::string::npos;
   EXPECT_TRUE(mentions_edge_impacts) << s.FullReport();
-  EXPECT_FALSE(s.HasWarning("not_identifiable", "alpha"));
+  EXPECT_FALSE(s.HasWarning(WarningKind::kNotIdentifiable, "alpha"));
 }
 
 TEST(Fit, ModelFailuresAreCountedByReasonAndTheFitStillEndsFeasible) {
@@ -130,7 +130,7 @@ TEST(Fit, ModelFailuresAreCountedByReasonAndTheFitStillEndsFeasible) {
   EXPECT_TRUE(s.feasible);
   ASSERT_TRUE(s.failures_by_reason.count("overturned"));
   EXPECT_GT(s.failures_by_reason.at("overturned"), 0);
-  EXPECT_TRUE(s.HasWarning("simulation_failures"));
+  EXPECT_TRUE(s.HasWarning(WarningKind::kSimulationFailures));
   EXPECT_EQ(s.epsilon_initial_rad_s, objective.options().failure_penalty_rad_s);
 }
 

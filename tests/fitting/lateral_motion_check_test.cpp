@@ -128,7 +128,7 @@ TEST(LateralMotionCheck, AFitThatLeavesTheLateralMotionUnexplainedWarnsAndDeterm
   ASSERT_TRUE(s.lateral_motion.available);
   EXPECT_TRUE(s.lateral_motion.unexplained) << s.lateral_motion.unexplained_fraction;
   bool warned = false;
-  for (const FitWarning& w : s.warnings) warned |= w.kind == "lateral_motion_unexplained";
+  for (const FitWarning& w : s.warnings) warned |= w.kind == WarningKind::kLateralMotionUnexplained;
   EXPECT_TRUE(warned);
   EXPECT_EQ(s.uncertainty.determined[static_cast<std::size_t>(ParameterId::kLambda)], Determination::kNo);
   const auto json = nlohmann::json::parse(s.ToJson());

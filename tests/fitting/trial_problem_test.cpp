@@ -106,8 +106,8 @@ TEST(FitSystem, AutoRecoversUnknownParametersFromNoStartingPoint) {
   const FitResult fa = FitSynth(a, ParameterSet::Defaults(), FitOptions{});
   ASSERT_TRUE(fa.summary.feasible);
   ExpectRecovered(a, fa);
-  EXPECT_FALSE(fa.summary.HasWarning("not_identifiable")) << fa.summary.FullReport();
-  EXPECT_FALSE(fa.summary.HasWarning("poor_fit")) << fa.summary.FullReport();
+  EXPECT_FALSE(fa.summary.HasWarning(WarningKind::kNotIdentifiable)) << fa.summary.FullReport();
+  EXPECT_FALSE(fa.summary.HasWarning(WarningKind::kPoorFit)) << fa.summary.FullReport();
 
   const auto b = MakeSynthTrial(0.2, 1.5, 3.0, 1.2, 22);
   const FitResult fb = FitSynth(b, ParameterSet::Defaults(), FitOptions{});
@@ -178,7 +178,7 @@ TEST(FitSystem, LambdaIsNotIdentifiableWithoutLateralMotion) {
   options.method = FitMethod::kNelderMead;
   options.nelder_mead.max_evaluations = kOptimisedBuild ? 1500 : 60;
   const FitResult fit = FitSynth(trial, parameters, options);
-  EXPECT_TRUE(fit.summary.HasWarning("not_identifiable", "lambda")) << fit.summary.FullReport();
+  EXPECT_TRUE(fit.summary.HasWarning(WarningKind::kNotIdentifiable, "lambda")) << fit.summary.FullReport();
   if (kOptimisedBuild) {
     EXPECT_NEAR(fit.summary.parameters.value(ParameterId::kLambdaLon), 0.6, kLambdaLonTolerance);
   }
@@ -196,7 +196,7 @@ TEST(FitSystem, AMissingMountingGivesAPoorFitWarning) {
   options.nelder_mead.restarts = 0;
   options.compute_std_errors = false;
   const FitResult fit = FitSynth(trial, ParameterSet::Defaults(), options);
-  EXPECT_TRUE(fit.summary.HasWarning("poor_fit")) << fit.summary.FullReport();
+  EXPECT_TRUE(fit.summary.HasWarning(WarningKind::kPoorFit)) << fit.summary.FullReport();
 }
 
 TEST(FitSystem, EveryStageRunsOnTheSimulator) {

@@ -292,7 +292,7 @@ void WriteFitGroup(const io::hdf5::Group& root, const std::string& trial, const 
   g.SetString("settings_hash", SettingsHash(fit.settings));
   g.SetString("model", s.model_description);
   std::vector<std::string> warnings;
-  for (const fitting::FitWarning& w : s.warnings) warnings.push_back(w.kind + ": " + w.message);
+  for (const fitting::FitWarning& w : s.warnings) warnings.push_back(std::string(fitting::ToString(w.kind)) + ": " + w.message);
   g.WriteStrings("warnings", warnings);
   g.WriteStrings("summary", {s.FullReport()});
 

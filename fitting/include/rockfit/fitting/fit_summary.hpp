@@ -15,10 +15,24 @@
 
 namespace rockfit::fitting {
 
+// What a warning is about; the string form ("at_bound", …) is used only at the edges (JSON, HDF5, text).
+enum class WarningKind {
+  kAtBound,                    // "at_bound"
+  kNotIdentifiable,            // "not_identifiable"
+  kSimulationFailures,         // "simulation_failures"
+  kNotConverged,               // "not_converged"
+  kStdErrorUnavailable,        // "std_error_unavailable"
+  kInfeasible,                 // "infeasible"
+  kPoorFit,                    // "poor_fit"
+  kSecondBasin,                // "second_basin"
+  kNotDetermined,              // "not_determined"
+  kMovedByIntervals,           // "moved_by_intervals"
+  kLateralMotionUnexplained,   // "lateral_motion_unexplained"
+};
+const char* ToString(WarningKind kind);
+
 struct FitWarning {
-  // "at_bound", "not_identifiable", "simulation_failures", "not_converged", "std_error_unavailable",
-  // "infeasible", "poor_fit", "second_basin", "not_determined", "lateral_motion_unexplained".
-  std::string kind;
+  WarningKind kind = WarningKind::kNotConverged;
   std::string parameter;  // empty when the warning is not about one parameter
   std::string message;    // one sentence for people
 };
@@ -62,7 +76,7 @@ struct FitSummary {
   std::vector<FitWarning> warnings;
   std::string model_description;
 
-  bool HasWarning(const std::string& kind, const std::string& parameter = "") const;
+  bool HasWarning(WarningKind kind, const std::string& parameter = "") const;
   // One line: ε, time, simulations, termination.
   std::string BriefReport() const;
   // A table of parameters and every stage and warning, for terminals.
