@@ -1,15 +1,15 @@
-#include "rockfit/io/generic_csv_reader.hpp"
+#include "generic/generic_csv_reader.hpp"
 
 #include <cmath>
 
 #include <fmt/format.h>
 
 #include "rockfit/core/errors.hpp"
-#include "rockfit/io/attitude.hpp"
-#include "rockfit/io/column_lookup.hpp"
-#include "rockfit/io/header_matching.hpp"
-#include "rockfit/io/recording_assembly.hpp"
-#include "rockfit/io/time_base.hpp"
+#include "recording/attitude.hpp"
+#include "text/column_lookup.hpp"
+#include "text/header_matching.hpp"
+#include "recording/recording_assembly.hpp"
+#include "recording/time_base.hpp"
 #include "rockfit/io/units.hpp"
 
 namespace rockfit::io {

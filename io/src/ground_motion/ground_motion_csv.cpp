@@ -6,8 +6,8 @@
 
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/ground_motion.hpp"
-#include "rockfit/io/csv_table.hpp"
-#include "rockfit/io/input_problem.hpp"
+#include "text/csv_table.hpp"
+#include "text/input_problem.hpp"
 
 namespace rockfit::io {
 namespace {

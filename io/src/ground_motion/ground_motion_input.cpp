@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "rockfit/core/errors.hpp"
-#include "rockfit/io/input_problem.hpp"
+#include "text/input_problem.hpp"
 
 namespace rockfit::io {
 namespace {

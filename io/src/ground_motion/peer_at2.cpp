@@ -9,8 +9,8 @@
 #include <string_view>
 
 #include "rockfit/core/errors.hpp"
-#include "rockfit/io/input_problem.hpp"
-#include "rockfit/io/number_parsing.hpp"
+#include "text/input_problem.hpp"
+#include "text/number_parsing.hpp"
 
 namespace rockfit::io {
 namespace {

@@ -1,12 +1,12 @@
-#include "rockfit/io/format_detection.hpp"
+#include "load/format_detection.hpp"
 
 #include <algorithm>
 #include <system_error>
 #include <vector>
 
-#include "rockfit/io/header_matching.hpp"
-#include "rockfit/io/input_problem.hpp"
-#include "rockfit/io/ximu_gui_file_set.hpp"
+#include "text/header_matching.hpp"
+#include "text/input_problem.hpp"
+#include "ximu/ximu_gui_file_set.hpp"
 
 namespace rockfit::io {
 namespace {

@@ -7,11 +7,11 @@
 
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/campaign_hdf5.hpp"
-#include "rockfit/io/format_detection.hpp"
-#include "rockfit/io/generic_csv_reader.hpp"
+#include "load/format_detection.hpp"
+#include "generic/generic_csv_reader.hpp"
 #include "rockfit/io/mounting_estimate.hpp"
-#include "rockfit/io/ximu3_reader.hpp"
-#include "rockfit/io/ximu_gui_reader.hpp"
+#include "ximu3/ximu3_reader.hpp"
+#include "ximu/ximu_gui_reader.hpp"
 
 namespace rockfit::io {
 

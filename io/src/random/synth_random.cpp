@@ -1,4 +1,4 @@
-#include "rockfit/io/synth_random.hpp"
+#include "random/synth_random.hpp"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "rockfit/io/attitude.hpp"
+#include "recording/attitude.hpp"
 
 #include <cmath>
 

@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 
 #include "rockfit/core/errors.hpp"
-#include "rockfit/io/header_matching.hpp"
+#include "text/header_matching.hpp"
 
 namespace rockfit::io {
 

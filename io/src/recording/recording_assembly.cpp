@@ -1,10 +1,10 @@
-#include "rockfit/io/recording_assembly.hpp"
+#include "recording/recording_assembly.hpp"
 
 #include <fmt/format.h>
 
-#include "rockfit/io/attitude.hpp"
-#include "rockfit/io/input_problem.hpp"
-#include "rockfit/io/time_base.hpp"
+#include "recording/attitude.hpp"
+#include "text/input_problem.hpp"
+#include "recording/time_base.hpp"
 
 namespace rockfit::io {
 

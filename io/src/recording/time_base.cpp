@@ -1,4 +1,4 @@
-#include "rockfit/io/time_base.hpp"
+#include "recording/time_base.hpp"
 
 #include <algorithm>
 #include <cmath>

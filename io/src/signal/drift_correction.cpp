@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 
 #include "rockfit/core/errors.hpp"
-#include "rockfit/io/euler_kinematics.hpp"
+#include "signal/euler_kinematics.hpp"
 #include "rockfit/io/impact_consistency.hpp"
 
 namespace rockfit::io {

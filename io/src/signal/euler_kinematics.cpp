@@ -1,4 +1,4 @@
-#include "rockfit/io/euler_kinematics.hpp"
+#include "signal/euler_kinematics.hpp"
 
 #include <cmath>
 

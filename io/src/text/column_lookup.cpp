@@ -1,6 +1,6 @@
-#include "rockfit/io/column_lookup.hpp"
+#include "text/column_lookup.hpp"
 
-#include "rockfit/io/header_matching.hpp"
+#include "text/header_matching.hpp"
 
 namespace rockfit::io {
 namespace {

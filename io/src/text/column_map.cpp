@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "rockfit/core/errors.hpp"
-#include "rockfit/io/header_matching.hpp"
-#include "rockfit/io/number_parsing.hpp"
+#include "text/header_matching.hpp"
+#include "text/number_parsing.hpp"
 
 namespace rockfit::io {
 namespace {

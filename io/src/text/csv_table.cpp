@@ -1,4 +1,4 @@
-#include "rockfit/io/csv_table.hpp"
+#include "text/csv_table.hpp"
 
 #include <algorithm>
 #include <cerrno>

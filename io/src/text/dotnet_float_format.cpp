@@ -1,4 +1,4 @@
-#include "rockfit/io/dotnet_float_format.hpp"
+#include "text/dotnet_float_format.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -1,9 +1,9 @@
-#include "rockfit/io/header_matching.hpp"
+#include "text/header_matching.hpp"
 
 #include <algorithm>
 #include <numeric>
 
-#include "rockfit/io/number_parsing.hpp"
+#include "text/number_parsing.hpp"
 
 namespace rockfit::io {
 

@@ -1,4 +1,4 @@
-#include "rockfit/io/input_problem.hpp"
+#include "text/input_problem.hpp"
 
 #include <string_view>
 

@@ -1,4 +1,4 @@
-#include "rockfit/io/number_parsing.hpp"
+#include "text/number_parsing.hpp"
 
 #include <array>
 #include <charconv>

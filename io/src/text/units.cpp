@@ -1,6 +1,6 @@
 #include "rockfit/io/units.hpp"
 
-#include "rockfit/io/header_matching.hpp"
+#include "text/header_matching.hpp"
 
 namespace rockfit::io {
 namespace {

@@ -1,10 +1,10 @@
-#include "rockfit/io/ximu_gui_file_set.hpp"
+#include "ximu/ximu_gui_file_set.hpp"
 
 #include <algorithm>
 #include <set>
 #include <system_error>
 
-#include "rockfit/io/header_matching.hpp"
+#include "text/header_matching.hpp"
 
 namespace rockfit::io {
 namespace {

@@ -1,4 +1,4 @@
-#include "rockfit/io/ximu_inertial_columns.hpp"
+#include "ximu/ximu_inertial_columns.hpp"
 
 #include <array>
 

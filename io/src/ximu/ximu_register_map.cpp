@@ -1,4 +1,4 @@
-#include "rockfit/io/ximu_register_map.hpp"
+#include "ximu/ximu_register_map.hpp"
 
 #include <cmath>
 #include <limits>

@@ -1,11 +1,11 @@
-#include "rockfit/io/ximu_registers.hpp"
+#include "ximu/ximu_registers.hpp"
 
 #include <cmath>
 
 #include <fmt/format.h>
 
-#include "rockfit/io/column_lookup.hpp"
-#include "rockfit/io/number_parsing.hpp"
+#include "text/column_lookup.hpp"
+#include "text/number_parsing.hpp"
 
 namespace rockfit::io {
 

@@ -1,8 +1,8 @@
-#include "rockfit/io/ximu_rtc_rate.hpp"
+#include "ximu/ximu_rtc_rate.hpp"
 
 #include <algorithm>
 
-#include "rockfit/io/column_lookup.hpp"
+#include "text/column_lookup.hpp"
 
 namespace rockfit::io {
 

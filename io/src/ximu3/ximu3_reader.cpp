@@ -1,4 +1,4 @@
-#include "rockfit/io/ximu3_reader.hpp"
+#include "ximu3/ximu3_reader.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,15 +7,15 @@
 
 #include <fmt/format.h>
 
-#include "rockfit/io/attitude.hpp"
-#include "rockfit/io/column_lookup.hpp"
-#include "rockfit/io/csv_table.hpp"
-#include "rockfit/io/header_matching.hpp"
-#include "rockfit/io/recording_assembly.hpp"
-#include "rockfit/io/time_base.hpp"
+#include "recording/attitude.hpp"
+#include "text/column_lookup.hpp"
+#include "text/csv_table.hpp"
+#include "text/header_matching.hpp"
+#include "recording/recording_assembly.hpp"
+#include "recording/time_base.hpp"
 #include "rockfit/io/units.hpp"
-#include "rockfit/io/ximu_inertial_columns.hpp"
-#include "rockfit/io/ximu_gui_reader.hpp"
+#include "ximu/ximu_inertial_columns.hpp"
+#include "ximu/ximu_gui_reader.hpp"
 
 namespace rockfit::io {
 namespace {

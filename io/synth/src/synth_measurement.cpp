@@ -5,8 +5,8 @@
 #include <string>
 
 #include "rockfit/core/errors.hpp"
-#include "rockfit/io/attitude.hpp"
-#include "rockfit/io/synth_random.hpp"
+#include "recording/attitude.hpp"
+#include "random/synth_random.hpp"
 #include "rockfit/io/units.hpp"
 
 namespace rockfit::io {

@@ -11,9 +11,9 @@
 
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/atomic_file.hpp"
-#include "rockfit/io/attitude.hpp"
+#include "recording/attitude.hpp"
 #include "rockfit/io/units.hpp"
-#include "rockfit/io/ximu_register_map.hpp"
+#include "ximu/ximu_register_map.hpp"
 
 namespace rockfit::io {
 namespace {

@@ -15,9 +15,9 @@
 
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/atomic_file.hpp"
-#include "rockfit/io/dotnet_float_format.hpp"
-#include "rockfit/io/synth_random.hpp"
-#include "rockfit/io/ximu_register_map.hpp"
+#include "text/dotnet_float_format.hpp"
+#include "random/synth_random.hpp"
+#include "ximu/ximu_register_map.hpp"
 
 namespace rockfit::io {
 namespace {

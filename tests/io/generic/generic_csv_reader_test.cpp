@@ -1,4 +1,4 @@
-#include "rockfit/io/generic_csv_reader.hpp"
+#include "generic/generic_csv_reader.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-#include "rockfit/io/format_detection.hpp"
+#include "load/format_detection.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // io's attitude helpers: the x-IMU reading of core's Euler conversions, nearest rotation, unwrapping
 // (the conversions themselves are tested in tests/core/attitude_test.cpp).
-#include "rockfit/io/attitude.hpp"
+#include "recording/attitude.hpp"
 
 #include <cmath>
 

@@ -1,8 +1,8 @@
-#include "rockfit/io/orientation_resampling.hpp"
+#include "recording/orientation_resampling.hpp"
 
 #include <gtest/gtest.h>
 
-#include "rockfit/io/time_base.hpp"
+#include "recording/time_base.hpp"
 
 namespace rockfit::io {
 namespace {

@@ -1,11 +1,11 @@
-#include "rockfit/io/recording_assembly.hpp"
+#include "recording/recording_assembly.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "rockfit/core/errors.hpp"
-#include "rockfit/io/attitude.hpp"
-#include "rockfit/io/time_base.hpp"
+#include "recording/attitude.hpp"
+#include "recording/time_base.hpp"
 
 namespace rockfit::io {
 namespace {

@@ -1,8 +1,8 @@
-#include "rockfit/io/euler_kinematics.hpp"
+#include "signal/euler_kinematics.hpp"
 
 #include <gtest/gtest.h>
 
-#include "rockfit/io/attitude.hpp"
+#include "recording/attitude.hpp"
 
 namespace rockfit::io {
 namespace {

@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "rockfit/io/attitude.hpp"
+#include "recording/attitude.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/load_recording.hpp"
 #include "rockfit/io/mounting.hpp"

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "rockfit/core/errors.hpp"
-#include "rockfit/io/dotnet_float_format.hpp"
+#include "text/dotnet_float_format.hpp"
 #include "test_paths.hpp"
 
 namespace rockfit::io {

@@ -1,4 +1,4 @@
-#include "rockfit/io/column_lookup.hpp"
+#include "text/column_lookup.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

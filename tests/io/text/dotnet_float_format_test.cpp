@@ -1,5 +1,5 @@
 // The C# single-precision text of the x-IMU GUI: hand-picked cases and every number of a real recording.
-#include "rockfit/io/dotnet_float_format.hpp"
+#include "text/dotnet_float_format.hpp"
 
 #include <gtest/gtest.h>
 

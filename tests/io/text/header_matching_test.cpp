@@ -1,4 +1,4 @@
-#include "rockfit/io/header_matching.hpp"
+#include "text/header_matching.hpp"
 
 #include <gtest/gtest.h>
 

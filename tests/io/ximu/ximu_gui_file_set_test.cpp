@@ -1,4 +1,4 @@
-#include "rockfit/io/ximu_gui_file_set.hpp"
+#include "ximu/ximu_gui_file_set.hpp"
 
 #include <gtest/gtest.h>
 

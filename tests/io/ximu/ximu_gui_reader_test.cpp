@@ -1,4 +1,4 @@
-#include "rockfit/io/ximu_gui_reader.hpp"
+#include "ximu/ximu_gui_reader.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -10,7 +10,7 @@
 #include "csv_numbers.hpp"
 #include "imu_test_files.hpp"
 #include "rockfit/core/errors.hpp"
-#include "rockfit/io/attitude.hpp"
+#include "recording/attitude.hpp"
 #include "rockfit/io/units.hpp"
 #include "scratch_dir.hpp"
 #include "test_paths.hpp"

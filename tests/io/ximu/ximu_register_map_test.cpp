@@ -1,5 +1,5 @@
 // The synthetic x-IMU's register map: addresses, names, fixed-point values and the rate registers.
-#include "rockfit/io/ximu_register_map.hpp"
+#include "ximu/ximu_register_map.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "rockfit/io/ximu_registers.hpp"
+#include "ximu/ximu_registers.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

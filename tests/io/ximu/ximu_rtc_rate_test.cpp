@@ -1,4 +1,4 @@
-#include "rockfit/io/ximu_rtc_rate.hpp"
+#include "ximu/ximu_rtc_rate.hpp"
 
 #include <gtest/gtest.h>
 

@@ -19,7 +19,7 @@
 
 #include "rockfit/io/load_options.hpp"
 #include "rockfit/io/recording.hpp"
-#include "rockfit/io/ximu_gui_file_set.hpp"
+#include "ximu/ximu_gui_file_set.hpp"
 
 namespace rockfit::io {
 

@@ -14,7 +14,7 @@
 
 #include <Eigen/Core>
 
-#include "rockfit/core/detail/dop853_tableau.hpp"
+#include "detail/dop853_tableau.hpp"
 
 namespace rockfit::core {
 

@@ -9,7 +9,7 @@
 #include <filesystem>
 
 #include "rockfit/io/column_map.hpp"
-#include "rockfit/io/csv_table.hpp"
+#include "text/csv_table.hpp"
 #include "rockfit/io/load_options.hpp"
 #include "rockfit/io/recording.hpp"
 

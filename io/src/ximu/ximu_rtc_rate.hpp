@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "rockfit/io/csv_table.hpp"
+#include "text/csv_table.hpp"
 
 namespace rockfit::io {
 

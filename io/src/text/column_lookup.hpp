@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "rockfit/io/csv_table.hpp"
+#include "text/csv_table.hpp"
 
 namespace rockfit::io {
 
@@ -46,7 +46,7 @@ Unit HeaderUnit(const CsvTable& table, std::size_t column, std::optional<Unit> (
 
 }  // namespace rockfit::io
 
-#include "rockfit/io/header_matching.hpp"
+#include "text/header_matching.hpp"
 
 namespace rockfit::io {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "rockfit/io/csv_table.hpp"
+#include "text/csv_table.hpp"
 #include "rockfit/io/recording.hpp"
 
 namespace rockfit::io {

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <limits>
 
-#include "rockfit/core/dop853.hpp"
-#include "rockfit/core/detail/trajectory_sampler.hpp"
+#include "dop853.hpp"
+#include "detail/trajectory_sampler.hpp"
 #include "rockfit/core/event_location.hpp"
 #include "rockfit/core/simulator.hpp"
 

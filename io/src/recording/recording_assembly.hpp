@@ -7,7 +7,7 @@
 #include <Eigen/Core>
 
 #include "rockfit/io/mounting.hpp"
-#include "rockfit/io/orientation_resampling.hpp"
+#include "recording/orientation_resampling.hpp"
 #include "rockfit/io/recording.hpp"
 
 namespace rockfit::io {

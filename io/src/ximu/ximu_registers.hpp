@@ -9,7 +9,7 @@
 #include <cstddef>
 #include <optional>
 
-#include "rockfit/io/csv_table.hpp"
+#include "text/csv_table.hpp"
 
 namespace rockfit::io {
 

@@ -7,9 +7,9 @@
 #include <optional>
 #include <vector>
 
-#include "rockfit/io/column_lookup.hpp"
-#include "rockfit/io/csv_table.hpp"
-#include "rockfit/io/recording_assembly.hpp"
+#include "text/column_lookup.hpp"
+#include "text/csv_table.hpp"
+#include "recording/recording_assembly.hpp"
 
 namespace rockfit::io {
 

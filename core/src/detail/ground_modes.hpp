@@ -22,7 +22,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "rockfit/core/detail/contact_modes.hpp"
+#include "detail/contact_modes.hpp"
 #include "rockfit/core/ground_motion.hpp"
 
 namespace rockfit::core::detail {
