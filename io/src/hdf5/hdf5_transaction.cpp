@@ -1,14 +1,7 @@
 #include "rockfit/io/hdf5_transaction.hpp"
 
-#include <fcntl.h>
-#include <signal.h>
-#include <unistd.h>
-
-#include <atomic>
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
-#include <fstream>
+#include <filesystem>
+#include <ostream>
 
 #include <fmt/format.h>
 
@@ -18,8 +11,6 @@
 namespace rockfit::io::hdf5 {
 
 namespace {
-
-std::atomic<unsigned> g_serial{0};
 
 // "/trials/T1" → {"trials", "T1"}.
 std::vector<std::string> Split(const std::string& path) {
@@ -58,11 +49,6 @@ void CopyExcept(const Group& from, const Group& to, const std::vector<std::vecto
 
 }  // namespace
 
-std::filesystem::path TemporaryPathFor(const std::filesystem::path& target, long pid, unsigned serial) {
-  const std::filesystem::path dir = target.has_parent_path() ? target.parent_path() : std::filesystem::path();
-  return dir / fmt::format(".{}{}{}-{}", target.filename().string(), kTemporaryMarker, pid, serial);
-}
-
 Transaction::Transaction(std::filesystem::path target, std::vector<std::string> replaced)
     : target_(std::move(target)) {
   if (target_.filename().empty()) throw OutputError(fmt::format("'{}' is not a file name", target_.string()));
@@ -73,22 +59,12 @@ Transaction::Transaction(std::filesystem::path target, std::vector<std::string> 
                                   "output name or move that file away",
                                   target_.string()));
   }
-  RemoveStaleTemporaries(target_);
-  temporary_ = TemporaryPathFor(target_, static_cast<long>(::getpid()), g_serial++);
-  {
-    // The new version is built in memory (File::CreateInMemory) and written by Commit(); a file created and
-    // removed here makes an unwritable directory an error before any work is done.
-    std::ofstream probe(temporary_, std::ios::binary);
-    if (!probe) {
-      throw OutputError(fmt::format("cannot write {}: cannot create a file in {}: {}; check that the directory exists "
-                                    "and is writable",
-                                    target_.string(),
-                                    target_.has_parent_path() ? target_.parent_path().string() : std::string("."),
-                                    std::strerror(errno)));
-    }
-  }
-  std::filesystem::remove(temporary_, ec);
-  file_.emplace(File::CreateInMemory(temporary_));
+  // The new version is built in memory (File::CreateInMemory) and written by Commit(); the temporary file is
+  // created and removed here so that an unwritable directory is an error before any work is done.
+  replacement_.emplace(target_);
+  replacement_->Write([](std::ostream&) {});
+  replacement_->Discard();
+  file_.emplace(File::CreateInMemory(replacement_->temporary()));
   if (exists) {
     std::vector<std::vector<std::string>> parts;
     for (const auto& path : replaced) {
@@ -99,22 +75,17 @@ Transaction::Transaction(std::filesystem::path target, std::vector<std::string> 
       CopyExcept(existing.Root(), file_->Root(), parts, 0);
     } catch (const BadInput& e) {
       file_.reset();
-      std::filesystem::remove(temporary_, ec);
       throw OutputError(fmt::format("cannot carry over the content of {} into the new version: {}", target_.string(),
                                     e.what()));
     } catch (...) {
       file_.reset();
-      std::filesystem::remove(temporary_, ec);
       throw;
     }
   }
 }
 
 Transaction::~Transaction() {
-  if (committed_) return;
-  file_.reset();
-  std::error_code ec;
-  std::filesystem::remove(temporary_, ec);
+  file_.reset();  // closes the in-memory file; an uncommitted replacement removes its temporary
 }
 
 Group Transaction::Root() const {
@@ -127,9 +98,10 @@ void Transaction::Commit() {
   const std::string image = file_->Image();
   file_->Close();
   file_.reset();
-  // Temporary file beside the target, flushed, fsync'ed and renamed; OutputError (target unchanged) otherwise.
-  WriteFileAtomically(target_, [&image](std::ostream& out) { out.write(image.data(), static_cast<std::streamsize>(image.size())); });
-  committed_ = true;
+  // Temporary file beside the target, flushed (fsync) and renamed; OutputError (target unchanged) otherwise.
+  replacement_->Write(
+      [&image](std::ostream& out) { out.write(image.data(), static_cast<std::streamsize>(image.size())); });
+  replacement_->Commit();
 }
 
 }  // namespace rockfit::io::hdf5

@@ -1,17 +1,8 @@
 #include "rockfit/io/ximu_gui_writer.hpp"
 
-#include <unistd.h>
-
-#include <atomic>
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <utility>
-
-#include <fmt/format.h>
 
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/atomic_file.hpp"
@@ -47,10 +38,8 @@ constexpr double kThermometerWarmingC_per_s = 0.01;
 constexpr double kThermometerNoiseC = 0.08;
 constexpr double kThermometerResolutionC = 1.0 / 256.0;
 
-struct CsvFile {
-  std::string path;
-  std::string text;
-};
+// One file of the set and its whole text, written together with the others (atomic_file.hpp).
+using CsvFile = FileContent;
 
 class Line {
  public:
@@ -95,43 +84,6 @@ std::int64_t TicksPerPacket(double inertial_rate_hz, double rate_hz, const char*
                           std::to_string(inertial_rate_hz) + " Hz)");
   }
   return static_cast<std::int64_t>(ratio);
-}
-
-std::atomic<unsigned> g_temporary_serial{0};
-
-void WriteFilesAtomically(const std::vector<CsvFile>& files) {
-  std::vector<std::string> temporaries;
-  const auto remove_temporaries = [&temporaries] {
-    for (const auto& t : temporaries) std::remove(t.c_str());
-  };
-  for (const CsvFile& file : files) {
-    RemoveStaleTemporaries(file.path);
-    const std::filesystem::path target(file.path);
-    const std::string temporary =
-        (target.parent_path() / fmt::format(".{}{}{}-{}", target.filename().string(), kTemporaryMarker, ::getpid(),
-                                            g_temporary_serial++))
-            .string();
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) {
-      const std::string reason = std::strerror(errno);
-      remove_temporaries();
-      throw OutputError("cannot create " + temporary + ": " + reason + "; check that the directory exists and is writable");
-    }
-    temporaries.push_back(temporary);
-    out.write(file.text.data(), static_cast<std::streamsize>(file.text.size()));
-    out.close();
-    if (!out) {
-      remove_temporaries();
-      throw OutputError("cannot write " + temporary + " (disk full?); nothing was replaced");
-    }
-  }
-  for (std::size_t i = 0; i < files.size(); ++i) {
-    if (std::rename(temporaries[i].c_str(), files[i].path.c_str()) != 0) {
-      const std::string reason = std::strerror(errno);
-      remove_temporaries();
-      throw OutputError("cannot rename " + temporaries[i] + " to " + files[i].path + ": " + reason);
-    }
-  }
 }
 
 }  // namespace
@@ -267,7 +219,7 @@ std::vector<std::string> WriteXimuGuiCsv(const std::string& prefix, const Device
   files.push_back(std::move(euler));
   WriteFilesAtomically(files);
   std::vector<std::string> paths;
-  for (const auto& f : files) paths.push_back(f.path);
+  for (const auto& f : files) paths.push_back(f.path.string());
   return paths;
 }
 

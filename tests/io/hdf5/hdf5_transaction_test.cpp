@@ -163,7 +163,11 @@ TEST(Hdf5Transaction, KillingTheWriterMidWriteLeavesThePreviousFileIntact) {
 }
 
 TEST(Hdf5Transaction, TemporaryLivesBesideTheTarget) {
-  EXPECT_EQ(TemporaryPathFor("/data/run/out.h5", 1234, 5), std::filesystem::path("/data/run/.out.h5.rockfit-tmp-1234-5"));
+  const ScratchDir dir("hdf5_tx");
+  const Transaction tx(dir / "out.h5");
+  EXPECT_EQ(tx.temporary_path().parent_path(), dir.path());
+  EXPECT_EQ(tx.temporary_path().filename().string().rfind(std::string(".out.h5") + kTemporaryMarker, 0), 0u)
+      << tx.temporary_path();
 }
 
 }  // namespace

@@ -58,5 +58,61 @@ TEST(AtomicFile, MissingDirectoryOrDirectoryTargetIsAnOutputError) {
   EXPECT_THROW(WriteFileAtomically(dir.path(), [](std::ostream&) {}), OutputError);
 }
 
+TEST(AtomicReplacement, TargetIsUntouchedUntilCommitAndTheTemporaryLivesBesideIt) {
+  const testing::ScratchDir dir("atomic");
+  WriteFileAtomically(dir / "fig.png", [](std::ostream& out) { out << "old"; });
+  AtomicReplacement replacement(dir / "fig.png");
+  EXPECT_EQ(replacement.temporary().parent_path(), dir.path());
+  EXPECT_EQ(replacement.temporary().filename().string().rfind(std::string(".fig.png") + kTemporaryMarker, 0), 0u)
+      << replacement.temporary();
+  {
+    // The way an external program (gnuplot) fills it: by the temporary's name.
+    std::ofstream out(replacement.temporary());
+    out << "new";
+  }
+  EXPECT_EQ(Read(dir / "fig.png"), "old");
+  replacement.Commit();
+  EXPECT_EQ(Read(dir / "fig.png"), "new");
+  EXPECT_EQ(EntriesIn(dir.path()), 1u);
+}
+
+TEST(AtomicReplacement, AnUncommittedReplacementRemovesItsTemporary) {
+  const testing::ScratchDir dir("atomic");
+  WriteFileAtomically(dir / "a.csv", [](std::ostream& out) { out << "old\n"; });
+  {
+    AtomicReplacement replacement(dir / "a.csv");
+    replacement.Write([](std::ostream& out) { out << "new\n"; });
+    EXPECT_EQ(EntriesIn(dir.path()), 2u);
+  }
+  EXPECT_EQ(Read(dir / "a.csv"), "old\n");
+  EXPECT_EQ(EntriesIn(dir.path()), 1u);
+}
+
+TEST(AtomicReplacement, ADirectoryOrAnEmptyNameIsNotATarget) {
+  const testing::ScratchDir dir("atomic");
+  EXPECT_THROW(AtomicReplacement replacement(dir.path()), OutputError);
+  EXPECT_THROW(AtomicReplacement replacement(dir / ""), OutputError);
+}
+
+TEST(AtomicFile, TemporaryNameCarriesTargetProcessAndSerial) {
+  EXPECT_EQ(TemporaryPathFor("/data/run/out.h5", 1234, 5), std::filesystem::path("/data/run/.out.h5.rockfit-tmp-1234-5"));
+  EXPECT_EQ(TemporaryPathFor("out.h5", 7, 0), std::filesystem::path(".out.h5.rockfit-tmp-7-0"));
+}
+
+TEST(AtomicFiles, ASetIsReplacedWholeOrNotAtAll) {
+  const testing::ScratchDir dir("atomic");
+  WriteFilesAtomically({{dir / "t_A.csv", "a1"}, {dir / "t_B.csv", "b1"}});
+  EXPECT_EQ(Read(dir / "t_A.csv"), "a1");
+  EXPECT_EQ(Read(dir / "t_B.csv"), "b1");
+  // The second file cannot be written: the first, although written in full, is not renamed over its target.
+  EXPECT_THROW(WriteFilesAtomically({{dir / "t_A.csv", "a2"}, {dir / "missing/t_B.csv", "b2"}}), OutputError);
+  EXPECT_EQ(Read(dir / "t_A.csv"), "a1");
+  EXPECT_EQ(EntriesIn(dir.path()), 2u);
+  WriteFilesAtomically({{dir / "t_A.csv", "a3"}, {dir / "t_B.csv", "b3"}});
+  EXPECT_EQ(Read(dir / "t_A.csv"), "a3");
+  EXPECT_EQ(Read(dir / "t_B.csv"), "b3");
+  EXPECT_EQ(EntriesIn(dir.path()), 2u);
+}
+
 }  // namespace
 }  // namespace rockfit::io
