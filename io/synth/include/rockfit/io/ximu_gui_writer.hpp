@@ -44,8 +44,9 @@ struct XimuPacketLayout {
   std::int64_t total_packets = 0;
 };
 
-// Writes the files of the set for `samples`. Each file is written to a temporary name and renamed when
-// all are complete, so existing files are never left half-overwritten. Returns the paths written.
+// Writes the files of the set for `samples`. Each file is written to a temporary name beside it and flushed to
+// disk, and the files are renamed only when all are complete (WriteFilesAtomically, atomic_file.hpp), so
+// existing files are never left half-overwritten. Returns the paths written.
 // Throws InvalidArgument for bad options, OutputError when a file cannot be written.
 std::vector<std::string> WriteXimuGuiCsv(const std::string& prefix, const DeviceSamples& samples,
                                          const XimuGuiWriterOptions& options, XimuPacketLayout* layout = nullptr);
