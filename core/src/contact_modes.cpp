@@ -1,4 +1,4 @@
-#include "rockfit/core/detail/contact_modes.hpp"
+#include "detail/contact_modes.hpp"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "rockfit/core/dop853.hpp"
+#include "dop853.hpp"
 
 #include <string>
 

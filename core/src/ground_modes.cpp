@@ -1,4 +1,4 @@
-#include "rockfit/core/detail/ground_modes.hpp"
+#include "detail/ground_modes.hpp"
 
 #include <cmath>
 

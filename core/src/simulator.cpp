@@ -13,10 +13,10 @@
 #include <string>
 #include <utility>
 
-#include "rockfit/core/detail/contact_modes.hpp"
-#include "rockfit/core/detail/ground_modes.hpp"
-#include "rockfit/core/detail/hybrid_segment.hpp"
-#include "rockfit/core/detail/trajectory_sampler.hpp"
+#include "detail/contact_modes.hpp"
+#include "detail/ground_modes.hpp"
+#include "detail/hybrid_segment.hpp"
+#include "detail/trajectory_sampler.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/ground_uplift.hpp"
 

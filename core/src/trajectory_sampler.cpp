@@ -1,4 +1,4 @@
-#include "rockfit/core/detail/trajectory_sampler.hpp"
+#include "detail/trajectory_sampler.hpp"
 
 #include <algorithm>
 #include <cmath>

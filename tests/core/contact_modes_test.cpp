@@ -1,12 +1,12 @@
 // Guards of the simulator's continuous modes: what they measure, where they change sign, and that their
 // rates are the time derivatives of their values.
-#include "rockfit/core/detail/contact_modes.hpp"
+#include "detail/contact_modes.hpp"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
-#include "rockfit/core/dop853.hpp"
+#include "dop853.hpp"
 
 namespace rockfit::core::detail {
 namespace {

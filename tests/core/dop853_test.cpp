@@ -1,6 +1,6 @@
 // The DOP853 integrator: its tableau satisfies the order conditions, the solution and the continuous
 // extension converge at their orders, and the error control meets the requested tolerance.
-#include "rockfit/core/dop853.hpp"
+#include "dop853.hpp"
 
 #include <cmath>
 

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "rockfit/core/attitude.hpp"
-#include "rockfit/core/dop853.hpp"
+#include "dop853.hpp"
 #include "rockfit/core/errors.hpp"
 
 namespace rockfit::core {

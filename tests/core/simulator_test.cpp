@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "rockfit/core/dop853.hpp"
+#include "dop853.hpp"
 #include "rockfit/core/edge_dynamics.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/planar_rocking.hpp"

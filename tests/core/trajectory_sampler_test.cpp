@@ -1,5 +1,5 @@
 // Output sampling of the simulator: sample times, the cut-off at the last time, and the cheap mode.
-#include "rockfit/core/detail/trajectory_sampler.hpp"
+#include "detail/trajectory_sampler.hpp"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "rockfit/core/dop853.hpp"
+#include "dop853.hpp"
 #include "rockfit/core/edge_dynamics.hpp"
 
 namespace rockfit::core {

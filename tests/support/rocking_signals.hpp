@@ -16,7 +16,7 @@
 
 #include "rockfit/core/block.hpp"
 #include "rockfit/core/simulator.hpp"
-#include "rockfit/io/euler_kinematics.hpp"
+#include "signal/euler_kinematics.hpp"
 #include "rockfit/io/recording.hpp"
 
 namespace rockfit::testing {

@@ -9,7 +9,7 @@
 // (whole fits for one misalignment per block here, for the suite's time budget; io/README.md has all twenty).
 // Also the sensor upside down (a signed permutation times a small rotation), planar trials (λ_lat = 0) with and
 // without rest at the end, and the warning for a wrong mounting given without `auto`. Whole fits run the
-// simulator thousands of times: optimised builds only (tests/io/mounting_estimate_test.cpp covers the estimate
+// simulator thousands of times: optimised builds only (tests/io/signal/mounting_estimate_test.cpp covers the estimate
 // in every build).
 #include <cmath>
 #include <cstdio>

@@ -12,7 +12,7 @@
 
 #include "cli_runner.hpp"
 #include "csv_numbers.hpp"
-#include "rockfit/io/attitude.hpp"
+#include "recording/attitude.hpp"
 #include "rockfit/core/block.hpp"
 #include "rockfit/core/simulator.hpp"
 

@@ -27,7 +27,7 @@ namespace rockfit::tools {
 
 namespace {
 
-std::atomic<unsigned> g_serial{0};
+std::atomic<unsigned> g_serial{0};  // names this process's scratch directories
 
 std::string ShellQuote(const std::string& s) {
   std::string q = "'";
@@ -163,9 +163,10 @@ void GnuplotFigure::Render(const std::string& body, const std::filesystem::path&
   if (!std::filesystem::is_directory(dir, ec)) {
     throw OutputError(fmt::format("cannot write {}: the directory {} does not exist", output.string(), dir.string()));
   }
-  io::RemoveStaleTemporaries(output);
-  const std::filesystem::path temporary =
-      dir / fmt::format(".{}{}{}-{}", output.filename().string(), io::kTemporaryMarker, ::getpid(), g_serial++);
+  // gnuplot draws into the temporary file of an atomic replacement, which is renamed over `output` only when the
+  // picture is complete (and removed otherwise).
+  io::AtomicReplacement replacement(output);
+  const std::filesystem::path& temporary = replacement.temporary();
   const std::string terminal =
       format == ImageFormat::kPng
           ? fmt::format("set terminal pngcairo size {},{} enhanced font 'Sans,10' linewidth 1.2", width_px, height_px)
@@ -186,14 +187,10 @@ void GnuplotFigure::Render(const std::string& body, const std::filesystem::path&
     std::ifstream in(messages);
     std::stringstream text;
     text << in.rdbuf();
-    std::filesystem::remove(temporary, ec);
     throw OutputError(fmt::format("gnuplot ({}) could not draw {}: {}", gnuplot->string(), output.string(),
                                   text.str().empty() ? "no message" : text.str()));
   }
-  if (std::rename(temporary.c_str(), output.c_str()) != 0) {
-    std::filesystem::remove(temporary, ec);
-    throw OutputError(fmt::format("cannot write {}; check permissions", output.string()));
-  }
+  replacement.Commit();
 }
 
 }  // namespace rockfit::tools

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "rockfit/io/atomic_file.hpp"
 #include "rockfit/io/hdf5_file.hpp"
 
 namespace rockfit::io::hdf5 {
@@ -35,19 +36,15 @@ class Transaction {
 
   Group Root() const;
   // The temporary file being written (for tests and messages).
-  const std::filesystem::path& temporary_path() const { return temporary_; }
+  const std::filesystem::path& temporary_path() const { return replacement_->temporary(); }
   const std::filesystem::path& target() const { return target_; }
   // Closes, flushes to disk (fsync) and renames over the target. OutputError on failure (the target is untouched).
   void Commit();
 
  private:
   std::filesystem::path target_;
-  std::filesystem::path temporary_;
+  std::optional<AtomicReplacement> replacement_;  // the one atomic-replace helper (atomic_file.hpp)
   std::optional<File> file_;
-  bool committed_ = false;
 };
-
-// The name of the temporary file that a Transaction of process `pid` uses for `target`.
-std::filesystem::path TemporaryPathFor(const std::filesystem::path& target, long pid, unsigned serial);
 
 }  // namespace rockfit::io::hdf5

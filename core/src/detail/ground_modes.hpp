@@ -1,0 +1,118 @@
+// The Edge and Vertex modes under prescribed ground motion (core/README.md, "Ground motion"). Internal to the
+// simulator; exposed for its tests.
+//
+// The equations are those of the free modes written in the ground frame, whose only extra force is the
+// inertial force −m a_g(t) at the COM: with the effective field f_W(t) = −g e_z − a_g(t),
+//   Vertex(k): J_P ẇ_B + w_B × J_P w_B = p_PC_B × m R_WBᵀ f_W(t),
+//   Edge(i,j): J_e ψ̈ = m [f_z (d cos ψ − h sin ψ) − f_n (d sin ψ + h cos ψ)],  f_n = f_W·n_W, f_z = f_W·e_z,
+// (n_W the horizontal unit vector from the edge towards the base centre). With a_g = 0 they are the free
+// equations. The guards are the free modes' geometric guards; Edge mode adds one per end vertex V_i of the
+// edge: minus the vertical acceleration (over g) that V_i would have if the block rocked about the other end
+// V_j alone (Vertex(j) mode at the same state). When it turns negative the lateral part of the inertial force
+// lifts V_i and the block rocks on about V_j. (The edge mode's normal force on V_i, EndForces(), vanishes
+// slightly earlier: with both ends pinned, V_i also carries a horizontal force that a vertex pivot cannot,
+// so between the two instants neither mode is consistent under no slip; rockfit keeps the edge until the
+// vertex motion lifts V_i, which never chatters. See core/README.md, "Ground motion".)
+// Integrator steps end at the record's sample times.
+#pragma once
+
+#include <algorithm>
+#include <array>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "detail/contact_modes.hpp"
+#include "rockfit/core/ground_motion.hpp"
+
+namespace rockfit::core::detail {
+
+class GroundVertexMode {
+ public:
+  static constexpr int kStateSize = VertexMode::kStateSize;
+  static constexpr int kNumGuards = VertexMode::kNumGuards;
+  using State = VertexMode::State;
+
+  GroundVertexMode(const Block& block, int vertex, double gravity_m_s2, const GroundMotion& ground);
+
+  void operator()(double t, const State& y, State& dydt) const;
+  GuardValue Guard(int index, double /*t*/, const State& y) const { return free_.Guard(index, y); }
+  double StepLimit(double t, double t_limit) const { return std::min(t_limit, ground_->NextBreak(t)); }
+  static bool IsTouchdown(int guard) { return VertexMode::IsTouchdown(guard); }
+  int GuardVertex(int guard) const { return free_.GuardVertex(guard); }
+  Eigen::Quaterniond Attitude(const State& y) const { return free_.Attitude(y); }
+  Eigen::Vector3d AngularVelocity_B(const State& y) const { return free_.AngularVelocity_B(y); }
+  double Energy(const State& y) const { return free_.Energy(y); }
+  double KineticEnergy(const State& y) const { return free_.KineticEnergy(y); }
+  // The ground's force on the block: F = m (a_C − f_W).
+  ContactForce Force(double t, const State& y, const State& dydt) const;
+  static void Project(State* y) { VertexMode::Project(y); }
+  Mode mode() const { return free_.mode(); }
+  int vertex() const { return free_.vertex(); }
+  const VertexMode& free_mode() const { return free_; }
+
+ private:
+  VertexMode free_;
+  const GroundMotion* ground_;
+  double mass_kg_;
+  double gravity_m_s2_;
+  Eigen::Vector3d p_PC_B_;
+  Eigen::Matrix3d inertia_P_B_;
+  Eigen::Matrix3d inertia_P_B_inverse_;
+};
+
+class GroundEdgeMode {
+ public:
+  // Time step of the central difference for the rate of the end-load guards [s]: far below the record step
+  // and the rocking time scale (≥ 1 ms), far above round-off of t.
+  static constexpr double kLoadRateStep_s = 1e-6;
+  static constexpr int kStateSize = EdgeMode::kStateSize;
+  static constexpr int kNumGuards = EdgeMode::kNumGuards + 2;
+  using State = EdgeMode::State;
+  enum GuardIndex { kFlat = EdgeMode::kFlat, kOver = EdgeMode::kOver, kLoadFirst = 2, kLoadSecond = 3 };
+
+  GroundEdgeMode(const Block& block, int i, int j, const Eigen::Quaterniond& q_yaw, double gravity_m_s2,
+                 const GroundMotion& ground);
+
+  void operator()(double t, const State& y, State& dydt) const;
+  // kLoadFirst/kLoadSecond: −(vertical acceleration of V_i / V_j when rocking about the other end)/g, with its
+  // rate by a central difference over kLoadRateStep_s along the motion (no closed form).
+  GuardValue Guard(int index, double t, const State& y) const;
+  double StepLimit(double t, double t_limit) const { return std::min(t_limit, ground_->NextBreak(t)); }
+  static bool IsTouchdown(int guard) { return guard == kFlat; }
+  Eigen::Quaterniond Attitude(const State& y) const { return free_.Attitude(y); }
+  Eigen::Vector3d AngularVelocity_B(const State& y) const { return free_.AngularVelocity_B(y); }
+  double Energy(const State& y) const { return free_.Energy(y); }
+  double KineticEnergy(const State& y) const { return free_.KineticEnergy(y); }
+  ContactForce Force(double t, const State& y, const State& dydt) const;
+  // Normal forces on the two end vertices V_i, V_j [N] with both pinned (their sum is Force(...).normal_N).
+  std::array<double, 2> EndForces(double t, const State& y) const;
+  // Vertical acceleration [m/s²] of end vertex `end` (0: V_i, 1: V_j) in Vertex mode about the other end.
+  double LiftAcceleration(int end, double t, const State& y) const;
+  static void Project(State* /*y*/) {}
+  Mode mode() const { return free_.mode(); }
+  int first() const { return free_.first(); }
+  int second() const { return free_.second(); }
+  const EdgeMode& free_mode() const { return free_; }
+
+ private:
+  Eigen::Vector3d Field_B(double t, double psi) const;  // R_WBᵀ f_W(t)
+
+  EdgeMode free_;
+  const GroundMotion* ground_;
+  double mass_kg_;
+  double gravity_m_s2_;
+  double d_m_;
+  double h_m_;
+  double torque_scale_;  // m / J_e
+  double half_length_m_;
+  Eigen::Vector3d inward_W_;
+  Eigen::Vector3d p_PC_B_;
+  Eigen::Vector3d edge_dir_B_;  // unit, from V_i to V_j
+  Eigen::Matrix3d inertia_P_B_;
+  GroundVertexMode about_first_;   // rocking about V_i
+  GroundVertexMode about_second_;  // rocking about V_j
+  Eigen::Vector3d first_to_second_B_;
+};
+
+}  // namespace rockfit::core::detail
