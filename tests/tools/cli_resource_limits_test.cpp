@@ -90,7 +90,9 @@ TEST(ResourceLimits, LongXimuRecordingIsReadWithinTheStatedMemory) {
   ASSERT_EQ(u.exit_code, 0) << u.out;
   EXPECT_EQ(nlohmann::json::parse(u.out)["samples"].get<long>(), rows);
   const double bound = kBaseResidentBytes + kMaxBytesPerRow * static_cast<double>(rows);
-  if (!kAddressSanitizedBuild) EXPECT_LT(u.peak_resident_bytes, bound);  // build_type.hpp: not under ASan
+  if (!kAddressSanitizedBuild) {
+    EXPECT_LT(u.peak_resident_bytes, bound);  // build_type.hpp: not under ASan
+  }
   std::printf("inspect of %ld rows (%.0f MB): %.2f s, peak resident %.0f MB (bound %.0f MB)\n", rows, file_bytes / 1e6,
               u.wall_s, u.peak_resident_bytes / 1e6, bound / 1e6);
 }
@@ -113,7 +115,9 @@ TEST(ResourceLimits, ManifestOfTenThousandTrialsIsSummarisedWithinTheStatedMemor
   EXPECT_EQ(j["trials"].size(), static_cast<std::size_t>(kTrials));
   EXPECT_TRUE(std::filesystem::exists(dir / "big.h5"));
   constexpr double kBound = 400e6;  // 10⁴ rows of a few hundred bytes each, the TOML tree and the HDF5 library
-  if (!kAddressSanitizedBuild) EXPECT_LT(u.peak_resident_bytes, kBound);  // build_type.hpp: not under ASan
+  if (!kAddressSanitizedBuild) {
+    EXPECT_LT(u.peak_resident_bytes, kBound);  // build_type.hpp: not under ASan
+  }
   std::printf("summary of %d trials (manifest %.1f MB): exit %d, %.2f s, peak resident %.0f MB\n", kTrials,
               static_cast<double>(text.size()) / 1e6, u.exit_code, u.wall_s, u.peak_resident_bytes / 1e6);
 }
