@@ -12,25 +12,17 @@
 #include <gtest/gtest.h>
 
 #include "build_type.hpp"
+#include "generated_records.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/planar_avrf.hpp"
 #include "rockfit/core/response.hpp"
 #include "rockfit/fitting/fragility_study.hpp"
-#include "rockfit/io/stochastic_ground_motion.hpp"
 
 namespace rockfit::fitting {
 namespace {
 
 FragilityRecord Generated(std::uint64_t seed, double duration_s) {
-  io::CloughPenzienOptions o;
-  o.seed = seed;
-  o.duration_s = duration_s;
-  o.t_rise_s = std::min(o.t_rise_s, 0.2 * duration_s);
-  o.t_strong_end_s = std::min(o.t_strong_end_s, 0.6 * duration_s);
-  const std::vector<double> a = io::CloughPenzienRecord(o);
-  std::vector<Eigen::Vector3d> a_W(a.size(), Eigen::Vector3d::Zero());
-  for (std::size_t k = 0; k < a.size(); ++k) a_W[k].x() = a[k];
-  return {"synthetic:" + std::to_string(seed), core::GroundMotion::Uniform(o.dt_s, a_W)};
+  return {"synthetic:" + std::to_string(seed), rockfit::testing::GeneratedRecordAlongX(seed, duration_s)};
 }
 
 // A granite block of slenderness b1/h = 0.25 rocking in the xz plane (b2 > b1 is not needed: the record acts

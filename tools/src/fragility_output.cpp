@@ -214,6 +214,17 @@ std::string FragilityTable(const fitting::FragilityStudyOptions& study, const fi
   const std::string unit = IntensityUnit(study.measure);
   const std::string level_head = study.measure == fitting::IntensityMeasure::kPga ? "PGA [g]" : "scale";
   std::string out;
+  std::string records = fmt::format("{} record(s):", study.records.size());
+  for (std::size_t r = 0; r < study.records.size() && r < 4; ++r) records += " " + study.records[r].name;
+  if (study.records.size() > 4) records += " …";
+  out += fmt::format("study      {}; angle {}; {} samples per level, seed {}\n", records,
+                     study.angle_rad ? fmt::format("{}°", *study.angle_rad * kRadToDeg) : std::string("uniform"),
+                     study.samples_per_level, study.seed);
+  for (const fitting::FragilityBlock& b : study.blocks) {
+    out += fmt::format("parameters {}: λ {:.4g} ± {:.2g}, λ_lat {:.4g} ± {:.2g}, λ_lon {:.4g} ± {:.2g} ({})\n", b.id,
+                       b.lambda.mean, b.lambda.sd, b.lambda_lat.mean, b.lambda_lat.sd, b.lambda_lon.mean, b.lambda_lon.sd,
+                       b.source);
+  }
   for (const fitting::FragilityBlockResult& b : summary.blocks) {
     out += fmt::format("{:<10} {:>8} {:>5} {:>5}  {:<28}", "block", level_head, "n", "excl.", "P(overturning) [95 % CP]");
     for (std::size_t s = 1; s < b.limit_states.size(); ++s) {

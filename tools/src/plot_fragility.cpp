@@ -63,7 +63,9 @@ int RunPlotFragility(const FragilityPlotCommand& cmd) {
       const char* colour = kPalette[style % 8];
       const char* dash = kDashes[s % 5];
       ++style;
-      const std::string label = ids.size() > 1 ? ids[b] + " " + states[s] : states[s];
+      // "tilt_0.5" → "peak tilt ≥ 0.5 θ_c" (θ_c with a subscript in gnuplot's enhanced text).
+      const std::string state = states[s].rfind("tilt_", 0) == 0 ? "peak tilt ≥ " + states[s].substr(5) + " θ_c" : states[s];
+      const std::string label = ids.size() > 1 ? ids[b] + ": " + state : state;
       plots.push_back(fmt::format("{} using 1:3:4 with filledcurves fs transparent solid 0.15 noborder lc rgb '{}' notitle",
                                   data, colour));
       plots.push_back(fmt::format("{} using 1:2:3:4 with yerrorbars pt 7 ps 0.8 lc rgb '{}' title {}", data, colour,
