@@ -170,7 +170,7 @@ TEST(CliFragility, KilledAtRandomInstantsAndResumedGivesTheUninterruptedResult) 
   std::size_t journaled_before = 0;
   int killed = 0;
   bool finished = false;
-  for (int k = 0; k < 6 && !finished; ++k) {
+  for (int k = 0; k < 4 && !finished; ++k) {
     const double instant_s = std::uniform_real_distribution<double>(0.05 * run_s, 0.45 * run_s)(rng);
     const pid_t pid = StartRockfit(study(h5, {"--resume"}));
     std::this_thread::sleep_for(std::chrono::duration<double>(instant_s));
