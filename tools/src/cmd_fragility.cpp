@@ -10,7 +10,6 @@
 #include <iostream>
 #include <cstring>
 #include <optional>
-#include <sstream>
 #include <thread>
 
 #include <fmt/format.h>
@@ -69,31 +68,17 @@ struct FragilityCommand {
   std::string output;
 };
 
-std::vector<std::string> SplitCommas(const std::string& text) {
-  std::vector<std::string> parts;
-  std::stringstream stream(text);
-  std::string cell;
-  while (std::getline(stream, cell, ',')) parts.push_back(cell);
-  return parts;
-}
-
 double ParseNumber(const std::string& cell, const std::string& option) {
-  char* end = nullptr;
-  const double v = std::strtod(cell.c_str(), &end);
-  if (cell.empty() || end == cell.c_str() || *end != '\0' || !std::isfinite(v)) {
-    throw InvalidArgument(fmt::format("{}: '{}' is not a number", option, cell));
-  }
-  return v;
+  const std::optional<double> v = ParseFinite(cell);
+  if (!v) throw InvalidArgument(fmt::format("{}: '{}' is not a number", option, cell));
+  return *v;
 }
 
 // "0.1,0.2,0.4" or "FROM:TO:N" (N evenly spaced levels from FROM to TO).
 std::vector<double> ParseLevels(const std::string& text, const std::string& option) {
   std::vector<double> levels;
   if (text.find(':') != std::string::npos) {
-    std::vector<std::string> parts;
-    std::stringstream stream(text);
-    std::string cell;
-    while (std::getline(stream, cell, ':')) parts.push_back(cell);
+    const std::vector<std::string> parts = SplitList(text, ':');
     const double n = parts.size() == 3 ? ParseNumber(parts[2], option) : 0.0;
     if (parts.size() != 3 || n < 2 || n != std::floor(n)) {
       throw InvalidArgument(fmt::format("{} expects FROM:TO:N with N ≥ 2 levels, got '{}'", option, text));
@@ -102,12 +87,12 @@ std::vector<double> ParseLevels(const std::string& text, const std::string& opti
     for (int i = 0; i < static_cast<int>(n); ++i) levels.push_back(from + (to - from) * i / (n - 1.0));
     return levels;
   }
-  for (const std::string& cell : SplitCommas(text)) levels.push_back(ParseNumber(cell, option));
+  for (const std::string& cell : SplitList(text)) levels.push_back(ParseNumber(cell, option));
   return levels;
 }
 
 std::vector<fitting::FragilityBlock> MakeBlocks(const FragilityCommand& cmd) {
-  std::vector<std::string> ids = cmd.block.block_id.empty() ? std::vector<std::string>{""} : SplitCommas(cmd.block.block_id);
+  std::vector<std::string> ids = cmd.block.block_id.empty() ? std::vector<std::string>{""} : SplitList(cmd.block.block_id);
   std::string group_block, group_position = cmd.position;
   if (!cmd.group.empty()) {
     const std::size_t comma = cmd.group.find(',');
@@ -187,7 +172,7 @@ fitting::FragilityStudyOptions MakeStudy(const FragilityCommand& cmd) {
   study.samples_per_level = cmd.samples;
   if (cmd.angle != "random") study.angle_rad = ParseNumber(cmd.angle, "--angle") * M_PI / 180.0;
   if (!cmd.tilts.empty()) {
-    for (const std::string& cell : SplitCommas(cmd.tilts)) study.tilt_fractions.push_back(ParseNumber(cell, "--tilt"));
+    for (const std::string& cell : SplitList(cmd.tilts)) study.tilt_fractions.push_back(ParseNumber(cell, "--tilt"));
   }
   study.seed = cmd.seed;
   study.response.tail_s = cmd.tail_s;
@@ -420,10 +405,14 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   app->add_option("--tau-edge", cmd->tau_edge, "τ of edge impacts [N·m·s]")->capture_default_str()->group(model);
   app->add_option("--facet-tau", cmd->facet_tau, "τ of facet impacts: no-spin (24) or zero")
       ->check(CLI::IsMember({"no-spin", "zero"}))->capture_default_str()->group(model);
-  app->add_option("--fits", cmd->fits,
+  auto* fits = app->add_option("--fits", cmd->fits,
                   "Take the distribution from the HDF5 file of rockfit batch: per parameter the pooled estimate (else the "
                   "mean) with sd = √(its standard error² + between-trial spread²)")
       ->group(model);
+  for (const char* given : {"--lambda", "--lambda-lat", "--lambda-lon", "--lambda-sd", "--lambda-lat-sd",
+                            "--lambda-lon-sd", "--tau-edge"}) {
+    fits->excludes(app->get_option(given));  // the distribution comes from one place
+  }
   app->add_option("--group", cmd->group, "With --fits: BLOCK,POSITION of one block")->group(model);
   app->add_option("--position", cmd->position, "With --fits and --block ID,ID,…: the position of every block")->group(model);
   const char* ground = "Ground motion";

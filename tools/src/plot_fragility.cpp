@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
-#include <sstream>
 
 #include <fmt/format.h>
 
@@ -37,12 +36,7 @@ int RunPlotFragility(const FragilityPlotCommand& cmd) {
   const io::hdf5::Group f = root.OpenGroup("fragility");
   const bool pga = f.GetString("intensity_measure").value_or("pga_g") == "pga_g";
   const std::vector<std::string> ids = f.ReadStrings("blocks/id");
-  std::vector<std::string> wanted;
-  if (!cmd.limit_states.empty()) {
-    std::stringstream stream(cmd.limit_states);
-    std::string cell;
-    while (std::getline(stream, cell, ',')) wanted.push_back(cell);
-  }
+  const std::vector<std::string> wanted = SplitList(cmd.limit_states);
 
   GnuplotFigure figure;
   std::vector<std::string> plots;
