@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <functional>
@@ -132,6 +133,62 @@ TEST(CliFragility, TableJsonAndHdf5HoldTheDocumentedResults) {
   if (plot.exit_code == 4 && plot.err.find("gnuplot") != std::string::npos) GTEST_SKIP() << "gnuplot not installed";
   ASSERT_EQ(plot.exit_code, 0) << plot.err;
   EXPECT_TRUE(std::filesystem::exists(png));
+}
+
+TEST(CliFragility, SeveralBlocksOfAManifestTakeTheirDistributionsFromTheBatchTable) {
+  const ScratchDir dir("cli_fragility_blocks");
+  dir.Write("m.toml",
+            "[[blocks]]\nid = \"small\"\nb1 = 0.05\nb2 = 0.04\nh = 0.2\ndensity = 2692\n"
+            "[[blocks]]\nid = \"large\"\nb1 = 0.15\nb2 = 0.12\nh = 0.6\ndensity = 2692\n");
+  {
+    // /summary/fits/per_group as `rockfit batch` writes it: λ pooled 0.9 with 95 % interval ±1.96·0.03 and a spread
+    // of 0.04 between the trials (sd = 0.05); λ_lat not determined by any trial (mean −1.2, spread 0.2).
+    io::hdf5::File file = io::hdf5::File::Create(dir / "fits.h5");
+    const io::hdf5::Group g = file.Root().CreateGroup("summary/fits/per_group");
+    g.WriteStrings("block", {"large", "small"});
+    g.WriteStrings("position", {"A", "A"});
+    g.WriteInts("n", {2, 3}, "1");
+    const double nan = std::nan("");
+    const auto parameter = [&](const std::string& name, double pooled, double half95, double mean, double spread) {
+      g.WriteDoubles(name + "_pooled", {pooled, pooled}, "1");
+      g.WriteDoubles(name + "_pooled_95_lower", {pooled - half95, pooled - half95}, "1");
+      g.WriteDoubles(name + "_pooled_95_upper", {pooled + half95, pooled + half95}, "1");
+      g.WriteDoubles(name + "_mean", {mean, mean}, "1");
+      g.WriteDoubles(name + "_std", {spread, spread}, "1");
+    };
+    parameter("lambda", 0.9, 1.959963984540054 * 0.03, 0.91, 0.04);
+    parameter("lambda_lat", nan, nan, -1.2, 0.2);
+    parameter("lambda_lon", 0.7, 0.0, 0.7, 0.0);
+    parameter("tau_edge", 0.0, 0.0, 0.0, 0.0);
+    file.Close();
+  }
+  const std::string h5 = (dir / "f.h5").string();
+  const CommandResult r = RunRockfit({"fragility", "--manifest", (dir / "m.toml").string(), "--block", "small,large",
+                                      "--fits", (dir / "fits.h5").string(), "--position", "A", "--synthetic-records",
+                                      "1", "--synthetic-duration", "3", "--pga", "0.3,0.6", "--samples", "2", "-o", h5});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const io::hdf5::File file = io::hdf5::File::Open(h5);
+  const io::hdf5::Group f = file.Root().OpenGroup("fragility");
+  EXPECT_EQ(f.ReadStrings("blocks/id"), (std::vector<std::string>{"small", "large"}));
+  for (const char* id : {"small", "large"}) {
+    const std::vector<double> mean = f.ReadDoubles(std::string("blocks/") + id + "/parameters/mean");
+    const std::vector<double> sd = f.ReadDoubles(std::string("blocks/") + id + "/parameters/sd");
+    EXPECT_NEAR(mean[0], 0.9, 1e-12);
+    EXPECT_NEAR(sd[0], 0.05, 1e-12) << "√(0.03² + 0.04²)";
+    EXPECT_NEAR(mean[1], -1.2, 1e-12) << "the mean where no trial determined the parameter";
+    EXPECT_NEAR(sd[1], 0.2, 1e-12);
+    EXPECT_EQ(sd[2], 0.0);
+  }
+  EXPECT_EQ(f.ReadInts("samples/block"), (std::vector<std::int64_t>{0, 0, 0, 0, 1, 1, 1, 1}));
+  // Explicit parameters and --fits do not mix; --fits needs the group.
+  EXPECT_EQ(RunRockfit({"fragility", "--manifest", (dir / "m.toml").string(), "--block", "small", "--fits",
+                        (dir / "fits.h5").string(), "--position", "A", "--lambda", "1", "--synthetic-records", "1",
+                        "--pga", "0.3", "-o", h5}).exit_code, 1);
+  const CommandResult missing = RunRockfit({"fragility", "--manifest", (dir / "m.toml").string(), "--block", "small",
+                                            "--fits", (dir / "fits.h5").string(), "--position", "B",
+                                            "--synthetic-records", "1", "--pga", "0.3", "-o", h5});
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("groups present: large,A; small,A"), std::string::npos) << missing.err;
 }
 
 TEST(CliFragility, OneThreadTwoThreadsAndThreeMpiRanksGiveIdenticalDatasets) {
