@@ -8,7 +8,6 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
-#include <cstring>
 #include <optional>
 #include <thread>
 
@@ -18,18 +17,17 @@
 #include "command_registry.hpp"
 #include "fit_setup.hpp"
 #include "fitted_parameters.hpp"
+#include "fragility_ledger.hpp"
 #include "fragility_output.hpp"
 #include "ground_motion_args.hpp"
 #include "progress_bar.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/hdf5_transaction.hpp"
-#include "rockfit/io/record_journal.hpp"
 #include "sample_ranks.hpp"
 
 namespace rockfit::tools {
 namespace {
 
-constexpr const char* kJournalKind = "fragility";
 // Samples per rank and thread in one round (one journal append): small enough that a kill loses little, large
 // enough that the collective gather and the flush to disk cost nothing next to the simulations (a few ms each).
 constexpr int kSamplesPerThreadPerRound = 8;
@@ -181,73 +179,12 @@ fitting::FragilityStudyOptions MakeStudy(const FragilityCommand& cmd) {
   return study;
 }
 
-std::filesystem::path JournalPath(const std::string& output) { return output + ".journal"; }
-
-std::string Bytes(const fitting::SampleOutcome& o) {
-  return std::string(reinterpret_cast<const char*>(&o), sizeof(o));
-}
-
-fitting::SampleOutcome FromBytes(const std::string& bytes) {
-  fitting::SampleOutcome o;
-  std::memcpy(&o, bytes.data(), sizeof(o));
-  return o;
-}
-
-// Rank 0's state: the outcomes so far (by index) and the journal they are appended to.
-struct Ledger {
-  std::vector<fitting::SampleOutcome> by_index;
-  std::vector<char> done;
-  std::size_t resumed = 0;
-  std::optional<io::JournalWriter> journal;
-};
-
-// Reads or starts the journal; the samples already done. InvalidArgument/BadInput when --resume meets another study.
-Ledger OpenLedger(const FragilityCommand& cmd, const fitting::FragilityStudyOptions& study, const std::string& hash) {
-  Ledger ledger;
-  const std::size_t n = static_cast<std::size_t>(study.num_samples());
-  ledger.by_index.resize(n);
-  ledger.done.assign(n, 0);
-  const std::filesystem::path path = JournalPath(cmd.output);
-  std::optional<io::JournalContents> old = io::ReadJournal(path, kJournalKind, sizeof(fitting::SampleOutcome));
-  if (old && !cmd.resume) {
-    std::cerr << fmt::format("rockfit: {} holds {} samples of an interrupted study; starting over (--resume would "
-                             "continue it)\n", path.string(), old->records.size());
-    old.reset();
-  }
-  if (old && old->key != hash) {
-    throw BadInput(fmt::format("{}: the journal belongs to a study with other settings (hash {}, this study {}); "
-                               "--resume continues only the same study: repeat its options, or drop --resume to start "
-                               "over", path.string(), old->key, hash));
-  }
-  if (old) {
-    for (const std::string& bytes : old->records) {
-      const fitting::SampleOutcome o = FromBytes(bytes);
-      if (o.index < 0 || static_cast<std::size_t>(o.index) >= n) {
-        throw BadInput(fmt::format("{}: sample index {} outside the study's {} samples; remove the journal", path.string(),
-                                   o.index, n));
-      }
-      const std::size_t i = static_cast<std::size_t>(o.index);
-      if (ledger.done[i]) continue;  // never counted twice
-      ledger.by_index[i] = o;
-      ledger.done[i] = 1;
-      ++ledger.resumed;
-    }
-    if (old->discarded_bytes > 0) {
-      std::cerr << fmt::format("rockfit: {}: {} bytes of a torn last write discarded\n", path.string(), old->discarded_bytes);
-    }
-    ledger.journal.emplace(io::JournalWriter::Continue(path, *old, sizeof(fitting::SampleOutcome)));
-  } else {
-    ledger.journal.emplace(io::JournalWriter::Create(path, kJournalKind, sizeof(fitting::SampleOutcome), hash));
-  }
-  return ledger;
-}
-
 int RunFragility(const FragilityCommand& cmd) {
   SampleRanks ranks(cmd.mpi || StartedByLauncher());
   // Every rank reads the inputs; a failure on any rank stops all of them (no rank waits forever in a collective).
   fitting::FragilityStudyOptions study;
   std::string hash;
-  std::optional<Ledger> ledger;
+  std::optional<FragilityLedger> ledger;
   std::exception_ptr failure;
   bool already_complete = false;
   try {
@@ -258,9 +195,9 @@ int RunFragility(const FragilityCommand& cmd) {
     hash = SettingsHash(study.SettingsText());
     if (ranks.rank() == 0) {
       { io::hdf5::Transaction probe(cmd.output); }  // exit 4 now, not after the study, when it cannot be written
-      already_complete = cmd.resume && !std::filesystem::exists(JournalPath(cmd.output)) &&
+      already_complete = cmd.resume && !std::filesystem::exists(FragilityJournalPath(cmd.output)) &&
                          StoredFragilityHash(cmd.output) == hash;
-      if (!already_complete) ledger.emplace(OpenLedger(cmd, study, hash));
+      if (!already_complete) ledger.emplace(OpenLedger(FragilityJournalPath(cmd.output), study, hash, cmd.resume));
     }
   } catch (...) {
     failure = std::current_exception();
@@ -270,11 +207,7 @@ int RunFragility(const FragilityCommand& cmd) {
   if (!all_ok) throw BadInput("another MPI rank could not set up the study (its message is above)");
 
   std::vector<std::int64_t> remaining;
-  if (ranks.rank() == 0 && ledger) {
-    for (std::size_t i = 0; i < ledger->done.size(); ++i) {
-      if (!ledger->done[i]) remaining.push_back(static_cast<std::int64_t>(i));
-    }
-  }
+  if (ranks.rank() == 0 && ledger) remaining = ledger->Remaining();
   const std::vector<std::int64_t> flag = ranks.Broadcast({already_complete ? 1 : 0});
   if (flag.at(0) != 0) {
     if (ranks.rank() == 0) {
@@ -312,18 +245,8 @@ int RunFragility(const FragilityCommand& cmd) {
     const std::vector<fitting::SampleOutcome> local = fitting::RunSamples(study, chunk, cmd.threads);
     const std::vector<fitting::SampleOutcome> gathered = ranks.Gather(local);
     if (ranks.rank() != 0) continue;
-    std::vector<std::string> records;
-    for (const fitting::SampleOutcome& o : gathered) {
-      const std::size_t i = static_cast<std::size_t>(o.index);
-      if (ledger->done[i]) continue;
-      ledger->by_index[i] = o;
-      ledger->done[i] = 1;
-      records.push_back(Bytes(o));
-      overturned_this_run += static_cast<std::size_t>(o.overturned);
-      ++done;
-    }
     try {
-      ledger->journal->Append(records);
+      done += ledger->Record(gathered, &overturned_this_run);
       if (std::chrono::steady_clock::now() - last_sync >= kSyncEvery) {
         ledger->journal->Sync();
         last_sync = std::chrono::steady_clock::now();
@@ -341,8 +264,8 @@ int RunFragility(const FragilityCommand& cmd) {
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (ranks.rank() != 0) return kExitOk;
 
-  for (std::size_t i = 0; i < ledger->done.size(); ++i) {
-    if (!ledger->done[i]) throw NumericalFailure(fmt::format("sample {} was not run; run again with --resume", i));
+  if (const std::vector<std::int64_t> missing = ledger->Remaining(); !missing.empty()) {
+    throw NumericalFailure(fmt::format("sample {} was not run; run again with --resume", missing.front()));
   }
   ledger->journal->Sync();
   const fitting::FragilitySummary summary = fitting::SummariseFragility(study, ledger->by_index);
@@ -354,7 +277,7 @@ int RunFragility(const FragilityCommand& cmd) {
   }
   ledger->journal.reset();
   std::error_code ec;
-  std::filesystem::remove(JournalPath(cmd.output), ec);
+  std::filesystem::remove(FragilityJournalPath(cmd.output), ec);
 
   const std::size_t simulated = total - resumed;
   const double rate = wall_s > 0.0 ? static_cast<double>(simulated) / wall_s : 0.0;
