@@ -46,7 +46,7 @@ FragilityStudyOptions PlanarStudy(std::vector<FragilityBlock> blocks, int record
   s.samples_per_level = samples;
   s.angle_rad = 0.0;
   s.seed = 7;
-  s.response.tail_s = 2.0;
+  s.response.tail_s = rockfit::testing::kOptimisedBuild ? 2.0 : 0.5;  // Debug/sanitizer runs are ~150× slower
   return s;
 }
 
@@ -105,8 +105,8 @@ TEST(FragilityStudy, ParametersFollowTheirNormalDistributions) {
 }
 
 TEST(FragilityStudy, OutcomesAreTheSameBytesOnOneAndTwoThreadsAndInAnyOrder) {
-  const FragilityStudyOptions s = PlanarStudy({PlanarBlock(0.2, 0.8)}, 2, rockfit::testing::kOptimisedBuild ? 8.0 : 3.0,
-                                              {0.3, 0.6}, 3);
+  const FragilityStudyOptions s = PlanarStudy({PlanarBlock(0.2, 0.8)}, 2, rockfit::testing::kOptimisedBuild ? 8.0 : 1.5,
+                                              {0.3, 0.6}, rockfit::testing::kOptimisedBuild ? 3 : 2);
   const std::vector<std::int64_t> all = AllIndices(s);
   const std::vector<SampleOutcome> one = RunSamples(s, all, 1);
   const std::vector<SampleOutcome> two = RunSamples(s, all, 2);
@@ -159,16 +159,15 @@ bool OverturnsAt(const FragilityStudyOptions& s, double scale) {
 }
 
 TEST(FragilityStudy, DeterministicBlockGivesExactlyZeroBelowAndOneAboveTheOverturningScale) {
+  ROCKFIT_REQUIRE_OPTIMISED_BUILD();
   // No parameter spread, one record, a fixed angle: every sample at a level is the same run.
-  FragilityStudyOptions s = PlanarStudy({PlanarBlock(0.2, 0.8)}, 1, rockfit::testing::kOptimisedBuild ? 10.0 : 4.0,
-                                        {1.0}, 1);
+  FragilityStudyOptions s = PlanarStudy({PlanarBlock(0.2, 0.8)}, 1, 10.0, {1.0}, 1);
   s.measure = IntensityMeasure::kScale;
   // Bisection on the scale factor between a level that does not overturn the block and one that does.
   double low = 0.5, high = 8.0;
   ASSERT_FALSE(OverturnsAt(s, low));
   ASSERT_TRUE(OverturnsAt(s, high));
-  // The bracket's width relative to the scale (wider in the Debug/sanitizer build, where runs are ~150× slower).
-  constexpr double kRelativeBracket = rockfit::testing::kOptimisedBuild ? 1e-4 : 1e-2;
+  constexpr double kRelativeBracket = 1e-4;  // the bracket's width relative to the scale
   while (high - low > kRelativeBracket * high) {
     const double mid = 0.5 * (low + high);
     (OverturnsAt(s, mid) ? high : low) = mid;
