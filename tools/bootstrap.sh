@@ -6,6 +6,7 @@
 #
 # Installs missing Debian packages with --no-install-recommends (as root, or through sudo). clang and
 # libclang-rt-14-dev are for the libFuzzer targets of tests/fuzz (tools/fuzz.sh); the build itself uses g++.
+# libopenmpi-dev and openmpi-bin give `rockfit fragility` its MPI ranks (CMake option ROCKFIT_WITH_MPI).
 # Environment: BUILD_DIR (default build), JOBS (default: number of cores), CMAKE_ARGS (extra).
 set -euo pipefail
 
@@ -19,6 +20,7 @@ packages=(
   libeigen3-dev libceres-dev libnlopt-cxx-dev libgsl-dev libhdf5-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libfmt-dev libtomlplusplus-dev nlohmann-json3-dev libtbb-dev
+  libopenmpi-dev openmpi-bin
   gnuplot-nox python3 python3-h5py python3-numpy ccache
   python3-dev python3-pybind11 pybind11-dev python3-pytest python3-matplotlib
   clang libclang-rt-14-dev

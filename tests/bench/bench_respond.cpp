@@ -7,23 +7,14 @@
 #include <cmath>
 
 #include "rockfit/core/response.hpp"
-#include "rockfit/io/stochastic_ground_motion.hpp"
+#include "generated_records.hpp"
 
 namespace {
 
 using rockfit::core::GroundMotion;
 
 GroundMotion Record(double pga_g, std::uint64_t seed) {
-  rockfit::io::CloughPenzienOptions o;
-  o.duration_s = 30.0;
-  o.dt_s = 0.005;
-  o.t_strong_end_s = 15.0;
-  o.pga_m_s2 = pga_g * rockfit::core::kRecordGravity;
-  o.seed = seed;
-  const std::vector<double> a = rockfit::io::CloughPenzienRecord(o);
-  std::vector<Eigen::Vector3d> a_W(a.size());
-  for (std::size_t k = 0; k < a.size(); ++k) a_W[k] = Eigen::Vector3d(a[k], 0.0, 0.0);
-  return GroundMotion::Uniform(o.dt_s, a_W).Rotated(M_PI / 6.0);
+  return rockfit::testing::GeneratedRecordAlongX(seed, 30.0, pga_g * rockfit::core::kRecordGravity, 15.0).Rotated(M_PI / 6.0);
 }
 
 void BM_Respond30sRecord200Hz(benchmark::State& state) {

@@ -54,17 +54,29 @@ std::optional<core::Block> MakeOptionalBlock(const BlockArgs& args) {
   return MakeBlock(args);
 }
 
-Eigen::Vector3d ParseVector3(const std::string& text, const std::string& option) {
-  std::vector<double> values;
+std::vector<std::string> SplitList(const std::string& text, char separator) {
+  std::vector<std::string> cells;
   std::stringstream stream(text);
   std::string cell;
-  while (std::getline(stream, cell, ',')) {
-    char* end = nullptr;
-    const double value = std::strtod(cell.c_str(), &end);
-    if (cell.empty() || end == cell.c_str() || *end != '\0' || !std::isfinite(value)) {
+  while (std::getline(stream, cell, separator)) cells.push_back(cell);
+  return cells;
+}
+
+std::optional<double> ParseFinite(const std::string& cell) {
+  char* end = nullptr;
+  const double value = std::strtod(cell.c_str(), &end);
+  if (cell.empty() || end == cell.c_str() || *end != '\0' || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+Eigen::Vector3d ParseVector3(const std::string& text, const std::string& option) {
+  std::vector<double> values;
+  for (const std::string& cell : SplitList(text)) {
+    const std::optional<double> value = ParseFinite(cell);
+    if (!value) {
       throw InvalidArgument(option + " expects three finite numbers X,Y,Z separated by commas, got '" + text + "'");
     }
-    values.push_back(value);
+    values.push_back(*value);
   }
   if (values.size() != 3) {
     throw InvalidArgument(option + " expects three numbers X,Y,Z separated by commas, got '" + text + "'");

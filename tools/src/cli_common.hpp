@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <Eigen/Core>
@@ -39,6 +40,11 @@ core::Block MakeBlock(const BlockArgs& args);
 bool HasBlockOptions(const BlockArgs& args);
 // The block when any block option was given (then as MakeBlock), else none.
 std::optional<core::Block> MakeOptionalBlock(const BlockArgs& args);
+
+// "a,b,c" → {"a", "b", "c"} (empty cells kept; an empty text gives no cell).
+std::vector<std::string> SplitList(const std::string& text, char separator = ',');
+// The finite number that is the whole of `cell`, or none.
+std::optional<double> ParseFinite(const std::string& cell);
 
 // Parses "X,Y,Z" into a vector; throws InvalidArgument naming `option` on failure.
 Eigen::Vector3d ParseVector3(const std::string& text, const std::string& option);

@@ -2,8 +2,6 @@
 // §8). Each finished trial is committed through an atomic transaction before the next one is written (a mutex
 // serialises the writers), so killing the batch at any moment loses at most the trials still running, and
 // `--resume` skips the trials the file already holds with the same settings.
-#include <unistd.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -21,6 +19,7 @@
 #include "command_registry.hpp"
 #include "fit_setup.hpp"
 #include "mounting_report.hpp"
+#include "progress_bar.hpp"
 #include "recording_input.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/fitting/fitter.hpp"
@@ -244,36 +243,6 @@ std::map<std::string, std::string> StoredSettingsHashes(const std::filesystem::p
   return hashes;
 }
 
-class Progress {
- public:
-  Progress(std::size_t total, bool terminal) : total_(total), terminal_(terminal), start_(Clock::now()) {}
-  void Report(const TrialOutcome& o) {
-    ++done_;
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-    const double eta = done_ > 0 ? elapsed / static_cast<double>(done_) * static_cast<double>(total_ - done_) : 0.0;
-    const std::string what = o.skipped ? "already fitted"
-                             : o.ok    ? fmt::format("ε = {:.4g} rad/s in {:.1f} s", o.epsilon_rad_s, o.wall_s)
-                                       : "FAILED: " + o.message;
-    if (terminal_) {
-      constexpr int kWidth = 30;
-      const int filled = static_cast<int>(kWidth * done_ / std::max<std::size_t>(total_, 1));
-      std::cerr << fmt::format("\r\033[K[{}{}] {}/{}  ETA {:.0f} s  {}: {}", std::string(filled, '#'),
-                               std::string(kWidth - filled, '.'), done_, total_, eta, o.trial, what.substr(0, 60))
-                << (done_ == total_ ? "\n" : "") << std::flush;
-    } else {
-      std::cerr << fmt::format("rockfit batch: [{}/{}] {}: {} (elapsed {:.1f} s, ETA {:.0f} s)\n", done_, total_,
-                               o.trial, what, elapsed, eta);
-    }
-  }
-
- private:
-  using Clock = std::chrono::steady_clock;
-  std::size_t total_;
-  std::size_t done_ = 0;
-  bool terminal_;
-  Clock::time_point start_;
-};
-
 int RunBatch(const BatchCommand& cmd) {
   const io::Manifest manifest = io::ReadManifest(cmd.manifest);
   if (manifest.trials.empty()) throw BadInput(fmt::format("{}: the manifest lists no trials", cmd.manifest));
@@ -290,7 +259,8 @@ int RunBatch(const BatchCommand& cmd) {
   std::atomic<std::size_t> next{0};
   std::mutex write_mutex;
   std::vector<GroupRange> last_ranges;  // the group table of the last commit
-  Progress progress(n, isatty(fileno(stderr)) != 0);
+  ProgressBar progress("batch", n, 0, StderrIsTerminal());
+  std::size_t done = 0;
   FitArgs fit_args = cmd.fit;
   fit_args.threads = 1;  // parallel over trials, not inside one fit
 
@@ -344,8 +314,11 @@ int RunBatch(const BatchCommand& cmd) {
         o.exit_code = kExitNumerical;
         o.message = e.what();
       }
+      const std::string what = o.skipped ? "already fitted"
+                               : o.ok    ? fmt::format("ε = {:.4g} rad/s in {:.1f} s", o.epsilon_rad_s, o.wall_s)
+                                         : "FAILED: " + o.message;
       std::lock_guard<std::mutex> lock(write_mutex);
-      progress.Report(o);
+      progress.Report(++done, o.trial + ": " + what);
     }
   };
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());

@@ -7,6 +7,7 @@
 
 #include "cli_common.hpp"
 #include "rockfit/core/errors.hpp"
+#include "rockfit/io/content_hash.hpp"
 #include "rockfit/fitting/simulator_model.hpp"
 
 namespace rockfit::tools {
@@ -170,14 +171,7 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   return settings;
 }
 
-std::string SettingsHash(const std::string& settings) {
-  std::uint64_t h = 14695981039346656037ull;  // FNV-1a 64
-  for (unsigned char c : settings) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return fmt::format("{:016x}", h);
-}
+std::string SettingsHash(const std::string& settings) { return io::HashHex(io::Fnv1a64(settings)); }
 
 nlohmann::json FitResultJson(const std::string& trial, const fitting::FitSummary& s) {
   // The fit's own JSON (FitSummary::ToJson), narrowed to the keys `fit --json` documents (fitting/README.md,

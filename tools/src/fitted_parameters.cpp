@@ -1,5 +1,6 @@
 #include "fitted_parameters.hpp"
 
+#include <cmath>
 #include <map>
 #include <set>
 
@@ -90,6 +91,67 @@ FittedParameters ReadFittedGroupMean(const std::filesystem::path& fits, const st
   for (auto& [name, sum] : sums) sum /= static_cast<double>(out.trials.size());
   out.params = FromTable(sums, fits.string() + ": group " + block + "," + position);
   out.description = "mean of " + std::to_string(out.trials.size()) + " fits of " + block + " " + position;
+  return out;
+}
+
+double FittedParameterRange::TotalSd() const {
+  return std::sqrt(estimate_sd * estimate_sd + between_trial_sd * between_trial_sd);
+}
+
+FittedGroupRanges ReadFittedGroupRanges(const std::filesystem::path& fits, const std::string& block,
+                                       const std::string& position) {
+  constexpr double kZ95 = 1.959963984540054;  // the pooled 95 % interval is ±1.96 standard errors
+  const io::hdf5::File file = io::hdf5::File::Open(fits);
+  const io::hdf5::Group root = file.Root();
+  const std::string table = "summary/fits/per_group";
+  if (!root.IsGroup(table)) {
+    throw BadInput(fits.string() + ": no /" + table + " (pooled estimates and spreads per block and position); it is "
+                   "written by `rockfit batch MANIFEST -o " + fits.string() + "`");
+  }
+  const io::hdf5::Group g = root.OpenGroup(table);
+  const std::vector<std::string> blocks = g.ReadStrings("block"), positions = g.ReadStrings("position");
+  std::size_t row = blocks.size();
+  std::string present;
+  for (std::size_t i = 0; i < blocks.size() && i < positions.size(); ++i) {
+    if (blocks[i] == block && positions[i] == position) row = i;
+    present += (present.empty() ? "" : "; ") + blocks[i] + "," + positions[i];
+  }
+  if (row == blocks.size()) {
+    throw BadInput(fits.string() + ": /" + table + " has no group " + block + "," + position + " (groups present: " +
+                   (present.empty() ? std::string("none") : present) + "); give --group BLOCK,POSITION as in the manifest");
+  }
+  const auto column = [&](const std::string& name) {
+    const std::vector<double> values = g.ReadDoubles(name);
+    if (row >= values.size()) {
+      throw BadInput(fits.string() + ": /" + table + "/" + name + " is shorter than the group table; run rockfit batch again");
+    }
+    return values[row];
+  };
+  const auto range = [&](const std::string& name) {
+    FittedParameterRange r;
+    const double pooled = column(name + "_pooled");
+    r.pooled = std::isfinite(pooled);
+    r.value = r.pooled ? pooled : column(name + "_mean");
+    if (r.pooled) {
+      const double width = column(name + "_pooled_95_upper") - column(name + "_pooled_95_lower");
+      r.estimate_sd = std::isfinite(width) ? 0.5 * width / kZ95 : 0.0;
+    }
+    const double spread = column(name + "_std");
+    r.between_trial_sd = std::isfinite(spread) ? spread : 0.0;
+    if (!std::isfinite(r.value)) {
+      throw BadInput(fits.string() + ": group " + block + "," + position + " has no value of " + name);
+    }
+    return r;
+  };
+  FittedGroupRanges out;
+  out.lambda = range("lambda");
+  out.lambda_lat = range("lambda_lat");
+  out.lambda_lon = range("lambda_lon");
+  out.tau_edge = range("tau_edge");
+  out.trials = g.ReadInts("n").at(row);
+  out.description = (out.lambda.pooled && out.lambda_lat.pooled && out.lambda_lon.pooled ? "pooled estimates of "
+                                                                                          : "estimates of ") +
+                    std::to_string(out.trials) + " fits of " + block + " " + position;
   return out;
 }
 

@@ -10,7 +10,8 @@ CLI::App& PlotApp(CLI::App& root) {
   CLI::App* plot = root.add_subcommand(
       "plot", "Draw a figure with gnuplot as PNG or SVG (by the extension of -o): euler (raw and corrected Euler "
               "angles, the paper's Fig. 5), summary (OPMF and AVRF against b2, Fig. 6), fit (measured and simulated "
-              "ω, Fig. 14), parameters (fitted parameters per block and position, Fig. 15)");
+              "ω, Fig. 14), parameters (fitted parameters per block and position, Fig. 15), fragility (fragility curves "
+              "with their binomial bands)");
   plot->require_subcommand(1);
   return *plot;
 }
