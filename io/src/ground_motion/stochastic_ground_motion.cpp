@@ -6,7 +6,7 @@
 #include <string>
 
 #include "rockfit/core/errors.hpp"
-#include "random/synth_random.hpp"
+#include "rockfit/io/synth_random.hpp"
 
 namespace rockfit::io {
 namespace {

@@ -1,4 +1,4 @@
-#include "random/synth_random.hpp"
+#include "rockfit/io/synth_random.hpp"
 
 #include <cmath>
 

@@ -6,7 +6,7 @@
 
 #include "rockfit/core/errors.hpp"
 #include "recording/attitude.hpp"
-#include "random/synth_random.hpp"
+#include "rockfit/io/synth_random.hpp"
 #include "rockfit/io/units.hpp"
 
 namespace rockfit::io {

@@ -7,7 +7,7 @@
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/atomic_file.hpp"
 #include "text/dotnet_float_format.hpp"
-#include "random/synth_random.hpp"
+#include "rockfit/io/synth_random.hpp"
 #include "ximu/ximu_register_map.hpp"
 
 namespace rockfit::io {

@@ -1,6 +1,6 @@
 // Seeded random streams of the synthetic recordings: standard-defined engine, Box–Muller by definition,
 // independent streams, and the moments of the normal variates.
-#include "random/synth_random.hpp"
+#include "rockfit/io/synth_random.hpp"
 
 #include <gtest/gtest.h>
 

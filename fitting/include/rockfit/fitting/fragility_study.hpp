@@ -4,7 +4,7 @@
 //
 //   index = (block · L + level) · S + j       (L levels, S samples per level, j = 0 … S − 1)
 //   record = j mod R                           (every record equally often at every level)
-//   seed_i = SplitMix64(SplitMix64(study seed) + index), the sample's own random stream (io/synth_random.hpp):
+//   seed_i = SplitMix64(SplitMix64(study seed) + index), the sample's own random stream (rockfit/io/synth_random.hpp):
 //            the incidence angle (when random) and λ, λ_lat, λ_lon, in this order
 //
 // so a sample's outcome does not depend on which thread or MPI rank runs it, nor on when. Outcomes are fixed-size
