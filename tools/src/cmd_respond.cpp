@@ -157,7 +157,20 @@ int RunRespond(RespondCommand& cmd) {
     } else {
       const std::size_t comma = cmd.group.find(',');
       if (comma == std::string::npos) throw InvalidArgument("--group expects BLOCK,POSITION such as block2,A");
-      fitted = ReadFittedGroupMean(cmd.fits, cmd.group.substr(0, comma), cmd.group.substr(comma + 1));
+      const std::string block = cmd.group.substr(0, comma), position = cmd.group.substr(comma + 1);
+      fitted = ReadFittedGroupMean(cmd.fits, block, position);
+      // A file of `rockfit batch` carries the group's pooled estimates (/summary/fits/per_group): they weigh
+      // each trial by its interval, where the plain mean does not. A file of `fit -o` has only the mean.
+      try {
+        const FittedGroupRanges ranges = ReadFittedGroupRanges(cmd.fits, block, position);
+        fitted.params.lambda = ranges.lambda.value;
+        fitted.params.lambda_lat = ranges.lambda_lat.value;
+        fitted.params.lambda_lon = ranges.lambda_lon.value;
+        fitted.params.tau_edge = ranges.tau_edge.value;
+        fitted.description = ranges.description;
+      } catch (const BadInput&) {
+        // No per-group table: keep the mean.
+      }
     }
     const double alpha = cmd.params.alpha_rad;
     cmd.params = fitted.params;
@@ -223,8 +236,8 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       ->group("Model");
   app->add_option("--trial", cmd->trial, "With --fits: the fitted values of this trial")->group("Model");
   app->add_option("--group", cmd->group,
-                  "With --fits: BLOCK,POSITION — the mean of the fitted values of that group's feasible trials "
-                  "(pooled estimates, when the fit file has them, are not used)")
+                  "With --fits: BLOCK,POSITION — the group's pooled estimates of λ, λ_lat, λ_lon from a file of "
+                  "`rockfit batch` (the mean where no trial determined a parameter), else the mean of its fits")
       ->group("Model");
   app->add_option("--start", cmd->start,
                   "flat: at rest on the base (default); tilted: released from rest at --alpha on edge V1V2")
