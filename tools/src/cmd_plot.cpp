@@ -174,17 +174,10 @@ int RunPlotEuler(const EulerCommand& cmd) {
   body += "unset multiplot\n";
   figure.Render(body, cmd.picture.output, cmd.picture.width_px, cmd.picture.height_px);
 
-  if (cmd.picture.json) {
-    nlohmann::json j = PictureJson("euler", cmd.picture);
-    j.update({{"trial", d.trial_id},
+  return ReportPicture("euler", cmd.picture, {{"trial", d.trial_id},
                {"from_s", from},
                {"to_s", to},
                {"impacts", marks[0].size()}});
-    PrintJson(j);
-  } else {
-    std::cout << "written " << cmd.picture.output << "\n";
-  }
-  return kExitOk;
 }
 
 // ---------------------------------------------------------------- plot summary
@@ -279,15 +272,8 @@ int RunPlotSummary(const SummaryPlotCommand& cmd) {
   body += "unset multiplot\n";
   figure.Render(body, cmd.picture.output, cmd.picture.width_px, cmd.picture.height_px);
 
-  if (cmd.picture.json) {
-    nlohmann::json j = PictureJson("summary", cmd.picture);
-    j.update({{"groups", summary.groups.size()},
+  return ReportPicture("summary", cmd.picture, {{"groups", summary.groups.size()},
                {"positions", positions}});
-    PrintJson(j);
-  } else {
-    std::cout << "written " << cmd.picture.output << "\n";
-  }
-  return kExitOk;
 }
 
 const CommandRegistration kRegistration([](CLI::App& root) {

@@ -1,5 +1,8 @@
 #include "plot_command.hpp"
 
+#include <iostream>
+
+#include "cli_common.hpp"
 #include "gnuplot.hpp"
 
 namespace rockfit::tools {
@@ -31,6 +34,17 @@ nlohmann::json PictureJson(const std::string& kind, const PictureArgs& args) {
           {"format", ImageFormatFor(args.output) == ImageFormat::kPng ? "png" : "svg"},
           {"width_px", args.width_px},
           {"height_px", args.height_px}};
+}
+
+int ReportPicture(const std::string& kind, const PictureArgs& args, const nlohmann::json& details) {
+  if (args.json) {
+    nlohmann::json j = PictureJson(kind, args);
+    j.update(details);
+    PrintJson(j);
+  } else {
+    std::cout << "written " << args.output << "\n";
+  }
+  return kExitOk;
 }
 
 }  // namespace rockfit::tools

@@ -25,5 +25,8 @@ void AddPictureOptions(CLI::App& app, PictureArgs& args, int default_width_px, i
 // The keys every `rockfit plot KIND --json` prints: kind, output, format ("png" or "svg"), width_px, height_px.
 // Each kind adds its own.
 nlohmann::json PictureJson(const std::string& kind, const PictureArgs& args);
+// What every plot prints when its picture is written: with --json the PictureJson object updated with
+// `details`, else "written FILE". Returns kExitOk.
+int ReportPicture(const std::string& kind, const PictureArgs& args, const nlohmann::json& details);
 
 }  // namespace rockfit::tools

@@ -73,14 +73,7 @@ struct PlotFitCommand {
 int RunPlotFit(const PlotFitCommand& cmd) {
   const FitPlotData d = ReadFitPlotData(cmd.path, cmd.trial);
   RenderFitPlot(d, cmd.picture.output, cmd.picture.width_px, cmd.picture.height_px);
-  if (cmd.picture.json) {
-    nlohmann::json j = PictureJson("fit", cmd.picture);
-    j.update({{"trial", d.trial}, {"epsilon", d.epsilon_rad_s}});
-    PrintJson(j);
-  } else {
-    std::cout << "written " << cmd.picture.output << "\n";
-  }
-  return kExitOk;
+  return ReportPicture("fit", cmd.picture, {{"trial", d.trial}, {"epsilon", d.epsilon_rad_s}});
 }
 
 struct PlotParametersCommand {

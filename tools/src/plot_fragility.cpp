@@ -84,14 +84,7 @@ int RunPlotFragility(const FragilityPlotCommand& cmd) {
   for (const std::string& p : plots) joined += (joined.empty() ? "" : ", ") + p;
   body += "plot " + joined + "\n";
   figure.Render(body, cmd.picture.output, cmd.picture.width_px, cmd.picture.height_px);
-  if (cmd.picture.json) {
-    nlohmann::json j = PictureJson("fragility", cmd.picture);
-    j.update({{"blocks", ids}, {"curves", curves}});
-    PrintJson(j);
-  } else {
-    std::cout << "written " << cmd.picture.output << "\n";
-  }
-  return kExitOk;
+  return ReportPicture("fragility", cmd.picture, {{"blocks", ids}, {"curves", curves}});
 }
 
 const CommandRegistration kRegistration([](CLI::App& root) {

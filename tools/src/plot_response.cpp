@@ -83,14 +83,7 @@ int RunPlotResponse(const ResponsePlotCommand& cmd) {
                       "'#1f77b4' title 'ω_y', {0} using 1:5 with lines lc rgb '#2ca02c' title 'ω_z'\n", s);
   body += "unset multiplot\n";
   figure.Render(body, cmd.picture.output, cmd.picture.width_px, cmd.picture.height_px);
-  if (cmd.picture.json) {
-    nlohmann::json j = PictureJson("response", cmd.picture);
-    j.update({{"end_reason", end_reason}, {"impacts", impacts[0].size()}, {"uplifts", uplifts[0].size()}});
-    PrintJson(j);
-  } else {
-    std::cout << "written " << cmd.picture.output << "\n";
-  }
-  return kExitOk;
+  return ReportPicture("response", cmd.picture, {{"end_reason", end_reason}, {"impacts", impacts[0].size()}, {"uplifts", uplifts[0].size()}});
 }
 
 const CommandRegistration kRegistration([](CLI::App& root) {
