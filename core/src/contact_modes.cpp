@@ -1,6 +1,7 @@
 #include "detail/contact_modes.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace rockfit::core::detail {
 
@@ -28,6 +29,11 @@ GuardValue VertexMode::Guard(int index, const State& y) const {
   }
   const Eigen::Vector3d& n = edge_x_c_[index - 2];
   return {up_B.dot(n), up_rate_B.dot(n)};
+}
+
+double VertexMode::StepBound(const State& y) {
+  const double rate_rad_s = VertexDynamics::AngularVelocity(y).norm();
+  return rate_rad_s > 0.0 ? kMaxTurnPerStep_rad / rate_rad_s : std::numeric_limits<double>::infinity();
 }
 
 int VertexMode::GuardVertex(int guard) const { return neighbours_[guard == kTouchNext ? 0 : 1]; }

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include "detail/conditioned_solve.hpp"
 #include "rockfit/core/errors.hpp"
 
 namespace rockfit::core {
@@ -30,13 +31,8 @@ FacetCandidate SolveCandidate(const ImpactGeometry& g, const Eigen::Vector3d& w_
   system.col(0) = M.col(0);
   system.col(1) = M.col(1);
   system.col(2) = -Eigen::Vector3d::UnitZ();
-  const Eigen::PartialPivLU<Eigen::Matrix3d> lu(system);
-  if (!(lu.rcond() >= kImpactMinReciprocalCondition)) {
-    c.status = ImpactStatus::kSingular;
-    return c;
-  }
-  const Eigen::Vector3d x = lu.solve(rhs);
-  if (!x.allFinite()) {
+  Eigen::Vector3d x;
+  if (!detail::SolveConditioned3(system, rhs, kImpactMinReciprocalCondition, &x)) {
     c.status = ImpactStatus::kSingular;
     return c;
   }

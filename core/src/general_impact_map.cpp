@@ -1,6 +1,6 @@
 #include "rockfit/core/general_impact_map.hpp"
 
-#include <Eigen/LU>
+#include "detail/conditioned_solve.hpp"
 
 namespace rockfit::core {
 
@@ -30,14 +30,8 @@ MapResult GeneralImpactMap(const ImpactGeometry& g, const Eigen::Vector3d& w_min
   const Eigen::Vector3d rhs =
       (g.inertia_C - g.mass_kg * R_R * SkewOf(g.p_b, g.p_C)) * w_minus + tau * Eigen::Vector3d::UnitZ();
   MapResult result;
-  const Eigen::PartialPivLU<Eigen::Matrix3d> lu(lhs);
-  // Written as !(x >= min) so that a NaN condition estimate also counts as singular.
-  if (!(lu.rcond() >= kImpactMinReciprocalCondition)) {
-    result.status = ImpactStatus::kSingular;
-    return result;
-  }
-  const Eigen::Vector3d w_plus = lu.solve(rhs);  // (18)
-  if (!w_plus.allFinite()) {
+  Eigen::Vector3d w_plus;
+  if (!detail::SolveConditioned3(lhs, rhs, kImpactMinReciprocalCondition, &w_plus)) {  // (18)
     result.status = ImpactStatus::kSingular;
     return result;
   }

@@ -49,6 +49,37 @@ BENCHMARK(BM_SimulateWithinBoundsZeno)->Unit(benchmark::kMicrosecond);
 void BM_SimulateWithinBoundsZeno_NoAttitude(benchmark::State& state) { Run(state, WithinBoundsParameters(), false); }
 BENCHMARK(BM_SimulateWithinBoundsZeno_NoAttitude)->Unit(benchmark::kMicrosecond);
 
+// The planar Housner case run to rest (about 4.4 s, 85 facet impacts, 256 Hz samples, default tolerances). The
+// time per simulated second is the reported time divided by the counter t_end_s (also given as us_per_sim_s).
+void RunPlanar(benchmark::State& state, bool sample_attitude) {
+  SimulationOptions options;
+  options.stop = rockfit::core::StopCondition::kRest;
+  options.sample_attitude = sample_attitude;
+  const Block block = rockfit::testing::PlanarHousnerBlock();
+  const ModelParameters params = rockfit::testing::PlanarHousnerParameters();
+  std::size_t impacts = 0;
+  double t_end = 0.0;
+  for (auto _ : state) {
+    const Trajectory tr = rockfit::core::Simulate(block, params, options);
+    benchmark::DoNotOptimize(tr.w_B.data());
+    if (tr.end_reason != rockfit::core::EndReason::kRest) state.SkipWithError("the run did not come to rest");
+    impacts = tr.impacts.size();
+    t_end = tr.t_end_s;
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["impacts"] = static_cast<double>(impacts);
+  state.counters["t_end_s"] = t_end;
+  // Simulated seconds per wall second, inverted by benchmark's kIsRate|kInvert: microseconds per simulated second.
+  state.counters["us_per_sim_s"] = benchmark::Counter(t_end * static_cast<double>(state.iterations()) * 1e-6,
+                                                      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void BM_SimulatePlanarHousnerToRest(benchmark::State& state) { RunPlanar(state, true); }
+BENCHMARK(BM_SimulatePlanarHousnerToRest)->Unit(benchmark::kMicrosecond);
+
+void BM_SimulatePlanarHousnerToRest_NoAttitude(benchmark::State& state) { RunPlanar(state, false); }
+BENCHMARK(BM_SimulatePlanarHousnerToRest_NoAttitude)->Unit(benchmark::kMicrosecond);
+
 }  // namespace
 
 BENCHMARK_MAIN();

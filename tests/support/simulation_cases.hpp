@@ -33,4 +33,18 @@ inline core::ModelParameters WithinBoundsParameters() {
   return p;
 }
 
+// The planar Housner case of the speed targets (docs/design.md §11): a 0.1 × 0.1 × 0.4 m granite block
+// released at α = 0.2 about V1V2 with λ = λ_lon = 1 and λ_lat = 0, so that every facet impact follows (6) and the
+// motion stays in the x–z plane; it comes to rest after about 4.4 s and 85 facet impacts.
+inline core::Block PlanarHousnerBlock() { return core::Block::FromDensity(0.05, 0.05, 0.2, 2692.0); }
+
+inline core::ModelParameters PlanarHousnerParameters() {
+  core::ModelParameters p;
+  p.alpha_rad = 0.2;
+  p.lambda = 1.0;
+  p.lambda_lat = 0.0;
+  p.lambda_lon = 1.0;
+  return p;
+}
+
 }  // namespace rockfit::testing

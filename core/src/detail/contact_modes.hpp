@@ -11,6 +11,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -23,10 +24,16 @@
 
 namespace rockfit::core::detail {
 
+// Largest turn of the body in one integrator step of vertex rocking [rad]: far below the π between two extrema
+// of a vertex height under a steady rotation, so that the event test's one-extremum assumption holds.
+constexpr double kMaxTurnPerStep_rad = 0.5;
+
 class VertexMode {
  public:
   static constexpr int kStateSize = VertexDynamics::kStateSize;
   static constexpr int kNumGuards = 4;
+  // A vertex height can fall below zero and rise again within one step: steps stay below max_step_s.
+  static constexpr bool kGuardsNeedStepBound = true;
   using State = VertexDynamics::State;
   enum GuardIndex { kTouchNext = 0, kTouchPrevious = 1, kOverNext = 2, kOverPrevious = 3 };
 
@@ -38,6 +45,9 @@ class VertexMode {
   // ground motion, detail/ground_modes.hpp): here t is ignored and steps are limited by t_limit alone.
   GuardValue Guard(int index, double /*t*/, const State& y) const { return Guard(index, y); }
   double StepLimit(double /*t*/, double t_limit) const { return t_limit; }
+  // The longest step from state y: a turn of the body by at most kMaxTurnPerStep_rad, so that a vertex height
+  // (A cos(turn) + C under a steady rotation) has at most one extremum per step.
+  static double StepBound(const State& y);
   static bool IsTouchdown(int guard) { return guard == kTouchNext || guard == kTouchPrevious; }
   // The vertex that lands when `guard` fires (a neighbour of the pivot).
   int GuardVertex(int guard) const;
@@ -66,6 +76,11 @@ class EdgeMode {
  public:
   static constexpr int kStateSize = EdgeDynamics::kStateSize;
   static constexpr int kNumGuards = 2;
+  // Neither guard can cross zero and come back: below θ_c the tilt is concave in time (ψ̈ = −(mgR/J_e)
+  // sin(θ_c − ψ) < 0, also for ψ < 0), so once it falls through zero it keeps falling, and beyond θ_c it is convex,
+  // so once the COM passes over the edge it keeps going. A guard positive at both ends of a step is positive
+  // inside it, whatever the step length, and steps need no bound (docs/design.md §4).
+  static constexpr bool kGuardsNeedStepBound = false;
   using State = EdgeDynamics::State;
   enum GuardIndex { kFlat = 0, kOver = 1 };
 
@@ -76,6 +91,7 @@ class EdgeMode {
   GuardValue Guard(int index, const State& y) const;
   GuardValue Guard(int index, double /*t*/, const State& y) const { return Guard(index, y); }
   double StepLimit(double /*t*/, double t_limit) const { return t_limit; }
+  static double StepBound(const State& /*y*/) { return std::numeric_limits<double>::infinity(); }
   static bool IsTouchdown(int guard) { return guard == kFlat; }
 
   Eigen::Quaterniond Attitude(const State& y) const { return q_yaw_ * dynamics_.Tilt(y[0]); }

@@ -27,10 +27,15 @@
 
 namespace rockfit::core::detail {
 
+// Longest step under table motion [s]: the table's acceleration can turn a tilt or a height around within a step
+// whatever the body's rate, so steps stay as short as in free rocking before the turn bound (10 ms).
+constexpr double kGroundStepBound_s = 1e-2;
+
 class GroundVertexMode {
  public:
   static constexpr int kStateSize = VertexMode::kStateSize;
   static constexpr int kNumGuards = VertexMode::kNumGuards;
+  static constexpr bool kGuardsNeedStepBound = true;
   using State = VertexMode::State;
 
   GroundVertexMode(const Block& block, int vertex, double gravity_m_s2, const GroundMotion& ground);
@@ -38,6 +43,7 @@ class GroundVertexMode {
   void operator()(double t, const State& y, State& dydt) const;
   GuardValue Guard(int index, double /*t*/, const State& y) const { return free_.Guard(index, y); }
   double StepLimit(double t, double t_limit) const { return std::min(t_limit, ground_->NextBreak(t)); }
+  static double StepBound(const State& y) { return std::min(kGroundStepBound_s, VertexMode::StepBound(y)); }
   static bool IsTouchdown(int guard) { return VertexMode::IsTouchdown(guard); }
   int GuardVertex(int guard) const { return free_.GuardVertex(guard); }
   Eigen::Quaterniond Attitude(const State& y) const { return free_.Attitude(y); }
@@ -68,6 +74,8 @@ class GroundEdgeMode {
   static constexpr double kLoadRateStep_s = 1e-6;
   static constexpr int kStateSize = EdgeMode::kStateSize;
   static constexpr int kNumGuards = EdgeMode::kNumGuards + 2;
+  // The table's acceleration makes the tilt's curvature change sign: steps stay bounded.
+  static constexpr bool kGuardsNeedStepBound = true;
   using State = EdgeMode::State;
   enum GuardIndex { kFlat = EdgeMode::kFlat, kOver = EdgeMode::kOver, kLoadFirst = 2, kLoadSecond = 3 };
 
@@ -79,6 +87,7 @@ class GroundEdgeMode {
   // rate by a central difference over kLoadRateStep_s along the motion (no closed form).
   GuardValue Guard(int index, double t, const State& y) const;
   double StepLimit(double t, double t_limit) const { return std::min(t_limit, ground_->NextBreak(t)); }
+  static double StepBound(const State& /*y*/) { return kGroundStepBound_s; }
   static bool IsTouchdown(int guard) { return guard == kFlat; }
   Eigen::Quaterniond Attitude(const State& y) const { return free_.Attitude(y); }
   Eigen::Vector3d AngularVelocity_B(const State& y) const { return free_.AngularVelocity_B(y); }

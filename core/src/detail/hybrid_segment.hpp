@@ -50,7 +50,10 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
   const Mode mode_label = mode.mode();
   SegmentOutcome<ModeT> outcome;
   outcome.next_step_hint_s = step_hint_s;
-  Dop853<ModeT::kStateSize> integrator(settings.integrator);
+  Dop853Options integrator_options = settings.integrator;
+  // The step bound only serves the event test of modes whose guards can dip below zero and back inside a step.
+  if (!ModeT::kGuardsNeedStepBound) integrator_options.max_step = std::numeric_limits<double>::infinity();
+  Dop853<ModeT::kStateSize> integrator(integrator_options);
 
   diagnostics->t_begin_s = t_start;
   diagnostics->mode = mode_label;
@@ -109,7 +112,9 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
       outcome.next_step_hint_s = integrator.suggested_step();
       return finish(SegmentEnd::kTimeLimit, -1, integrator.t(), integrator.y());
     }
-    if (integrator.Step(mode, mode.StepLimit(integrator.t(), settings.t_limit_s)) != StepStatus::kOk || !integrator.y().allFinite()) {
+    const double t_step_end =
+        std::min(mode.StepLimit(integrator.t(), settings.t_limit_s), integrator.t() + ModeT::StepBound(integrator.y()));
+    if (integrator.Step(mode, t_step_end) != StepStatus::kOk || !integrator.y().allFinite()) {
       const State y_last = integrator.y().allFinite() ? integrator.y() : y_start;
       return finish(SegmentEnd::kStepFailure, -1, integrator.t(), y_last);
     }

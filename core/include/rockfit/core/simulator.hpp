@@ -80,8 +80,10 @@ struct SimulationOptions {
   double event_time_tol_s = 1e-12;      // event location tolerance
   // Largest integrator step. Events inside a step are found from the guards' slopes at both ends (a dip
   // below zero and back is an interior minimum), which assumes at most one extremum of a vertex height per
-  // step: the bound keeps that true for rotation rates up to a few hundred rad/s.
-  double max_step_s = 1e-2;
+  // step. In vertex rocking the steps are also kept below a turn of the body by kMaxTurnPerStep_rad (0.5 rad,
+  // far from the π between two extrema of a height under rotation); edge rocking needs no bound (its guards
+  // cannot dip and return).
+  double max_step_s = 5e-2;
   std::size_t max_impacts = 100000;     // a run with more impacts ends as Failed
   bool sample_attitude = true;          // false: fill only t, w_B and mode (faster, for fitting)
   std::optional<InitialState> initial_state;
