@@ -23,7 +23,7 @@
 #include "recording_input.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/fitting/fitter.hpp"
-#include "rockfit/fitting/group_pooling.hpp"
+#include "rockfit/fitting/fit_store.hpp"
 #include "rockfit/io/campaign_hdf5.hpp"
 #include "rockfit/io/hdf5_transaction.hpp"
 #include "rockfit/io/manifest.hpp"
@@ -54,169 +54,14 @@ struct TrialOutcome {
   std::string mounting_warning;
 };
 
-const char* const kSummaryParameters[] = {"t0", "alpha", "lambda", "lambda_lat", "lambda_lon", "tau_edge"};
-
-// Interval columns of one /fits/<trial>/parameters table (NaN / "" where a file written before intervals
-// existed lacks them).
-struct StoredIntervals {
-  std::vector<double> lo68, hi68, lo95, hi95;
-  std::vector<std::string> determined;
-};
-
-StoredIntervals ReadStoredIntervals(const io::hdf5::Group& g, std::size_t rows) {
-  StoredIntervals s;
-  auto doubles = [&](const char* name) {
-    const std::string path = std::string("parameters/") + name;
-    return g.IsDataset(path) ? g.ReadDoubles(path) : std::vector<double>(rows, std::nan(""));
-  };
-  s.lo68 = doubles("interval_68_lower");
-  s.hi68 = doubles("interval_68_upper");
-  s.lo95 = doubles("interval_95_lower");
-  s.hi95 = doubles("interval_95_upper");
-  s.determined = g.IsDataset("parameters/determined") ? g.ReadStrings("parameters/determined")
-                                                       : std::vector<std::string>(rows, "");
-  return s;
-}
-
-// One (block, position) group's range of every parameter (fitting::PoolTrials).
-struct GroupRange {
-  std::string block, position;
-  std::int64_t n = 0;
-  std::map<std::string, double> mean, std_dev;
-  std::map<std::string, fitting::PooledEstimate> pooled;
-};
-
-// /summary/fits from every /fits/<trial> in the file: a per-trial table with the intervals and a
-// per-(block, position) table of mean, spread, pooled estimate with its interval and consistency (layout in
-// fitting/README.md). Returns the groups (for the text table of `batch`).
-std::vector<GroupRange> WriteFitSummaryTables(const io::hdf5::Group& root) {
-  std::vector<std::string> trials, blocks, positions;
-  std::map<std::string, std::vector<double>> columns, lo68, hi68, lo95, hi95;
-  std::map<std::string, std::vector<std::string>> determined;
-  std::vector<double> epsilon, wall, mounting_x, mounting_y, mounting_z;
-  std::vector<std::string> mounting;
-  std::vector<std::int64_t> simulations;
-  const io::hdf5::Group fits = root.OpenGroup("fits");
-  for (const std::string& id : fits.Children()) {
-    const io::hdf5::Group g = fits.OpenGroup(id);
-    trials.push_back(id);
-    blocks.push_back(g.GetString("block").value_or(""));
-    positions.push_back(g.GetString("position").value_or(""));
-    const std::vector<std::string> names = g.ReadStrings("parameters/name");
-    const std::vector<double> values = g.ReadDoubles("parameters/value");
-    const StoredIntervals stored = ReadStoredIntervals(g, names.size());
-    for (const char* name : kSummaryParameters) {
-      const auto it = std::find(names.begin(), names.end(), name);
-      const bool found = it != names.end();
-      const std::size_t row = static_cast<std::size_t>(it - names.begin());
-      columns[name].push_back(found ? values[row] : std::nan(""));
-      lo68[name].push_back(found ? stored.lo68[row] : std::nan(""));
-      hi68[name].push_back(found ? stored.hi68[row] : std::nan(""));
-      lo95[name].push_back(found ? stored.lo95[row] : std::nan(""));
-      hi95[name].push_back(found ? stored.hi95[row] : std::nan(""));
-      determined[name].push_back(found ? stored.determined[row] : "");
-    }
-    epsilon.push_back(g.GetDouble("epsilon_rad_s").value_or(std::nan("")));
-    wall.push_back(g.GetDouble("wall_s").value_or(std::nan("")));
-    simulations.push_back(g.GetInt("simulations").value_or(0));
-    mounting.push_back(g.GetString("mounting").value_or(""));
-    const std::vector<double> angles =
-        g.Exists("mounting_angles_deg") ? g.ReadDoubles("mounting_angles_deg") : std::vector<double>{};
-    mounting_x.push_back(angles.size() == 3 ? angles[0] : std::nan(""));
-    mounting_y.push_back(angles.size() == 3 ? angles[1] : std::nan(""));
-    mounting_z.push_back(angles.size() == 3 ? angles[2] : std::nan(""));
-  }
-  const io::hdf5::Group t = root.CreateGroup("summary/fits/per_trial");
-  t.WriteStrings("trial", trials);
-  t.WriteStrings("block", blocks);
-  t.WriteStrings("position", positions);
-  for (const char* name : kSummaryParameters) {
-    const std::string unit = fitting::Unit(fitting::ParseParameterName(name));
-    const std::string n = name;
-    t.WriteDoubles(n, columns[name], unit);
-    t.WriteDoubles(n + "_interval_68_lower", lo68[name], unit + "; NaN: open");
-    t.WriteDoubles(n + "_interval_68_upper", hi68[name], unit + "; NaN: open");
-    t.WriteDoubles(n + "_interval_95_lower", lo95[name], unit + "; NaN: open");
-    t.WriteDoubles(n + "_interval_95_upper", hi95[name], unit + "; NaN: open");
-    t.WriteStrings(n + "_determined", determined[name]);
-  }
-  t.WriteDoubles("epsilon_rad_s", epsilon, "rad/s");
-  t.WriteDoubles("wall_s", wall, "s");
-  t.WriteInts("simulations", simulations, "1");
-  t.WriteStrings("mounting", mounting);
-  t.WriteDoubles("mounting_angle_x_deg", mounting_x, "deg");
-  t.WriteDoubles("mounting_angle_y_deg", mounting_y, "deg");
-  t.WriteDoubles("mounting_angle_z_deg", mounting_z, "deg");
-
-  std::map<std::pair<std::string, std::string>, std::vector<std::size_t>> groups;
-  for (std::size_t i = 0; i < trials.size(); ++i) groups[{blocks[i], positions[i]}].push_back(i);
-  std::vector<GroupRange> ranges;
-  for (const auto& [key, members] : groups) {
-    GroupRange range;
-    range.block = key.first;
-    range.position = key.second;
-    range.n = static_cast<std::int64_t>(members.size());
-    for (const char* name : kSummaryParameters) {
-      double sum = 0.0;
-      for (std::size_t i : members) sum += columns[name][i];
-      const double m = sum / static_cast<double>(members.size());
-      double ss = 0.0;
-      for (std::size_t i : members) ss += (columns[name][i] - m) * (columns[name][i] - m);
-      range.mean[name] = m;
-      range.std_dev[name] = members.size() > 1 ? std::sqrt(ss / static_cast<double>(members.size() - 1)) : std::nan("");
-      std::vector<fitting::TrialEstimate> estimates;
-      for (std::size_t i : members) {
-        estimates.push_back({columns[name][i], {lo95[name][i], hi95[name][i]}, determined[name][i] == "yes"});
-      }
-      range.pooled[name] = fitting::PoolTrials(estimates);
-    }
-    ranges.push_back(range);
-  }
-  const io::hdf5::Group g = root.CreateGroup("summary/fits/per_group");
-  std::vector<std::string> group_block, group_position;
-  std::vector<std::int64_t> count;
-  for (const GroupRange& r : ranges) {
-    group_block.push_back(r.block);
-    group_position.push_back(r.position);
-    count.push_back(r.n);
-  }
-  g.WriteStrings("block", group_block);
-  g.WriteStrings("position", group_position);
-  g.WriteInts("n", count, "1");
-  for (const char* name : kSummaryParameters) {
-    const std::string unit = fitting::Unit(fitting::ParseParameterName(name));
-    const std::string n = name;
-    std::vector<double> mean, std_dev, pooled, lo, hi, chi2, p;
-    std::vector<std::int64_t> n_pooled;
-    for (const GroupRange& r : ranges) {
-      mean.push_back(r.mean.at(name));
-      std_dev.push_back(r.std_dev.at(name));
-      const fitting::PooledEstimate& e = r.pooled.at(name);
-      pooled.push_back(e.n_pooled > 0 ? e.pooled : std::nan(""));
-      lo.push_back(e.interval_95[0]);
-      hi.push_back(e.interval_95[1]);
-      chi2.push_back(e.chi2_per_dof);
-      p.push_back(e.consistency_p);
-      n_pooled.push_back(e.n_pooled);
-    }
-    g.WriteDoubles(n + "_mean", mean, unit);
-    g.WriteDoubles(n + "_std", std_dev, unit + "; the spread between trials");
-    g.WriteDoubles(n + "_pooled", pooled, unit + "; inverse-variance weighted over the determined trials");
-    g.WriteDoubles(n + "_pooled_95_lower", lo, unit);
-    g.WriteDoubles(n + "_pooled_95_upper", hi, unit);
-    g.WriteInts(n + "_n_pooled", n_pooled, "1");
-    g.WriteDoubles(n + "_chi2_per_dof", chi2, "1");
-    g.WriteDoubles(n + "_consistency_p", p, "1; below 0.05 the trials disagree beyond their intervals");
-  }
-  return ranges;
-}
+using GroupRange = fitting::GroupSummary;
 
 // The per-group table of `batch`: pooled estimate [95 % interval], spread, consistency per parameter.
 std::string GroupRangeTable(const std::vector<GroupRange>& ranges) {
   std::string out = fmt::format("{:<10} {:<4} {:>2}  {:<11} {:>34} {:>9} {:>7} {:>7}\n", "block", "pos", "n",
                                 "parameter", "pooled [95 % interval] (pooled/n)", "spread", "χ²/dof", "p");
   for (const GroupRange& r : ranges) {
-    for (const char* name : kSummaryParameters) {
+    for (const char* name : fitting::kSummaryParameters) {
       // t0 is a time in each recording, not a property of the block: no range (the HDF5 table has it anyway).
       if (std::string(name) == "tau_edge" || std::string(name) == "t0") continue;
       const fitting::PooledEstimate& e = r.pooled.at(name);
@@ -230,19 +75,6 @@ std::string GroupRangeTable(const std::vector<GroupRange>& ranges) {
   return out;
 }
 
-// Hashes of the fits already in the file (for --resume).
-std::map<std::string, std::string> StoredSettingsHashes(const std::filesystem::path& path) {
-  std::map<std::string, std::string> hashes;
-  if (!std::filesystem::exists(path) || !io::hdf5::File::IsHdf5(path)) return hashes;
-  const io::hdf5::File file = io::hdf5::File::Open(path);
-  if (!file.Root().IsGroup("fits")) return hashes;
-  const io::hdf5::Group fits = file.Root().OpenGroup("fits");
-  for (const std::string& id : fits.Children()) {
-    hashes[id] = fits.OpenGroup(id).GetString("settings_hash").value_or("");
-  }
-  return hashes;
-}
-
 int RunBatch(const BatchCommand& cmd) {
   const io::Manifest manifest = io::ReadManifest(cmd.manifest);
   if (manifest.trials.empty()) throw BadInput(fmt::format("{}: the manifest lists no trials", cmd.manifest));
@@ -252,7 +84,7 @@ int RunBatch(const BatchCommand& cmd) {
   // Fail early on an output that cannot be written (OutputError, exit 4), before hours of fitting.
   { io::hdf5::Transaction probe(cmd.output); }
 
-  const std::map<std::string, std::string> stored = cmd.resume ? StoredSettingsHashes(cmd.output)
+  const std::map<std::string, std::string> stored = cmd.resume ? fitting::StoredSettingsHashes(cmd.output)
                                                                : std::map<std::string, std::string>{};
   const std::size_t n = manifest.trials.size();
   std::vector<TrialOutcome> outcomes(n);
@@ -274,7 +106,7 @@ int RunBatch(const BatchCommand& cmd) {
         // The trial's mounting as the manifest gives it ("auto" included) changes what is fitted.
         const std::string settings = FitSettingsText(block, fit_args) + "; mounting=" +
                                      (spec.mounting.empty() ? "identity" : spec.mounting);
-        const std::string hash = SettingsHash(settings);
+        const std::string hash = fitting::SettingsHash(settings);
         const auto it = stored.find(o.trial);
         if (it != stored.end() && it->second == hash) {
           o.ok = o.skipped = true;
@@ -296,9 +128,10 @@ int RunBatch(const BatchCommand& cmd) {
           std::lock_guard<std::mutex> lock(write_mutex);
           io::hdf5::Transaction tx(cmd.output, {"/fits/" + o.trial, "/summary/fits"});
           io::WriteFileAttributes(tx.Root(), ROCKFIT_VERSION);
-          WriteFitGroup(tx.Root(), o.trial, {spec.block_id, spec.position, spec.notes}, prepared, summary);
+          fitting::WriteFitGroup(tx.Root(), o.trial, {spec.block_id, spec.position, spec.notes}, prepared.objective,
+                                 prepared.settings, summary);
           io::WriteMountingHdf5(tx.Root().OpenGroup("fits/" + o.trial), recording);
-          last_ranges = WriteFitSummaryTables(tx.Root());
+          last_ranges = fitting::WriteFitSummaryTables(tx.Root());
           tx.Commit();
         }
       } catch (const InvalidArgument& e) {
@@ -349,7 +182,7 @@ int RunBatch(const BatchCommand& cmd) {
   nlohmann::json groups = nlohmann::json::array();
   for (const GroupRange& r : last_ranges) {
     nlohmann::json params = nlohmann::json::object();
-    for (const char* name : kSummaryParameters) {
+    for (const char* name : fitting::kSummaryParameters) {
       const fitting::PooledEstimate& e = r.pooled.at(name);
       params[name] = {{"mean", OrNull(r.mean.at(name))},
                       {"spread", OrNull(r.std_dev.at(name))},
