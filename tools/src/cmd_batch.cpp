@@ -1,31 +1,22 @@
 // `rockfit batch MANIFEST -o fits.h5`: fit every trial of a campaign in parallel into one HDF5 file (docs/design.md §7,
-// §8). Each finished trial is committed through an atomic transaction before the next one is written (a mutex
-// serialises the writers), so killing the batch at any moment loses at most the trials still running, and
-// `--resume` skips the trials the file already holds with the same settings.
+// §8). A front end to fitting::FitCampaign, which commits each finished trial through its own atomic transaction
+// (so killing the batch at any moment loses at most the trials still running) and, with `--resume`, skips the
+// trials the file already holds with the same settings. This file parses, prepares each trial's problem and prints.
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
+#include <exception>
 #include <iostream>
-#include <map>
-#include <mutex>
-#include <thread>
+#include <memory>
 
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
 #include "command_registry.hpp"
 #include "fit_setup.hpp"
-#include "mounting_report.hpp"
 #include "progress_bar.hpp"
 #include "recording_input.hpp"
 #include "rockfit/core/errors.hpp"
-#include "rockfit/fitting/fitter.hpp"
-#include "rockfit/fitting/fit_store.hpp"
-#include "rockfit/io/campaign_hdf5.hpp"
-#include "rockfit/io/hdf5_transaction.hpp"
+#include "rockfit/fitting/fit_campaign.hpp"
 #include "rockfit/io/manifest.hpp"
 #include "rockfit/io/mounting_estimate.hpp"
 
@@ -41,22 +32,16 @@ struct BatchCommand {
   bool json = false;
 };
 
-struct TrialOutcome {
-  std::string trial;
-  bool ok = false;
-  bool skipped = false;
-  int exit_code = kExitOk;
-  std::string message;
-  double epsilon_rad_s = std::nan("");
-  double wall_s = 0.0;
-  std::string mounting;  // applied
-  double mounting_disagreement_deg = std::nan("");
-  std::string mounting_warning;
+// What the command reports of a trial besides the library's outcome: the mounting of its recording.
+struct TrialMounting {
+  std::string applied;
+  double disagreement_deg = std::nan("");
+  std::string warning;
 };
 
+// The per-group table of `batch`: pooled estimate [95 % interval], spread, consistency per parameter.
 using GroupRange = fitting::GroupSummary;
 
-// The per-group table of `batch`: pooled estimate [95 % interval], spread, consistency per parameter.
 std::string GroupRangeTable(const std::vector<GroupRange>& ranges) {
   std::string out = fmt::format("{:<10} {:<4} {:>2}  {:<11} {:>34} {:>9} {:>7} {:>7}\n", "block", "pos", "n",
                                 "parameter", "pooled [95 % interval] (pooled/n)", "spread", "χ²/dof", "p");
@@ -75,112 +60,72 @@ std::string GroupRangeTable(const std::vector<GroupRange>& ranges) {
   return out;
 }
 
-int RunBatch(const BatchCommand& cmd) {
-  const io::Manifest manifest = io::ReadManifest(cmd.manifest);
-  if (manifest.trials.empty()) throw BadInput(fmt::format("{}: the manifest lists no trials", cmd.manifest));
-  if (cmd.jobs < 0) throw InvalidArgument("-j must be ≥ 0 (0: all cores)");
-  MakeParameterSet(cmd.fit);  // option errors before any work
-  fitting::ParseFitMethod(cmd.fit.method);
-  // Fail early on an output that cannot be written (OutputError, exit 4), before hours of fitting.
-  { io::hdf5::Transaction probe(cmd.output); }
-
-  const std::map<std::string, std::string> stored = cmd.resume ? fitting::StoredSettingsHashes(cmd.output)
-                                                               : std::map<std::string, std::string>{};
-  const std::size_t n = manifest.trials.size();
-  std::vector<TrialOutcome> outcomes(n);
-  std::atomic<std::size_t> next{0};
-  std::mutex write_mutex;
-  std::vector<GroupRange> last_ranges;  // the group table of the last commit
-  ProgressBar progress("batch", n, 0, StderrIsTerminal());
-  std::size_t done = 0;
-  FitArgs fit_args = cmd.fit;
-  fit_args.threads = 1;  // parallel over trials, not inside one fit
-
-  auto work = [&] {
-    for (std::size_t i = next.fetch_add(1); i < n; i = next.fetch_add(1)) {
-      const io::TrialSpec& spec = manifest.trials[i];
-      TrialOutcome& o = outcomes[i];
-      o.trial = TrialNameFrom(spec.id);
-      try {
-        const core::Block block = manifest.FindBlock(spec.block_id).ToBlock();
-        // The trial's mounting as the manifest gives it ("auto" included) changes what is fitted.
-        const std::string settings = FitSettingsText(block, fit_args) + "; mounting=" +
-                                     (spec.mounting.empty() ? "identity" : spec.mounting);
-        const std::string hash = fitting::SettingsHash(settings);
-        const auto it = stored.find(o.trial);
-        if (it != stored.end() && it->second == hash) {
-          o.ok = o.skipped = true;
-        } else {
-          const io::Recording recording = LoadManifestTrial(spec);
-          o.mounting = recording.mounting;
-          o.mounting_disagreement_deg = io::MountingDisagreementDeg(recording.mounting_check);
-          o.mounting_warning = recording.mounting_check.warning;
-          PreparedFit prepared = PrepareFit(recording, block, fit_args);
-          prepared.settings = settings;
-          const fitting::FitSummary summary = fitting::Fit(prepared.objective, prepared.start, prepared.options);
-          o.epsilon_rad_s = summary.epsilon_rad_s;
-          o.wall_s = summary.wall_time_s;
-          o.ok = summary.feasible;
-          if (!o.ok) {
-            o.exit_code = kExitNumerical;
-            o.message = "no feasible parameters: " + summary.termination;
-          }
-          std::lock_guard<std::mutex> lock(write_mutex);
-          io::hdf5::Transaction tx(cmd.output, {"/fits/" + o.trial, "/summary/fits"});
-          io::WriteFileAttributes(tx.Root(), ROCKFIT_VERSION);
-          fitting::WriteFitGroup(tx.Root(), o.trial, {spec.block_id, spec.position, spec.notes}, prepared.objective,
-                                 prepared.settings, summary);
-          io::WriteMountingHdf5(tx.Root().OpenGroup("fits/" + o.trial), recording);
-          last_ranges = fitting::WriteFitSummaryTables(tx.Root());
-          tx.Commit();
-        }
-      } catch (const InvalidArgument& e) {
-        o.exit_code = kExitUsage;
-        o.message = e.what();
-      } catch (const BadInput& e) {
-        o.exit_code = kExitBadInput;
-        o.message = e.what();
-      } catch (const OutputError& e) {
-        o.exit_code = kExitCannotWrite;
-        o.message = e.what();
-      } catch (const std::exception& e) {
-        o.exit_code = kExitNumerical;
-        o.message = e.what();
-      }
-      const std::string what = o.skipped ? "already fitted"
-                               : o.ok    ? fmt::format("ε = {:.4g} rad/s in {:.1f} s", o.epsilon_rad_s, o.wall_s)
-                                         : "FAILED: " + o.message;
-      std::lock_guard<std::mutex> lock(write_mutex);
-      progress.Report(++done, o.trial + ": " + what);
-    }
+// The library's trial: settings of the manifest block with the trial's mounting as the manifest gives it ("auto"
+// included, it changes what is fitted); the recording loaded on the worker, its mounting kept in `mounting`.
+fitting::CampaignTrial MakeCampaignTrial(const io::Manifest& manifest, const io::TrialSpec& spec,
+                                         const FitArgs& fit_args, TrialMounting* mounting) {
+  fitting::CampaignTrial trial;
+  trial.id = TrialNameFrom(spec.id);
+  trial.labels = {spec.block_id, spec.position, spec.notes};
+  trial.settings = [&manifest, &spec, fit_args] {
+    const core::Block block = manifest.FindBlock(spec.block_id).ToBlock();
+    return FitSettingsText(block, fit_args) + "; mounting=" + (spec.mounting.empty() ? "identity" : spec.mounting);
   };
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t workers = std::min<std::size_t>(n, cmd.jobs > 0 ? static_cast<std::size_t>(cmd.jobs) : cores);
-  std::vector<std::thread> threads;
-  for (std::size_t w = 1; w < workers; ++w) threads.emplace_back(work);
-  work();
-  for (std::thread& t : threads) t.join();
+  trial.prepare = [&manifest, &spec, fit_args, mounting] {
+    const core::Block block = manifest.FindBlock(spec.block_id).ToBlock();
+    auto recording = std::make_shared<const io::Recording>(LoadManifestTrial(spec));
+    mounting->applied = recording->mounting;
+    mounting->disagreement_deg = io::MountingDisagreementDeg(recording->mounting_check);
+    mounting->warning = recording->mounting_check.warning;
+    PreparedFit prepared = PrepareFit(*recording, block, fit_args);
+    return fitting::PreparedTrial{std::move(prepared.objective), std::move(prepared.start), prepared.options,
+                                  std::move(recording)};
+  };
+  return trial;
+}
 
-  int exit_code = kExitOk;
-  std::size_t failed = 0, skipped = 0;
+// The exit code of a trial that is not ok: the kind of its error (infeasible: numerical).
+int ExitCodeOf(const fitting::TrialOutcome& o) {
+  if (!o.error) return kExitNumerical;
+  try {
+    std::rethrow_exception(o.error);
+  } catch (const InvalidArgument&) {
+    return kExitUsage;
+  } catch (const BadInput&) {
+    return kExitBadInput;
+  } catch (const OutputError&) {
+    return kExitCannotWrite;
+  } catch (...) {
+    return kExitNumerical;
+  }
+}
+
+// The progress line of a finished trial.
+std::string ProgressText(const fitting::TrialOutcome& o) {
+  if (o.status == fitting::TrialStatus::kSkipped) return o.trial + ": already fitted";
+  if (o.ok()) return o.trial + ": " + fmt::format("ε = {:.4g} rad/s in {:.1f} s", o.epsilon_rad_s, o.fit_wall_s);
+  return o.trial + ": FAILED: " + o.message;
+}
+
+nlohmann::json TrialsJson(const fitting::CampaignSummary& s, const std::vector<TrialMounting>& mountings) {
   nlohmann::json trials = nlohmann::json::array();
-  for (const TrialOutcome& o : outcomes) {
-    if (o.skipped) ++skipped;
-    if (!o.ok) {
-      ++failed;
-      exit_code = std::max(exit_code, o.exit_code);
-    }
+  for (std::size_t i = 0; i < s.trials.size(); ++i) {
+    const fitting::TrialOutcome& o = s.trials[i];
     trials.push_back({{"trial", o.trial},
-                      {"ok", o.ok},
-                      {"skipped", o.skipped},
+                      {"ok", o.ok()},
+                      {"skipped", o.status == fitting::TrialStatus::kSkipped},
                       {"epsilon", std::isfinite(o.epsilon_rad_s) ? nlohmann::json(o.epsilon_rad_s) : nlohmann::json()},
-                      {"wall_s", o.wall_s},
-                      {"mounting", o.mounting},
-                      {"mounting_disagreement_deg", OrNull(o.mounting_disagreement_deg)},
+                      {"wall_s", o.fit_wall_s},
+                      {"mounting", mountings[i].applied},
+                      {"mounting_disagreement_deg", OrNull(mountings[i].disagreement_deg)},
                       {"message", o.message}});
   }
+  return trials;
+}
+
+nlohmann::json GroupsJson(const std::vector<GroupRange>& ranges) {
   nlohmann::json groups = nlohmann::json::array();
-  for (const GroupRange& r : last_ranges) {
+  for (const GroupRange& r : ranges) {
     nlohmann::json params = nlohmann::json::object();
     for (const char* name : fitting::kSummaryParameters) {
       const fitting::PooledEstimate& e = r.pooled.at(name);
@@ -194,23 +139,61 @@ int RunBatch(const BatchCommand& cmd) {
     }
     groups.push_back({{"block", r.block}, {"position", r.position}, {"n", r.n}, {"parameters", params}});
   }
+  return groups;
+}
+
+// Mounting warnings, then the failed trials with what to do, on stderr.
+void ReportProblems(const fitting::CampaignSummary& s, const std::vector<TrialMounting>& mountings) {
+  for (std::size_t i = 0; i < s.trials.size(); ++i) {
+    if (!mountings[i].warning.empty()) {
+      std::cerr << "rockfit: warning: " << s.trials[i].trial << ": " << mountings[i].warning << "\n";
+    }
+  }
+  if (s.failed == 0) return;
+  std::cerr << fmt::format("rockfit: {} trial(s) failed:\n", s.failed);
+  for (const fitting::TrialOutcome& o : s.trials) {
+    if (!o.ok()) std::cerr << "  " << o.trial << ": " << o.message << "\n";
+  }
+  std::cerr << "Fix or remove them and re-run with --resume (finished trials are kept).\n";
+}
+
+int RunBatch(const BatchCommand& cmd) {
+  const io::Manifest manifest = io::ReadManifest(cmd.manifest);
+  if (manifest.trials.empty()) throw BadInput(fmt::format("{}: the manifest lists no trials", cmd.manifest));
+  if (cmd.jobs < 0) throw InvalidArgument("-j must be ≥ 0 (0: all cores)");
+  MakeParameterSet(cmd.fit);  // option errors before any work
+  fitting::ParseFitMethod(cmd.fit.method);
+
+  const std::size_t n = manifest.trials.size();
+  FitArgs fit_args = cmd.fit;
+  fit_args.threads = 1;  // parallel over trials, not inside one fit
+  std::vector<TrialMounting> mountings(n);
+  std::vector<fitting::CampaignTrial> trials;
+  for (std::size_t i = 0; i < n; ++i) {
+    trials.push_back(MakeCampaignTrial(manifest, manifest.trials[i], fit_args, &mountings[i]));
+  }
+  fitting::CampaignOptions options;
+  options.num_threads = cmd.jobs;
+  options.resume = cmd.resume;
+  options.rockfit_version = ROCKFIT_VERSION;
+  ProgressBar progress("batch", n, 0, StderrIsTerminal());
+  std::size_t done = 0;
+  const fitting::CampaignSummary s =
+      fitting::FitCampaign(trials, cmd.output, options,
+                           [&](const fitting::TrialOutcome& o, double) { progress.Report(++done, ProgressText(o)); });
+
   if (cmd.json) {
-    PrintJson({{"output", cmd.output}, {"trials", trials}, {"fitted", n - failed - skipped}, {"skipped", skipped},
-               {"failed", failed}, {"groups", groups}});
+    PrintJson({{"output", cmd.output}, {"trials", TrialsJson(s, mountings)}, {"fitted", n - s.failed - s.skipped},
+               {"skipped", s.skipped}, {"failed", s.failed}, {"groups", GroupsJson(s.groups)}});
   } else {
     std::cout << fmt::format("{} trials: {} fitted, {} skipped (already in {} with the same settings), {} failed\n", n,
-                             n - failed - skipped, skipped, cmd.output, failed);
-    if (!last_ranges.empty()) std::cout << GroupRangeTable(last_ranges);
+                             n - s.failed - s.skipped, s.skipped, cmd.output, s.failed);
+    if (!s.groups.empty()) std::cout << GroupRangeTable(s.groups);
   }
-  for (const TrialOutcome& o : outcomes) {
-    if (!o.mounting_warning.empty()) std::cerr << "rockfit: warning: " << o.trial << ": " << o.mounting_warning << "\n";
-  }
-  if (failed > 0) {
-    std::cerr << fmt::format("rockfit: {} trial(s) failed:\n", failed);
-    for (const TrialOutcome& o : outcomes) {
-      if (!o.ok) std::cerr << "  " << o.trial << ": " << o.message << "\n";
-    }
-    std::cerr << "Fix or remove them and re-run with --resume (finished trials are kept).\n";
+  ReportProblems(s, mountings);
+  int exit_code = kExitOk;
+  for (const fitting::TrialOutcome& o : s.trials) {
+    if (!o.ok()) exit_code = std::max(exit_code, ExitCodeOf(o));
   }
   return exit_code;
 }
