@@ -11,6 +11,7 @@
 #include "plot_fit.hpp"
 #include "recording_input.hpp"
 #include "rockfit/core/errors.hpp"
+#include "rockfit/fitting/fit_store.hpp"
 #include "rockfit/fitting/fitter.hpp"
 #include "rockfit/io/campaign_hdf5.hpp"
 #include "rockfit/io/hdf5_transaction.hpp"
@@ -92,7 +93,7 @@ int RunFit(const FitCommand& cmd) {
   if (!cmd.output.empty()) {
     io::hdf5::Transaction tx(cmd.output, {"/fits/" + trial});
     io::WriteFileAttributes(tx.Root(), ROCKFIT_VERSION);
-    WriteFitGroup(tx.Root(), trial, input.labels, prepared, summary);
+    fitting::WriteFitGroup(tx.Root(), trial, input.labels, prepared.objective, prepared.settings, summary);
     io::WriteMountingHdf5(tx.Root().OpenGroup("fits/" + trial), input.recording);
     tx.Commit();
   }

@@ -22,6 +22,7 @@
 #include "ground_motion_args.hpp"
 #include "progress_bar.hpp"
 #include "rockfit/core/errors.hpp"
+#include "rockfit/fitting/fit_store.hpp"
 #include "rockfit/io/hdf5_transaction.hpp"
 #include "sample_ranks.hpp"
 
@@ -192,7 +193,7 @@ int RunFragility(const FragilityCommand& cmd) {
     if (cmd.threads < 0) throw InvalidArgument("-j must be ≥ 0 (0: all cores)");
     if (cmd.round < 0) throw InvalidArgument("--round must be ≥ 0 (0: automatic)");
     study = MakeStudy(cmd);
-    hash = SettingsHash(study.SettingsText());
+    hash = fitting::SettingsHash(study.SettingsText());
     if (ranks.rank() == 0) {
       { io::hdf5::Transaction probe(cmd.output); }  // exit 4 now, not after the study, when it cannot be written
       already_complete = cmd.resume && !std::filesystem::exists(FragilityJournalPath(cmd.output)) &&

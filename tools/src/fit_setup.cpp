@@ -7,7 +7,6 @@
 
 #include "cli_common.hpp"
 #include "rockfit/core/errors.hpp"
-#include "rockfit/io/content_hash.hpp"
 #include "rockfit/fitting/simulator_model.hpp"
 
 namespace rockfit::tools {
@@ -171,8 +170,6 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   return settings;
 }
 
-std::string SettingsHash(const std::string& settings) { return io::HashHex(io::Fnv1a64(settings)); }
-
 nlohmann::json FitResultJson(const std::string& trial, const fitting::FitSummary& s) {
   // The fit's own JSON (FitSummary::ToJson), narrowed to the keys `fit --json` documents (fitting/README.md,
   // "rockfit fit"): one JSON writer for the library, the command line and Python.
@@ -220,93 +217,6 @@ std::string FitResultTable(const std::string& trial, const fitting::FitSummary& 
   for (const std::string& statement : s.uncertainty.statements) out += "data fix     " + statement + "\n";
   for (const fitting::FitWarning& w : s.warnings) out += "warning      " + w.message + "\n";
   return out;
-}
-
-void WriteFitGroup(const io::hdf5::Group& root, const std::string& trial, const io::TrialLabels& labels,
-                   const PreparedFit& fit, const fitting::FitSummary& s) {
-  const io::hdf5::Group g = root.CreateGroup("fits/" + trial);
-  g.SetString("block", labels.block_id);
-  g.SetString("position", labels.position);
-  std::vector<std::string> names, units, fixed_text;
-  std::vector<double> value, lower, upper, std_error, start, lo68, hi68, lo95, hi95;
-  std::vector<std::string> determined;
-  std::vector<std::int64_t> fixed;
-  for (fitting::ParameterId id : fitting::kAllParameters) {
-    const fitting::Parameter& p = s.parameters[id];
-    names.push_back(fitting::Name(id));
-    units.push_back(fitting::Unit(id));
-    value.push_back(p.value);
-    lower.push_back(p.lower);
-    upper.push_back(p.upper);
-    fixed.push_back(p.fixed ? 1 : 0);
-    std_error.push_back(s.std_error[static_cast<std::size_t>(id)]);
-    start.push_back(s.start.value(id));
-    const std::size_t k = static_cast<std::size_t>(id);
-    lo68.push_back(s.uncertainty.interval_68[k][0]);
-    hi68.push_back(s.uncertainty.interval_68[k][1]);
-    lo95.push_back(s.uncertainty.interval_95[k][0]);
-    hi95.push_back(s.uncertainty.interval_95[k][1]);
-    determined.push_back(s.uncertainty.determined[k] ? fitting::ToString(*s.uncertainty.determined[k]) : "fixed");
-  }
-  const io::hdf5::Group table = g.CreateGroup("parameters");
-  table.WriteStrings("name", names);
-  table.WriteStrings("unit", units);
-  table.WriteDoubles("value", value, "per row: see the unit dataset");
-  table.WriteDoubles("lower", lower, "per row: see the unit dataset");
-  table.WriteDoubles("upper", upper, "per row: see the unit dataset");
-  table.WriteInts("fixed", fixed, "1");
-  table.WriteDoubles("std_error", std_error, "per row: see the unit dataset");
-  table.WriteDoubles("start", start, "per row: see the unit dataset");
-  table.WriteDoubles("interval_68_lower", lo68, "per row: see the unit dataset; NaN: open");
-  table.WriteDoubles("interval_68_upper", hi68, "per row: see the unit dataset; NaN: open");
-  table.WriteDoubles("interval_95_lower", lo95, "per row: see the unit dataset; NaN: open");
-  table.WriteDoubles("interval_95_upper", hi95, "per row: see the unit dataset; NaN: open");
-  table.WriteStrings("determined", determined);
-  std::vector<double> correlation(fitting::kNumParameters * fitting::kNumParameters, std::nan(""));
-  if (s.uncertainty.correlation.rows() == static_cast<Eigen::Index>(fitting::kNumParameters)) {
-    for (std::size_t a = 0; a < fitting::kNumParameters; ++a) {
-      for (std::size_t b = 0; b < fitting::kNumParameters; ++b) {
-        correlation[a * fitting::kNumParameters + b] = s.uncertainty.correlation(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
-      }
-    }
-  }
-  table.WriteMatrix("correlation", correlation, fitting::kNumParameters, fitting::kNumParameters, "1");
-  g.SetDouble("epsilon_rad_s", s.epsilon_rad_s);
-  g.SetDouble("epsilon_initial_rad_s", s.epsilon_initial_rad_s);
-  g.SetDouble("t_end_s", s.t_end_s);
-  g.SetInt("simulations", s.simulations);
-  g.SetDouble("wall_s", s.wall_time_s);
-  g.SetString("termination", s.termination);
-  g.SetString("method", fitting::ToString(s.method));
-  g.SetString("uncertainty_method", fitting::ToString(s.uncertainty.method));
-  g.SetString("uncertainty", s.uncertainty.description);
-  g.SetDouble("noise_correlation_factor", s.uncertainty.correlation_factor);
-  g.SetInt("feasible", s.feasible ? 1 : 0);
-  g.SetString("settings", fit.settings);
-  g.SetString("settings_hash", SettingsHash(fit.settings));
-  g.SetString("model", s.model_description);
-  std::vector<std::string> warnings;
-  for (const fitting::FitWarning& w : s.warnings) warnings.push_back(std::string(fitting::ToString(w.kind)) + ": " + w.message);
-  g.WriteStrings("warnings", warnings);
-  g.WriteStrings("summary", {s.FullReport()});
-
-  // The simulated ω at the measured times of the window (the nodes of (28)) and the model's impact log.
-  fitting::ErrorNodes nodes;
-  fitting::ModelOutput output;
-  fit.objective.EvaluateDetailed(s.parameters, &nodes, &output);
-  g.WriteDoubles("time_s", nodes.t_s, "s");
-  g.WriteVectors("w_B_measured", nodes.w_m_B, "rad/s");
-  if (output.ok() && output.w_B.size() == nodes.size()) g.WriteVectors("w_B_simulated", output.w_B, "rad/s");
-  std::vector<double> impact_t;
-  std::vector<std::string> impact_kind;
-  const double t0 = s.parameters.value(fitting::ParameterId::kT0);
-  for (const fitting::ModelEvent& e : output.events) {
-    impact_t.push_back(t0 + e.t_s);
-    impact_kind.push_back(e.kind);
-  }
-  const io::hdf5::Group impacts = g.CreateGroup("impacts");
-  impacts.WriteDoubles("t_s", impact_t, "s");
-  impacts.WriteStrings("kind", impact_kind);
 }
 
 }  // namespace rockfit::tools

@@ -1,9 +1,8 @@
 // What `rockfit fit` and `rockfit batch` share: the fit options on the command line, the fitting problem of one
-// recording (objective, data-driven start, window end), the JSON of a result and the /fits/<trial> HDF5 group
-// (layout in fitting/README.md, "Command line and HDF5 /fits").
+// recording (objective, data-driven start, window end), its settings text and the JSON of a result. The /fits
+// HDF5 group is the fitting library's (rockfit/fitting/fit_store.hpp).
 #pragma once
 
-#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -18,8 +17,6 @@
 #include "rockfit/fitting/initial_guess.hpp"
 #include "rockfit/fitting/objective.hpp"
 #include "rockfit/fitting/trial_problem.hpp"
-#include "rockfit/io/campaign_hdf5.hpp"
-#include "rockfit/io/hdf5_file.hpp"
 #include "rockfit/io/recording.hpp"
 
 namespace rockfit::tools {
@@ -69,11 +66,9 @@ fitting::ParameterSet MakeParameterSet(const FitArgs& args);
 PreparedFit PrepareFit(const io::Recording& recording, const core::Block& block, const FitArgs& args);
 
 // The canonical text of every setting that changes a fit of `block` (not the recording): method, budget,
-// window end, bounds and fixed flags, block geometry. Stored with each fit; --resume compares its hash.
+// window end, bounds and fixed flags, block geometry. Stored with each fit; --resume compares its hash
+// (fitting::SettingsHash).
 std::string FitSettingsText(const core::Block& block, const FitArgs& args);
-
-// FNV-1a of the settings text, as 16 hex digits.
-std::string SettingsHash(const std::string& settings);
 
 // The documented JSON of one fit: trial, parameters (value, lower, upper, fixed, std_error, interval_68,
 // interval_95, determined), correlation, uncertainty_method, uncertainty, epsilon, epsilon_initial, t_end,
@@ -82,9 +77,5 @@ nlohmann::json FitResultJson(const std::string& trial, const fitting::FitSummary
 
 // A table for terminals.
 std::string FitResultTable(const std::string& trial, const fitting::FitSummary& summary);
-
-// Writes /fits/<trial> under `root` (the group must not exist: callers replace it through the transaction).
-void WriteFitGroup(const io::hdf5::Group& root, const std::string& trial, const io::TrialLabels& labels,
-                   const PreparedFit& fit, const fitting::FitSummary& summary);
 
 }  // namespace rockfit::tools

@@ -1,10 +1,12 @@
 #include "fitted_parameters.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/fitting/fit_store.hpp"
 #include "rockfit/io/hdf5_file.hpp"
 
 namespace rockfit::tools {
@@ -12,14 +14,9 @@ namespace {
 
 // The fitted values by name ("alpha", "lambda", …) of /fits/<trial>/parameters.
 std::map<std::string, double> ParameterTable(const io::hdf5::Group& fit) {
-  const std::vector<std::string> names = fit.ReadStrings("parameters/name");
-  const std::vector<double> values = fit.ReadDoubles("parameters/value");
-  if (names.size() != values.size()) {
-    throw BadInput(fit.file_name() + ": " + fit.path() + "/parameters has " + std::to_string(names.size()) +
-                   " names but " + std::to_string(values.size()) + " values; write the fit again with rockfit fit -o");
-  }
+  const fitting::StoredParameters stored = fitting::ReadFitParameters(fit);
   std::map<std::string, double> table;
-  for (std::size_t k = 0; k < names.size(); ++k) table[names[k]] = values[k];
+  for (std::size_t k = 0; k < stored.size(); ++k) table[stored.name[k]] = stored.value[k];
   return table;
 }
 
@@ -40,6 +37,26 @@ core::ModelParameters FromTable(const std::map<std::string, double>& table, cons
   return p;
 }
 
+// One parameter of a per-group row: the pooled estimate with the standard error behind its 95 % interval (else
+// the mean) and the spread between the trials.
+FittedParameterRange RangeOf(const fitting::GroupSummary& g, const char* name, const std::string& file) {
+  constexpr double kZ95 = 1.959963984540054;  // the pooled 95 % interval is ±1.96 standard errors
+  const fitting::PooledEstimate& e = g.pooled.at(name);
+  FittedParameterRange r;
+  r.pooled = std::isfinite(e.pooled);
+  r.value = r.pooled ? e.pooled : g.mean.at(name);
+  if (r.pooled) {
+    const double width = e.interval_95[1] - e.interval_95[0];
+    r.estimate_sd = std::isfinite(width) ? 0.5 * width / kZ95 : 0.0;
+  }
+  const double spread = g.std_dev.at(name);
+  r.between_trial_sd = std::isfinite(spread) ? spread : 0.0;
+  if (!std::isfinite(r.value)) {
+    throw BadInput(file + ": group " + g.block + "," + g.position + " has no value of " + name);
+  }
+  return r;
+}
+
 }  // namespace
 
 FittedParameters ReadFittedTrial(const std::filesystem::path& fits, const std::string& trial) {
@@ -47,9 +64,7 @@ FittedParameters ReadFittedTrial(const std::filesystem::path& fits, const std::s
   const io::hdf5::Group root = file.Root();
   if (!root.IsGroup("fits/" + trial)) {
     std::string present;
-    if (root.IsGroup("fits")) {
-      for (const std::string& name : root.OpenGroup("fits").Children()) present += (present.empty() ? "" : ", ") + name;
-    }
+    for (const std::string& name : fitting::StoredFitTrials(root)) present += (present.empty() ? "" : ", ") + name;
     throw BadInput(fits.string() + ": no fit of trial '" + trial + "' (/fits holds: " +
                    (present.empty() ? std::string("nothing") : present) + "); run rockfit fit … -o " + fits.string() +
                    " or rockfit batch first");
@@ -69,17 +84,13 @@ FittedParameters ReadFittedGroupMean(const std::filesystem::path& fits, const st
   std::map<std::string, double> sums;
   std::set<std::string> groups_present;
   FittedParameters out;
-  if (root.IsGroup("fits")) {
-    const io::hdf5::Group all = root.OpenGroup("fits");
-    for (const std::string& trial : all.Children()) {
-      const io::hdf5::Group fit = all.OpenGroup(trial);
-      const std::string b = fit.GetString("block").value_or("");
-      const std::string pos = fit.GetString("position").value_or("");
-      groups_present.insert(b + "," + pos);
-      if (b != block || pos != position || fit.GetInt("feasible").value_or(1) == 0) continue;
-      for (const auto& [name, value] : ParameterTable(fit)) sums[name] += value;
-      out.trials.push_back(trial);
-    }
+  for (const std::string& trial : fitting::StoredFitTrials(root)) {
+    const io::hdf5::Group fit = root.OpenGroup("fits/" + trial);
+    const fitting::StoredFitLabels labels = fitting::ReadFitLabels(fit);
+    groups_present.insert(labels.block + "," + labels.position);
+    if (labels.block != block || labels.position != position || !labels.feasible) continue;
+    for (const auto& [name, value] : ParameterTable(fit)) sums[name] += value;
+    out.trials.push_back(trial);
   }
   if (out.trials.empty()) {
     std::string present;
@@ -100,55 +111,29 @@ double FittedParameterRange::TotalSd() const {
 
 FittedGroupRanges ReadFittedGroupRanges(const std::filesystem::path& fits, const std::string& block,
                                        const std::string& position) {
-  constexpr double kZ95 = 1.959963984540054;  // the pooled 95 % interval is ±1.96 standard errors
   const io::hdf5::File file = io::hdf5::File::Open(fits);
   const io::hdf5::Group root = file.Root();
-  const std::string table = "summary/fits/per_group";
-  if (!root.IsGroup(table)) {
-    throw BadInput(fits.string() + ": no /" + table + " (pooled estimates and spreads per block and position); it is "
-                   "written by `rockfit batch MANIFEST -o " + fits.string() + "`");
+  if (!fitting::HasFitGroupSummaries(root)) {
+    throw BadInput(fits.string() + ": no /summary/fits/per_group (pooled estimates and spreads per block and "
+                   "position); it is written by `rockfit batch MANIFEST -o " + fits.string() + "`");
   }
-  const io::hdf5::Group g = root.OpenGroup(table);
-  const std::vector<std::string> blocks = g.ReadStrings("block"), positions = g.ReadStrings("position");
-  std::size_t row = blocks.size();
-  std::string present;
-  for (std::size_t i = 0; i < blocks.size() && i < positions.size(); ++i) {
-    if (blocks[i] == block && positions[i] == position) row = i;
-    present += (present.empty() ? "" : "; ") + blocks[i] + "," + positions[i];
+  const std::vector<fitting::GroupSummary> groups = fitting::ReadFitGroupSummaries(root);
+  const auto row = std::find_if(groups.begin(), groups.end(), [&](const fitting::GroupSummary& g) {
+    return g.block == block && g.position == position;
+  });
+  if (row == groups.end()) {
+    std::string present;
+    for (const fitting::GroupSummary& g : groups) present += (present.empty() ? "" : "; ") + g.block + "," + g.position;
+    throw BadInput(fits.string() + ": /summary/fits/per_group has no group " + block + "," + position +
+                   " (groups present: " + (present.empty() ? std::string("none") : present) +
+                   "); give --group BLOCK,POSITION as in the manifest");
   }
-  if (row == blocks.size()) {
-    throw BadInput(fits.string() + ": /" + table + " has no group " + block + "," + position + " (groups present: " +
-                   (present.empty() ? std::string("none") : present) + "); give --group BLOCK,POSITION as in the manifest");
-  }
-  const auto column = [&](const std::string& name) {
-    const std::vector<double> values = g.ReadDoubles(name);
-    if (row >= values.size()) {
-      throw BadInput(fits.string() + ": /" + table + "/" + name + " is shorter than the group table; run rockfit batch again");
-    }
-    return values[row];
-  };
-  const auto range = [&](const std::string& name) {
-    FittedParameterRange r;
-    const double pooled = column(name + "_pooled");
-    r.pooled = std::isfinite(pooled);
-    r.value = r.pooled ? pooled : column(name + "_mean");
-    if (r.pooled) {
-      const double width = column(name + "_pooled_95_upper") - column(name + "_pooled_95_lower");
-      r.estimate_sd = std::isfinite(width) ? 0.5 * width / kZ95 : 0.0;
-    }
-    const double spread = column(name + "_std");
-    r.between_trial_sd = std::isfinite(spread) ? spread : 0.0;
-    if (!std::isfinite(r.value)) {
-      throw BadInput(fits.string() + ": group " + block + "," + position + " has no value of " + name);
-    }
-    return r;
-  };
   FittedGroupRanges out;
-  out.lambda = range("lambda");
-  out.lambda_lat = range("lambda_lat");
-  out.lambda_lon = range("lambda_lon");
-  out.tau_edge = range("tau_edge");
-  out.trials = g.ReadInts("n").at(row);
+  out.lambda = RangeOf(*row, "lambda", fits.string());
+  out.lambda_lat = RangeOf(*row, "lambda_lat", fits.string());
+  out.lambda_lon = RangeOf(*row, "lambda_lon", fits.string());
+  out.tau_edge = RangeOf(*row, "tau_edge", fits.string());
+  out.trials = row->n;
   out.description = (out.lambda.pooled && out.lambda_lat.pooled && out.lambda_lon.pooled ? "pooled estimates of "
                                                                                           : "estimates of ") +
                     std::to_string(out.trials) + " fits of " + block + " " + position;
