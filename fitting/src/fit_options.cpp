@@ -83,6 +83,11 @@ void GlobalStageOptions::Validate() const {
                                       continuation_step_fraction));
   }
   RequirePositive(t0_halfwidth_s, "global.t0_halfwidth_s");
+  if (!(simulation_rel_tol == 0.0 || (simulation_rel_tol >= 1e-14 && simulation_rel_tol <= 1e-3))) {
+    throw InvalidArgument(fmt::format(
+        "fit option global.simulation_rel_tol must be 0 (the model's own) or lie in [1e-14, 1e-3], got {}",
+        simulation_rel_tol));
+  }
   RequirePositive(alpha_halfwidth_rad, "global.alpha_halfwidth_rad");
 }
 

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,14 @@
 
 namespace rockfit::fitting {
 namespace {
+
+// The problem the global stage searches: the same one, at the stage's looser simulator tolerance when the model
+// has one (GlobalStageOptions::simulation_rel_tol).
+Objective GlobalStageObjective(const Objective& objective, const GlobalStageOptions& g) {
+  if (g.simulation_rel_tol == 0.0) return objective;
+  std::shared_ptr<const TrajectoryModel> loose = objective.model().WithLooserTolerance(g.simulation_rel_tol);
+  return loose ? objective.WithModel(std::move(loose)) : objective;
+}
 
 // ε above this fraction of the mean measured |ω| over the window is reported as a poor fit. Fits of the
 // synthetic sample trials reach 1–2 % (gyro noise and ringing); a wrong block, mounting or window gives tens of
@@ -82,7 +91,15 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
   std::vector<std::pair<Eigen::VectorXd, double>> global_candidates;
 
   if (options.global.enabled) {
-    const GlobalStageResult g = RunGlobalStage(objective, x_start, options);
+    GlobalStageResult g = RunGlobalStage(GlobalStageObjective(objective, options.global), x_start, options);
+    // The stage's ε came from its own tolerance: every candidate is evaluated again at the model's.
+    for (auto& [x, epsilon] : g.candidates) epsilon = objective.EvaluateFree(x).epsilon_rad_s;
+    if (g.feasible) {
+      const Evaluation best = objective.EvaluateFree(g.best_x);
+      g.best_epsilon_rad_s = best.epsilon_rad_s;
+      g.feasible = best.feasible;
+      g.evaluations += 1 + static_cast<std::int64_t>(g.candidates.size());
+    }
     global_candidates = g.candidates;
     const std::string termination =
         fmt::format("{} of {} first-window starts feasible, {} continued to the full window", g.num_feasible_samples,

@@ -70,6 +70,13 @@ Objective Objective::WithWindowEnd(double t_end_s) const {
   return copy;
 }
 
+Objective Objective::WithModel(std::shared_ptr<const TrajectoryModel> model) const {
+  if (!model) throw InvalidArgument("the fitting problem needs a trajectory model");
+  Objective copy = *this;
+  copy.model_ = std::move(model);
+  return copy;
+}
+
 ParameterSet Objective::WithFree(const Eigen::VectorXd& x) const {
   ParameterSet set = parameters_;
   for (std::size_t i = 0; i < free_ids_.size(); ++i) set[free_ids_[i]].value = x[static_cast<Eigen::Index>(i)];

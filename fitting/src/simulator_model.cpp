@@ -99,6 +99,15 @@ void SimulatorModel::Evaluate(const core::ModelParameters& params, const std::ve
   for (const core::ImpactRecord& impact : trajectory.impacts) out->events.push_back({impact.t_s, impact.kind});
 }
 
+std::shared_ptr<const TrajectoryModel> SimulatorModel::WithLooserTolerance(double rel_tol) const {
+  SimulatorModelOptions loose = options_;
+  // The absolute tolerance keeps the default ratio (1e-14 to 1e-12): ω and the quaternion are of order one.
+  constexpr double kAbsoluteToRelative = 1e-2;
+  loose.simulation.rel_tol = std::max(options_.simulation.rel_tol, rel_tol);
+  loose.simulation.abs_tol = std::max(options_.simulation.abs_tol, kAbsoluteToRelative * rel_tol);
+  return std::make_shared<const SimulatorModel>(block_, loose);
+}
+
 std::string SimulatorModel::Describe() const {
   return fmt::format("hybrid simulator, rel_tol {:g}, abs_tol {:g}", options_.simulation.rel_tol,
                      options_.simulation.abs_tol);

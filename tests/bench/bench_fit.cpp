@@ -115,6 +115,31 @@ void BM_Error28Evaluation(benchmark::State& state) {
 }
 BENCHMARK(BM_Error28Evaluation)->Unit(benchmark::kMicrosecond);
 
+// The same evaluation with the simulator's relative tolerance 10^-Arg (absolute tolerance 100 times smaller): what a
+// looser tolerance saves, and how far ε moves (epsilon_change_rel against the default 1e-12).
+void BM_Error28EvaluationAtTolerance(benchmark::State& state) {
+  const Trial& trial = SyntheticTrial();
+  fitting::ParameterSet p = fitting::ParameterSet::Defaults();
+  p[fitting::ParameterId::kT0] = {1.0, 0.9, 1.1, false};
+  p[fitting::ParameterId::kAlpha].value = 0.197;
+  p[fitting::ParameterId::kLambda].value = 2.185;
+  p[fitting::ParameterId::kLambdaLat].value = -2.032;
+  p[fitting::ParameterId::kLambdaLon].value = 0.197;
+  fitting::SimulatorModelOptions loose;
+  loose.simulation.rel_tol = std::pow(10.0, -static_cast<double>(state.range(0)));
+  loose.simulation.abs_tol = 1e-2 * loose.simulation.rel_tol;
+  const fitting::Objective reference(trial.signal, 1.8, std::make_shared<fitting::SimulatorModel>(trial.block), p);
+  const fitting::Objective objective(trial.signal, 1.8, std::make_shared<fitting::SimulatorModel>(trial.block, loose), p);
+  double epsilon = 0.0;
+  for (auto _ : state) {
+    epsilon = objective.Evaluate(p).epsilon_rad_s;
+    benchmark::ClobberMemory();
+  }
+  const double epsilon_reference = reference.Evaluate(p).epsilon_rad_s;
+  state.counters["epsilon_change_rel"] = std::abs(epsilon - epsilon_reference) / epsilon_reference;
+}
+BENCHMARK(BM_Error28EvaluationAtTolerance)->Arg(12)->Arg(10)->Arg(9)->Arg(8)->Arg(7)->Unit(benchmark::kMicrosecond);
+
 // The bundled sample campaign, every trial, two trials at a time (as `rockfit batch -j 2`, without the files).
 void FitSampleCampaign(benchmark::State& state, fitting::IntervalMethod intervals) {
   const std::filesystem::path manifest_path = std::filesystem::path(ROCKFIT_SOURCE_DIR) / "data-samples" / "manifest.toml";

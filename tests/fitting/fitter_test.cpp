@@ -142,6 +142,16 @@ TEST(Fit, RefusesAProblemWithoutFreeParameters) {
   EXPECT_THROW(Fit(objective, all_fixed, FitOptions{}), InvalidArgument);
 }
 
+TEST(Fit, GlobalStageToleranceOutsideItsRangeIsRefused) {
+  FitOptions options;
+  for (double bad : {-1e-9, 1e-16, 0.5, std::nan("")}) {
+    options.global.simulation_rel_tol = bad;
+    EXPECT_THROW(options.Validate(), InvalidArgument) << bad;
+  }
+  options.global.simulation_rel_tol = 0.0;  // the model's own
+  EXPECT_NO_THROW(options.Validate());
+}
+
 TEST(FitSummary, JsonCarriesTheDocumentedKeys) {
   const auto trial = MakeAnalyticTrial(0.2, 0.8, -2.0, 0.6, RealisticDisturbances());
   const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));

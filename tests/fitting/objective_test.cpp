@@ -94,6 +94,20 @@ TEST(Objective, FreeVectorRoundTripsInTheOrderOfTheFreeParameters) {
   EXPECT_EQ(objective.FreeValues(back), x);
 }
 
+TEST(Objective, WithModelEvaluatesTheOtherModelAndSharesTheCounters) {
+  auto first = std::make_shared<ConstantModel>();
+  auto second = std::make_shared<ConstantModel>();
+  const Objective objective(ZeroSignal(), 1.0, first, StartAt(0.1, 0.7, 0.0));
+  const Objective other = objective.WithModel(second);
+  EXPECT_NEAR(other.Evaluate(StartAt(0.1, 0.4, 0.0)).epsilon_rad_s, 0.4, 1e-14);
+  EXPECT_TRUE(first->last_times.empty());
+  EXPECT_FALSE(second->last_times.empty());
+  EXPECT_EQ(objective.counters().runs(), 1);  // the run of `other` counts for the whole fit
+  EXPECT_THROW(objective.WithModel(nullptr), InvalidArgument);
+  // A model without a tolerance has no looser copy.
+  EXPECT_EQ(first->WithLooserTolerance(1e-9), nullptr);
+}
+
 TEST(Objective, RejectsAWindowEndOutsideTheRecording) {
   auto model = std::make_shared<ConstantModel>();
   EXPECT_THROW(Objective(ZeroSignal(), 1.5, model, StartAt(0.1, 0.7, 0.0)), InvalidArgument);

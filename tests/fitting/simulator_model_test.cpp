@@ -35,6 +35,31 @@ TEST(SimulatorModel, SamplesAreTheSimulatorsOwnAtTheRequestedTimes) {
   EXPECT_EQ(out.events.front().t_s, reference.impacts.front().t_s);
 }
 
+TEST(SimulatorModel, ALooserToleranceLoosensButNeverTightensAndStaysCloseToTheDefault) {
+  const SimulatorModel model(kBlock);
+  const auto loose = std::dynamic_pointer_cast<const SimulatorModel>(model.WithLooserTolerance(1e-9));
+  ASSERT_TRUE(loose);
+  EXPECT_EQ(loose->options().simulation.rel_tol, 1e-9);
+  EXPECT_DOUBLE_EQ(loose->options().simulation.abs_tol, 1e-11);
+  // Asking for a tighter tolerance than the model's own keeps the model's own.
+  const auto same = std::dynamic_pointer_cast<const SimulatorModel>(model.WithLooserTolerance(1e-15));
+  ASSERT_TRUE(same);
+  EXPECT_EQ(same->options().simulation.rel_tol, model.options().simulation.rel_tol);
+  EXPECT_EQ(same->options().simulation.abs_tol, model.options().simulation.abs_tol);
+  // The samples move by far less than the gyro noise (~1e-3 rad/s) through ~15 impacts.
+  std::vector<double> times;
+  for (int k = 0; k <= 256; ++k) times.push_back(k / 256.0);
+  ModelOutput fine, coarse;
+  model.Evaluate(Params(0.2, -2.0), times, &fine);
+  loose->Evaluate(Params(0.2, -2.0), times, &coarse);
+  ASSERT_TRUE(fine.ok() && coarse.ok());
+  ASSERT_EQ(fine.events.size(), coarse.events.size());
+  double largest_rad_s = 0.0;
+  for (std::size_t k = 0; k < times.size(); ++k) largest_rad_s = std::max(largest_rad_s, (fine.w_B[k] - coarse.w_B[k]).norm());
+  EXPECT_LT(largest_rad_s, 1e-6);
+  EXPECT_GT(fine.events.size(), 5u);
+}
+
 TEST(SimulatorModel, ATiltBeyondTheCriticalAngleIsAFailureNotAnException) {
   ModelOutput out;
   SimulatorModel(kBlock).Evaluate(Params(0.26, 0.0), {0.0, 0.1, 0.5}, &out);  // θ_c = atan(0.05/0.2) = 0.245

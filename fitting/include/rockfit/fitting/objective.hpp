@@ -59,6 +59,8 @@ class Objective {
   Objective WithParameters(ParameterSet parameters) const;
   // The same problem with the window ending at another t_end (inside the recording, InvalidArgument otherwise).
   Objective WithWindowEnd(double t_end_s) const;
+  // The same problem (and shared counters) with another trajectory model, e.g. one at a looser tolerance.
+  Objective WithModel(std::shared_ptr<const TrajectoryModel> model) const;
 
   const MeasuredSignal& signal() const { return *signal_; }
   double t_end_s() const { return t_end_s_; }

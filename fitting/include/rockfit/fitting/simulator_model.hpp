@@ -28,6 +28,7 @@ class SimulatorModel final : public TrajectoryModel {
   void Evaluate(const core::ModelParameters& params, const std::vector<double>& t_after_release_s,
                 ModelOutput* out) const override;
   std::string Describe() const override;
+  std::shared_ptr<const TrajectoryModel> WithLooserTolerance(double rel_tol) const override;
   const core::Block& block() const { return block_; }
   const SimulatorModelOptions& options() const { return options_; }
 

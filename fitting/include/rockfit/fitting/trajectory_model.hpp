@@ -3,6 +3,7 @@
 // cheap analytic ones. A model must be thread-safe: the global stage evaluates it from several threads at once.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,9 @@ class TrajectoryModel {
                         ModelOutput* out) const = 0;
   // One line for summaries ("hybrid simulator, rel_tol 1e-10", …).
   virtual std::string Describe() const = 0;
+  // A copy that integrates with the relative tolerance rel_tol where that is looser than its own (for searches that
+  // only need the basin); null when the model has no tolerance to loosen.
+  virtual std::shared_ptr<const TrajectoryModel> WithLooserTolerance(double /*rel_tol*/) const { return nullptr; }
 };
 
 }  // namespace rockfit::fitting
