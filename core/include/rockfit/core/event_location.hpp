@@ -2,10 +2,12 @@
 // the COM over its support, a tilt) must not go below zero unnoticed, not even when it dips below and comes
 // back within the step. Steps are short against the rocking time scale, so g has at most one extremum per
 // step; the sign of ġ at the two step ends tells whether an interior minimum exists, and that minimum is
-// located on the dense output. Roots are polished with GSL's Brent solver.
+// bounded from below (TimeBelowZeroNearMinimum) or searched on the dense output. Roots are polished with GSL's
+// Brent solver.
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 
 namespace rockfit::core {
@@ -40,6 +42,43 @@ class RootPolisher {
   void* solver_;  // gsl_root_fsolver*
 };
 
+// Inside a step where g has its minimum (ġ(t0) < 0 < ġ(t1)): a time at which g < 0, or empty when g stays
+// non-negative. g is convex around its minimum over a step (a height under a steady rotation is A cos θ + C, and
+// a step turns the body by less than π/2), so the tangents at the ends of any bracket of the minimum bound g
+// from below: their intersection's value is a lower bound, and once it is positive there is no dip. Each new
+// point is the secant root of ġ (exact for a parabola), with bisection when the bracket does not shrink by a
+// quarter. A dip that clears the ground by more than the tangents' gap ends without any evaluation.
+template <class Eval>
+std::optional<double> TimeBelowZeroNearMinimum(const Eval& eval, double t0, const GuardValue& g0, double t1,
+                                               const GuardValue& g1, double extremum_tol) {
+  constexpr int kMaxIterations = 100;
+  double a = t0, b = t1;
+  GuardValue ga = g0, gb = g1;
+  double width_before = 2.0 * (b - a);
+  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+    // The tangents at a and b meet at t_x; by convexity g ≥ their value there on [a, b].
+    const double slope_gap = gb.rate - ga.rate;  // > 0
+    const double t_x = (gb.value - ga.value + ga.rate * a - gb.rate * b) / -slope_gap;
+    const double lower_bound = ga.value + ga.rate * (std::clamp(t_x, a, b) - a);
+    if (lower_bound > 0.0) return std::nullopt;
+    const double width = b - a;
+    if (width < extremum_tol) {
+      const double mid = 0.5 * (a + b);
+      return eval(mid).value < 0.0 ? std::optional<double>(mid) : std::nullopt;
+    }
+    double x = a - ga.rate * width / slope_gap;  // the secant root of ġ
+    if (!(x > a && x < b) || width > 0.75 * width_before) x = 0.5 * (a + b);
+    width_before = width;
+    const GuardValue gx = eval(x);
+    if (!std::isfinite(gx.value) || !std::isfinite(gx.rate)) return std::nullopt;
+    if (gx.value < 0.0) return x;
+    if (gx.rate == 0.0) return std::nullopt;  // the minimum itself, and it is not below zero
+    (gx.rate < 0.0 ? a : b) = x;
+    (gx.rate < 0.0 ? ga : gb) = gx;
+  }
+  return std::nullopt;
+}
+
 // The first time in [t0, t1] at which g becomes negative, or empty. `eval(t)` returns g and ġ at any t
 // of the step (from the dense output); g0, g1 are the values at the step ends. A guard that starts at
 // g(t0) ≤ 0 (a vertex that has just left the ground) counts as crossing only after it has been positive,
@@ -54,12 +93,18 @@ std::optional<double> FindFirstDescent(const Eval& eval, double t0, const GuardV
   if (g0.value <= 0.0) {
     if (g0.rate < 0.0 || (g0.rate == 0.0 && g1.value < 0.0)) return t0;  // moving into the ground at once
     if (g1.value >= 0.0) return std::nullopt;
-    // It rose and fell back below within the step: the crossing follows the maximum.
+    // It rose and fell back below within the step: the crossing follows the maximum. Any point where g > 0
+    // brackets it with t1 (g rises to its one maximum and falls from there); the secant root of ġ is tried first,
+    // the located maximum only if g is not positive there.
     if (!(g1.rate < 0.0)) return t0;
-    const std::optional<double> t_max = polisher.Solve(rate, t0, t1, extremum_tol);
-    if (!t_max) return t0;
-    if (!(value(*t_max) > 0.0)) return t0;
-    const std::optional<double> root = polisher.Solve(value, *t_max, t1, time_tol);
+    double t_positive = t0 + (t1 - t0) * g0.rate / (g0.rate - g1.rate);
+    if (!(t_positive > t0 && t_positive < t1) || !(value(t_positive) > 0.0)) {
+      const std::optional<double> t_max = polisher.Solve(rate, t0, t1, extremum_tol);
+      if (!t_max) return t0;
+      if (!(value(*t_max) > 0.0)) return t0;
+      t_positive = *t_max;
+    }
+    const std::optional<double> root = polisher.Solve(value, t_positive, t1, time_tol);
     return root ? root : std::optional<double>(t1);
   }
   if (g1.value < 0.0) {
@@ -67,11 +112,12 @@ std::optional<double> FindFirstDescent(const Eval& eval, double t0, const GuardV
     return root ? root : std::optional<double>(t1);
   }
   if (g0.rate < 0.0 && g1.rate > 0.0) {
-    // An interior minimum: a dip below zero and back within the step.
-    const std::optional<double> t_min = polisher.Solve(rate, t0, t1, extremum_tol);
-    if (!t_min || !(value(*t_min) < 0.0)) return std::nullopt;
-    const std::optional<double> root = polisher.Solve(value, t0, *t_min, time_tol);
-    return root ? root : std::optional<double>(*t_min);
+    // An interior minimum: a dip below zero and back within the step. The crossing lies between t0 (g > 0) and
+    // the first point found below zero (g falls to its minimum and stays negative up to that point).
+    const std::optional<double> below = TimeBelowZeroNearMinimum(eval, t0, g0, t1, g1, extremum_tol);
+    if (!below) return std::nullopt;
+    const std::optional<double> root = polisher.Solve(value, t0, *below, time_tol);
+    return root ? root : std::optional<double>(*below);
   }
   return std::nullopt;
 }
