@@ -54,6 +54,38 @@ TEST(FindFirstDescent, IgnoresADipThatStaysAboveZero) {
   EXPECT_FALSE(Find({0.5, 0.5, 1e-6}, 0.0, 1.0, polisher).has_value());
 }
 
+// A vertex height under a steady rotation, A cos(ω t) + C, over steps that turn the body by 0.5 rad at most.
+struct RotatingHeight {
+  double amplitude_m, offset_m, rate_rad_s;
+  GuardValue operator()(double t) const {
+    return {amplitude_m * std::cos(rate_rad_s * t) + offset_m, -amplitude_m * rate_rad_s * std::sin(rate_rad_s * t)};
+  }
+};
+
+TEST(TimeBelowZeroNearMinimum, ADipThatClearsTheGroundNeedsNoEvaluationAndOneBelowIsFound) {
+  int evaluations = 0;
+  const RotatingHeight clears{0.05, 0.0501, 3.0};  // lowest point 0.1 mm above the ground at t = π/3 s
+  const auto counted = [&](double t) { ++evaluations; return clears(t); };
+  const double t0 = M_PI / 3.0 - 0.1, t1 = M_PI / 3.0 + 0.05;  // the step turns the body by 0.45 rad
+  EXPECT_FALSE(TimeBelowZeroNearMinimum(counted, t0, clears(t0), t1, clears(t1), 1e-9).has_value());
+  EXPECT_LE(evaluations, 3);
+  for (double clearance_m : {1e-4, 1e-7, 1e-10}) {  // lowest point below the ground by this much
+    const RotatingHeight dips{0.05, 0.05 - clearance_m, 3.0};
+    const auto below = TimeBelowZeroNearMinimum(dips, t0, dips(t0), t1, dips(t1), 1e-9);
+    ASSERT_TRUE(below.has_value()) << clearance_m;
+    EXPECT_LT(dips(*below).value, 0.0) << clearance_m;
+  }
+}
+
+TEST(FindFirstDescent, FindsTheFirstCrossingOfARotatingHeightThatDipsBelowTheGround) {
+  RootPolisher polisher;
+  const RotatingHeight dips{0.05, 0.0499, 3.0};  // below the ground for |3t − π| < acos(0.998)
+  const double t0 = M_PI / 3.0 - 0.1, t1 = M_PI / 3.0 + 0.05;
+  const auto root = FindFirstDescent(dips, t0, dips(t0), t1, dips(t1), polisher, kTimeTol);
+  ASSERT_TRUE(root.has_value());
+  EXPECT_NEAR(*root, (M_PI - std::acos(0.998)) / 3.0, 1e-11);
+}
+
 TEST(FindFirstDescent, GuardLeavingTheSurfaceCountsOnlyAfterItHasBeenPositive) {
   RootPolisher polisher;
   // g(0) = 0 rising, back to zero at 0.5 and negative after: the crossing is at 0.5, not at 0.
