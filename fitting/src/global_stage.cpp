@@ -43,25 +43,21 @@ std::optional<double> FirstImpactTime(const Objective& objective, const Paramete
 
 // Nelder–Mead on `window` from the full parameter set `from`; returns the full parameter set it reached.
 ParameterSet MinimizeIn(const Objective& window, const ParameterSet& from, const NelderMeadOptions& options,
-                        std::int64_t* evaluations, bool* converged) {
+                        bool* converged) {
   const LocalResult r = MakeNelderMead(options)->Minimize(window, window.FreeValues(from));
-  *evaluations += r.evaluations;
   *converged = r.converged;
   return window.WithFree(r.x);
 }
 
 // The best of `points` equally spaced values of `id` over its bounds (and its current value), others held.
-ParameterSet ScanParameter(const Objective& window, const ParameterSet& at, ParameterId id, int points,
-                           std::int64_t* evaluations) {
+ParameterSet ScanParameter(const Objective& window, const ParameterSet& at, ParameterId id, int points) {
   const Parameter& p = window.parameters()[id];
   ParameterSet best = at;
   Evaluation best_e = window.Evaluate(at);
-  ++*evaluations;
   for (int j = 0; j < points; ++j) {
     ParameterSet trial = at;
     trial[id].value = p.lower + (p.upper - p.lower) * (j + 0.5) / points;
     const Evaluation e = window.Evaluate(trial);
-    ++*evaluations;
     if (e.feasible && (!best_e.feasible || e.epsilon_rad_s < best_e.epsilon_rad_s)) {
       best = trial;
       best_e = e;
@@ -75,11 +71,10 @@ ParameterSet ScanParameter(const Objective& window, const ParameterSet& at, Para
 // is first scanned over its bounds at `scan_points` values (0: no scans).
 ParameterSet ContinueToFullWindow(const Objective& objective, ParameterSet at, double window_end, double t_release_ref,
                                   std::vector<ParameterId> acting, int scan_points, const FitOptions& options,
-                                  const NelderMeadOptions& step_options, std::int64_t* evaluations, bool* converged) {
+                                  const NelderMeadOptions& step_options, bool* converged) {
   const GlobalStageOptions& g = options.global;
   while (window_end < objective.t_end_s()) {
     window_end = std::min(objective.t_end_s(), t_release_ref + (window_end - t_release_ref) * g.continuation_growth);
-    *evaluations += 1 + 2 * static_cast<std::int64_t>(objective.num_free());
     const std::optional<Objective> window =
         ActingParameters(objective.WithWindowEnd(window_end), at, options.identifiability);
     if (!window) continue;
@@ -88,10 +83,10 @@ ParameterSet ContinueToFullWindow(const Objective& objective, ParameterSet at, d
     for (ParameterId id : window->free_ids()) {
       if (std::find(acting.begin(), acting.end(), id) != acting.end()) continue;
       acting.push_back(id);
-      if (scan_points > 0) at = ScanParameter(*window, at, id, scan_points, evaluations);
+      if (scan_points > 0) at = ScanParameter(*window, at, id, scan_points);
     }
     bool step_converged = false;
-    at = MinimizeIn(*window, at, step_options, evaluations, &step_converged);
+    at = MinimizeIn(*window, at, step_options, &step_converged);
     *converged = step_converged;
   }
   return at;
@@ -101,7 +96,7 @@ ParameterSet ContinueToFullWindow(const Objective& objective, ParameterSet at, d
 // λ_lat at `joint_scan_lat_points` values within ±joint_scan_lat_fraction of its value at `at`, evaluated in
 // parallel. Returns the best grid point; nullopt when λ or λ_lat is not free, λ_lat is 0 or no point is feasible.
 std::optional<ParameterSet> JointLambdaScan(const Objective& objective, const ParameterSet& at,
-                                            const GlobalStageOptions& g, int num_threads, std::int64_t* evaluations) {
+                                            const GlobalStageOptions& g, int num_threads) {
   const auto& ids = objective.free_ids();
   const bool both_free = std::find(ids.begin(), ids.end(), ParameterId::kLambda) != ids.end() &&
                          std::find(ids.begin(), ids.end(), ParameterId::kLambdaLat) != ids.end();
@@ -122,7 +117,6 @@ std::optional<ParameterSet> JointLambdaScan(const Objective& objective, const Pa
   }
   std::vector<Evaluation> values(grid.size());
   ParallelFor(grid.size(), num_threads, [&](std::size_t i) { values[i] = objective.Evaluate(grid[i]); });
-  *evaluations += static_cast<std::int64_t>(grid.size());
   std::optional<std::size_t> best;
   for (std::size_t i = 0; i < grid.size(); ++i) {
     if (values[i].feasible && (!best || values[i].epsilon_rad_s < values[*best].epsilon_rad_s)) best = i;
@@ -139,8 +133,7 @@ std::optional<ParameterSet> JointLambdaScan(const Objective& objective, const Pa
 // re-fitted by a parabola through three values ridge_lambda_lon_step apart around its value at the previous
 // point, walking outwards from `at`. Returns the best point (nullopt when t0 or α is not free or the model has
 // no impact).
-std::optional<ParameterSet> RidgeScan(const Objective& objective, const ParameterSet& at, const GlobalStageOptions& g,
-                                      std::int64_t* evaluations) {
+std::optional<ParameterSet> RidgeScan(const Objective& objective, const ParameterSet& at, const GlobalStageOptions& g) {
   const auto& ids = objective.free_ids();
   auto is_free = [&](ParameterId id) { return std::find(ids.begin(), ids.end(), id) != ids.end(); };
   if (!is_free(ParameterId::kT0) || !is_free(ParameterId::kAlpha) || g.ridge_points < 1) return std::nullopt;
@@ -153,7 +146,6 @@ std::optional<ParameterSet> RidgeScan(const Objective& objective, const Paramete
   auto fall_time = [&](double alpha_rad) -> std::optional<double> {
     ParameterSet q = at;
     q[ParameterId::kAlpha].value = alpha_rad;
-    ++*evaluations;
     const std::optional<double> t1 = FirstImpactTime(objective, q);
     if (!t1) return std::nullopt;
     return *t1 - q.value(ParameterId::kT0);
@@ -167,7 +159,6 @@ std::optional<ParameterSet> RidgeScan(const Objective& objective, const Paramete
   double best_epsilon = 0.0;
   auto evaluate = [&](const ParameterSet& q) {
     const Evaluation e = objective.Evaluate(q);
-    ++*evaluations;
     if (e.feasible && (!best || e.epsilon_rad_s < best_epsilon)) {
       best = q;
       best_epsilon = e.epsilon_rad_s;
@@ -229,210 +220,255 @@ void GlobalSamplingBox(const Objective& objective, const Eigen::VectorXd& estima
   }
 }
 
+namespace {
+
+// The first window's starts: the estimate and a Latin hypercube over the sampling box, evaluated in parallel; when
+// none is feasible (e.g. the estimate's tilt is beyond the critical angle) a second hypercube over the bounds.
+struct FirstWindowSamples {
+  std::vector<Eigen::VectorXd> points;
+  std::vector<Evaluation> values;
+  Eigen::VectorXd lower, upper;  // the box the points were drawn from
+  int num_feasible() const {
+    return static_cast<int>(std::count_if(values.begin(), values.end(), [](const Evaluation& e) { return e.feasible; }));
+  }
+};
+
+FirstWindowSamples SampleFirstWindow(const Objective& first, const Eigen::VectorXd& first_estimate,
+                                     const FitOptions& options) {
+  const GlobalStageOptions& g = options.global;
+  FirstWindowSamples s;
+  GlobalSamplingBox(first, first_estimate, g, &s.lower, &s.upper);
+  s.points = {first_estimate};
+  for (Eigen::VectorXd& p : LatinHypercube(s.lower, s.upper, g.num_samples, g.seed)) s.points.push_back(std::move(p));
+  s.values.resize(s.points.size());
+  ParallelFor(s.points.size(), options.num_threads, [&](std::size_t i) { s.values[i] = first.EvaluateFree(s.points[i]); });
+  if (s.num_feasible() > 0) return s;
+  s.lower = first.FreeLower();
+  s.upper = first.FreeUpper();
+  std::vector<Eigen::VectorXd> wide = LatinHypercube(s.lower, s.upper, g.num_samples, g.seed + 1);
+  const std::size_t offset = s.points.size();
+  s.points.insert(s.points.end(), wide.begin(), wide.end());
+  s.values.resize(s.points.size());
+  ParallelFor(wide.size(), options.num_threads,
+              [&](std::size_t i) { s.values[offset + i] = first.EvaluateFree(s.points[offset + i]); });
+  return s;
+}
+
+// The first index in `order` that is feasible with λ_lat of sign `sign`: the sign selects the vertex the block
+// rocks on after the facet impact, so each sign keeps its best start (docs/design.md §3).
+template <class LambdaLatOf, class FeasibleAt>
+std::optional<std::size_t> BestOfSign(const std::vector<std::size_t>& order, int sign, const LambdaLatOf& lambda_lat_of,
+                                      const FeasibleAt& feasible_at) {
+  for (std::size_t i : order) {
+    if (feasible_at(i) && sign * lambda_lat_of(i) > 0.0) return i;
+  }
+  return std::nullopt;
+}
+
+// Indices in ascending order of `epsilon_of` (stable).
+template <class EpsilonOf>
+std::vector<std::size_t> OrderByEpsilon(std::size_t n, const EpsilonOf& epsilon_of) {
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return epsilon_of(a) < epsilon_of(b); });
+  return order;
+}
+
+// The starts to polish: the best of each sign of λ_lat, then the best others, all distinct in the box.
+std::vector<std::size_t> ChooseStartsToPolish(const Objective& first, const FirstWindowSamples& s,
+                                              const GlobalStageOptions& g) {
+  const std::vector<std::size_t> order =
+      OrderByEpsilon(s.points.size(), [&](std::size_t i) { return s.values[i].epsilon_rad_s; });
+  const Eigen::VectorXd box = (s.upper - s.lower).cwiseMax(1e-300);
+  std::vector<std::size_t> chosen;
+  auto distinct = [&](std::size_t candidate) {
+    for (std::size_t c : chosen) {
+      if ((s.points[c] - s.points[candidate]).cwiseQuotient(box).norm() < kDistinctStartDistance) return false;
+    }
+    return true;
+  };
+  const auto& ids = first.free_ids();
+  const auto lat = std::find(ids.begin(), ids.end(), ParameterId::kLambdaLat);
+  if (lat != ids.end()) {
+    const auto k = static_cast<Eigen::Index>(lat - ids.begin());
+    for (int sign : {+1, -1}) {
+      const std::optional<std::size_t> best = BestOfSign(
+          order, sign, [&](std::size_t i) { return s.points[i][k]; }, [&](std::size_t i) { return s.values[i].feasible; });
+      if (best && distinct(*best)) chosen.push_back(*best);
+    }
+  }
+  for (std::size_t i : order) {
+    if (static_cast<int>(chosen.size()) >= g.num_polished) break;
+    if (distinct(i)) chosen.push_back(i);
+  }
+  return chosen;
+}
+
+// Nelder–Mead from each chosen start in parallel; the starts carried on: the best of each λ_lat sign (the better
+// of the two first), then the best others, num_continued in all.
+std::vector<ParameterSet> PolishAndCarry(const Objective& first, const FirstWindowSamples& s,
+                                         const std::vector<std::size_t>& chosen, const FitOptions& options) {
+  const GlobalStageOptions& g = options.global;
+  NelderMeadOptions polish = options.nelder_mead;
+  polish.max_evaluations = g.polish_evaluations;
+  std::vector<LocalResult> runs(chosen.size());
+  ParallelFor(chosen.size(), options.num_threads, [&](std::size_t i) {
+    runs[i] = MakeNelderMead(polish)->Minimize(first, s.points[chosen[i]]);
+  });
+  const auto epsilon_of = [&](std::size_t i) { return runs[i].epsilon_rad_s; };
+  const std::vector<std::size_t> by_epsilon = OrderByEpsilon(runs.size(), epsilon_of);
+  std::vector<std::size_t> carry;
+  for (int sign : {+1, -1}) {
+    const std::optional<std::size_t> best = BestOfSign(
+        by_epsilon, sign, [&](std::size_t i) { return first.WithFree(runs[i].x).value(ParameterId::kLambdaLat); },
+        [&](std::size_t i) { return runs[i].feasible; });
+    if (best) carry.push_back(*best);
+  }
+  for (std::size_t i : by_epsilon) {
+    if (std::find(carry.begin(), carry.end(), i) == carry.end()) carry.push_back(i);
+  }
+  std::stable_sort(carry.begin(), carry.begin() + std::min<std::ptrdiff_t>(2, static_cast<std::ptrdiff_t>(carry.size())),
+                   [&](std::size_t a, std::size_t b) { return epsilon_of(a) < epsilon_of(b); });
+  carry.resize(std::min(carry.size(), static_cast<std::size_t>(g.num_continued)));
+  std::vector<ParameterSet> carried;
+  for (std::size_t i : carry) carried.push_back(first.WithFree(runs[i].x));
+  return carried;
+}
+
+// What every carried start shares on its way to the full window.
+struct Continuation {
+  double first_window_end_s = 0.0;
+  double t_release_ref_s = 0.0;  // windows grow by continuation_growth after this time
+  std::vector<ParameterId> first_acting;
+  NelderMeadOptions step_options;
+};
+
+// The local searches of the continuation: short, from a smaller simplex, so that the search stays in the basin it
+// tracks from one window to the next.
+NelderMeadOptions ContinuationStepOptions(const FitOptions& options) {
+  NelderMeadOptions step_options = options.nelder_mead;
+  step_options.max_evaluations = options.global.continuation_evaluations;
+  for (double& step : step_options.initial_step) step *= options.global.continuation_step_fraction;
+  return step_options;
+}
+
+// One carried start to the full window; there, every parameter sampled over its whole bounds (not t0 and α, which
+// phase 1 pins down) is scanned once more: later impacts can make its landscape multimodal where the first windows
+// were not (e.g. λ with a long cascade of small lateral edge impacts). Then a last local search.
+ParameterSet ContinueAndRescan(const Objective& objective, const ParameterSet& start, const Continuation& plan,
+                               const FitOptions& options, bool* converged) {
+  const GlobalStageOptions& g = options.global;
+  ParameterSet at = ContinueToFullWindow(objective, start, plan.first_window_end_s, plan.t_release_ref_s,
+                                         plan.first_acting, g.scan_points, options, plan.step_options, converged);
+  if (!g.final_scan) return at;
+  ParameterSet scanned = at;
+  const Evaluation before = objective.Evaluate(at);
+  for (ParameterId id : objective.free_ids()) {
+    if (id == ParameterId::kT0 || id == ParameterId::kAlpha) continue;
+    scanned = ScanParameter(objective, scanned, id, g.scan_points);
+  }
+  if (objective.Evaluate(scanned).epsilon_rad_s < before.epsilon_rad_s) {
+    bool step_converged = false;
+    at = MinimizeIn(objective, scanned, plan.step_options, &step_converged);
+    *converged = step_converged;
+  }
+  return at;
+}
+
+// Step 4: the best of a joint (λ, λ_lat) scan joins the best point as a second candidate; each is carried once
+// more from the first window to the full window (every parameter acts already: no scans; the first windows see t0,
+// α and λ_lon best, and λ_lat and λ, weakly seen there, are settled by the last search), scanned along the
+// t0–α–λ_lon ridge and searched locally. Candidates are independent: deterministic in any thread count.
+void Refine(const Objective& objective, const Continuation& plan, const FitOptions& options, GlobalStageResult* result) {
+  const ParameterSet best_set = objective.WithFree(result->best_x);
+  std::vector<ParameterSet> candidates = {best_set};
+  if (std::optional<ParameterSet> joint = JointLambdaScan(objective, best_set, options.global, options.num_threads)) {
+    candidates.push_back(*joint);
+  }
+  std::vector<ParameterSet> refined(candidates.size());
+  std::vector<Evaluation> refined_e(candidates.size());
+  std::vector<char> refine_converged(candidates.size(), 0);
+  ParallelFor(candidates.size(), options.num_threads, [&](std::size_t i) {
+    bool ok = true;
+    ParameterSet at = ContinueToFullWindow(objective, candidates[i], plan.first_window_end_s, plan.t_release_ref_s,
+                                           objective.free_ids(), 0, options, plan.step_options, &ok);
+    const Evaluation continued_e = objective.Evaluate(at);
+    const std::optional<ParameterSet> ridge = RidgeScan(objective, at, options.global);
+    if (ridge && objective.Evaluate(*ridge).epsilon_rad_s < continued_e.epsilon_rad_s) at = *ridge;
+    at = MinimizeIn(objective, at, plan.step_options, &ok);
+    refined[i] = at;
+    refined_e[i] = objective.Evaluate(at);
+    refine_converged[i] = ok ? 1 : 0;
+  });
+  for (std::size_t i = 0; i < refined.size(); ++i) {
+    if (refined_e[i].feasible) result->candidates.emplace_back(objective.FreeValues(refined[i]), refined_e[i].epsilon_rad_s);
+    if (refined_e[i].feasible && refined_e[i].epsilon_rad_s < result->best_epsilon_rad_s) {
+      result->best_x = objective.FreeValues(refined[i]);
+      result->best_epsilon_rad_s = refined_e[i].epsilon_rad_s;
+      result->converged = refine_converged[i] != 0;
+    }
+  }
+}
+
+}  // namespace
+
 GlobalStageResult RunGlobalStage(const Objective& objective, const Eigen::VectorXd& estimate_in,
                                  const FitOptions& options) {
   options.Validate();
   const GlobalStageOptions& g = options.global;
   const auto clock_start = std::chrono::steady_clock::now();
+  const std::int64_t runs_before = objective.counters().runs();
   GlobalStageResult result;
   const Eigen::VectorXd estimate = estimate_in.cwiseMax(objective.FreeLower()).cwiseMin(objective.FreeUpper());
   const ParameterSet estimate_set = objective.WithFree(estimate);
-  result.evaluations += 1;
 
-  // 1. The first window and the parameters acting in it.
+  // 1. The first window, the parameters acting in it, and the polished starts to carry from it.
   const std::optional<double> t1 = FirstImpactTime(objective, estimate_set);
   double t_first_end = objective.t_end_s();
   if (t1 && *t1 + g.first_window_s < objective.t_end_s()) t_first_end = *t1 + g.first_window_s;
   result.first_window_end_s = t_first_end;
-  result.evaluations += 1 + 2 * static_cast<std::int64_t>(objective.num_free());
   const std::optional<Objective> first =
       ActingParameters(objective.WithWindowEnd(t_first_end), estimate_set, options.identifiability);
-
-  std::vector<ParameterSet> polished;
-  std::vector<double> polished_epsilon;
+  std::vector<ParameterSet> carried;
   if (first) {
-    Eigen::VectorXd lower, upper;
-    const Eigen::VectorXd first_estimate = first->FreeValues(estimate_set);
-    GlobalSamplingBox(*first, first_estimate, g, &lower, &upper);
-    std::vector<Eigen::VectorXd> points = {first_estimate};
-    for (Eigen::VectorXd& p : LatinHypercube(lower, upper, g.num_samples, g.seed)) points.push_back(std::move(p));
-    std::vector<Evaluation> values(points.size());
-    ParallelFor(points.size(), options.num_threads, [&](std::size_t i) { values[i] = first->EvaluateFree(points[i]); });
-    auto count_feasible = [&] {
-      return static_cast<int>(std::count_if(values.begin(), values.end(), [](const Evaluation& e) { return e.feasible; }));
-    };
-    result.evaluations += static_cast<std::int64_t>(points.size());
-    if (count_feasible() == 0) {
-      // The estimate sits in an infeasible region (e.g. a tilt beyond the critical angle): sample the whole
-      // bounds instead.
-      lower = first->FreeLower();
-      upper = first->FreeUpper();
-      std::vector<Eigen::VectorXd> wide = LatinHypercube(lower, upper, g.num_samples, g.seed + 1);
-      const std::size_t offset = points.size();
-      points.insert(points.end(), wide.begin(), wide.end());
-      values.resize(points.size());
-      ParallelFor(wide.size(), options.num_threads,
-                  [&](std::size_t i) { values[offset + i] = first->EvaluateFree(points[offset + i]); });
-      result.evaluations += static_cast<std::int64_t>(wide.size());
-    }
-    result.num_samples = static_cast<int>(points.size());
-    result.num_feasible_samples = count_feasible();
-
-    // Starts to polish: the best of each sign of λ_lat, then the best distinct others.
-    std::vector<std::size_t> order(points.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return values[a].epsilon_rad_s < values[b].epsilon_rad_s; });
-    const Eigen::VectorXd box = (upper - lower).cwiseMax(1e-300);
-    std::vector<std::size_t> chosen;
-    auto distinct = [&](std::size_t candidate) {
-      for (std::size_t c : chosen) {
-        if ((points[c] - points[candidate]).cwiseQuotient(box).norm() < kDistinctStartDistance) return false;
-      }
-      return true;
-    };
-    const auto& ids = first->free_ids();
-    const auto lat = std::find(ids.begin(), ids.end(), ParameterId::kLambdaLat);
-    if (lat != ids.end()) {
-      const auto k = static_cast<Eigen::Index>(lat - ids.begin());
-      for (int sign : {+1, -1}) {
-        for (std::size_t i : order) {
-          if (values[i].feasible && sign * points[i][k] > 0.0) {
-            if (distinct(i)) chosen.push_back(i);
-            break;
-          }
-        }
-      }
-    }
-    for (std::size_t i : order) {
-      if (static_cast<int>(chosen.size()) >= g.num_polished) break;
-      if (distinct(i)) chosen.push_back(i);
-    }
-
-    NelderMeadOptions polish = options.nelder_mead;
-    polish.max_evaluations = g.polish_evaluations;
-    std::vector<LocalResult> runs(chosen.size());
-    ParallelFor(chosen.size(), options.num_threads, [&](std::size_t i) {
-      runs[i] = MakeNelderMead(polish)->Minimize(*first, points[chosen[i]]);
-    });
-    std::vector<std::size_t> by_epsilon(runs.size());
-    std::iota(by_epsilon.begin(), by_epsilon.end(), 0);
-    std::stable_sort(by_epsilon.begin(), by_epsilon.end(),
-                     [&](std::size_t a, std::size_t b) { return runs[a].epsilon_rad_s < runs[b].epsilon_rad_s; });
-    // Carry the best of each λ_lat sign first, then the best others.
-    std::vector<std::size_t> carry;
-    for (int sign : {+1, -1}) {
-      for (std::size_t i : by_epsilon) {
-        if (sign * first->WithFree(runs[i].x).value(ParameterId::kLambdaLat) > 0.0 && runs[i].feasible) {
-          carry.push_back(i);
-          break;
-        }
-      }
-    }
-    for (std::size_t i : by_epsilon) {
-      if (std::find(carry.begin(), carry.end(), i) == carry.end()) carry.push_back(i);
-    }
-    std::stable_sort(carry.begin(), carry.begin() + std::min<std::ptrdiff_t>(2, static_cast<std::ptrdiff_t>(carry.size())),
-                     [&](std::size_t a, std::size_t b) { return runs[a].epsilon_rad_s < runs[b].epsilon_rad_s; });
-    carry.resize(std::min(carry.size(), static_cast<std::size_t>(g.num_continued)));
-    for (const LocalResult& r : runs) result.evaluations += r.evaluations;
-    for (std::size_t i : carry) {
-      polished.push_back(first->WithFree(runs[i].x));
-      polished_epsilon.push_back(runs[i].epsilon_rad_s);
-    }
+    const FirstWindowSamples samples = SampleFirstWindow(*first, first->FreeValues(estimate_set), options);
+    result.num_samples = static_cast<int>(samples.points.size());
+    result.num_feasible_samples = samples.num_feasible();
+    carried = PolishAndCarry(*first, samples, ChooseStartsToPolish(*first, samples, g), options);
   }
-  if (polished.empty()) polished.push_back(estimate_set);
+  if (carried.empty()) carried.push_back(estimate_set);
 
   // 2. Continuation to the full window, each carried start in its own thread.
-  const double t_release_ref = t1 ? *t1 : objective.t_end_s();
-  std::vector<ParameterSet> continued(polished.size());
-  std::vector<std::int64_t> evaluations(polished.size(), 0);
-  std::vector<char> converged(polished.size(), 0);
-  NelderMeadOptions step_options = options.nelder_mead;
-  step_options.max_evaluations = g.continuation_evaluations;
-  // Each window refines the previous one: a smaller simplex keeps the search in the basin it tracks.
-  for (double& step : step_options.initial_step) step *= g.continuation_step_fraction;
-  const std::vector<ParameterId> first_acting = first ? first->free_ids() : std::vector<ParameterId>{};
-  ParallelFor(polished.size(), options.num_threads, [&](std::size_t i) {
+  Continuation plan;
+  plan.first_window_end_s = t_first_end;
+  plan.t_release_ref_s = t1 ? *t1 : objective.t_end_s();
+  plan.first_acting = first ? first->free_ids() : std::vector<ParameterId>{};
+  plan.step_options = ContinuationStepOptions(options);
+  std::vector<ParameterSet> continued(carried.size());
+  std::vector<char> converged(carried.size(), 0);
+  ParallelFor(carried.size(), options.num_threads, [&](std::size_t i) {
     bool ok = true;
-    ParameterSet at = ContinueToFullWindow(objective, polished[i], t_first_end, t_release_ref, first_acting, g.scan_points,
-                                           options, step_options, &evaluations[i], &ok);
-    // On the full window, every parameter sampled over its whole bounds (not t0 and α, which phase 1 pins
-    // down) is scanned once more: later impacts can make its landscape multimodal where the first windows
-    // were not (e.g. λ with a long cascade of small lateral edge impacts). Then a last local search.
-    if (g.final_scan) {
-      ParameterSet scanned = at;
-      const Evaluation before = objective.Evaluate(at);
-      ++evaluations[i];
-      for (ParameterId id : objective.free_ids()) {
-        if (id == ParameterId::kT0 || id == ParameterId::kAlpha) continue;
-        scanned = ScanParameter(objective, scanned, id, g.scan_points, &evaluations[i]);
-      }
-      if (objective.Evaluate(scanned).epsilon_rad_s < before.epsilon_rad_s) {
-        bool step_converged = false;
-        at = MinimizeIn(objective, scanned, step_options, &evaluations[i], &step_converged);
-        ok = step_converged;
-      }
-      ++evaluations[i];
-    }
-    continued[i] = at;
+    continued[i] = ContinueAndRescan(objective, carried[i], plan, options, &ok);
     converged[i] = ok ? 1 : 0;
   });
   result.num_continued = static_cast<int>(continued.size());
 
   // 3. The best on the full window.
-  double best = 0.0;
   for (std::size_t i = 0; i < continued.size(); ++i) {
-    result.evaluations += evaluations[i] + 1;
     const Evaluation e = objective.Evaluate(continued[i]);
     if (e.feasible) result.candidates.emplace_back(objective.FreeValues(continued[i]), e.epsilon_rad_s);
-    if (i == 0 || (e.feasible && !result.feasible) || (e.feasible == result.feasible && e.epsilon_rad_s < best)) {
-      best = e.epsilon_rad_s;
+    if (i == 0 || (e.feasible && !result.feasible) ||
+        (e.feasible == result.feasible && e.epsilon_rad_s < result.best_epsilon_rad_s)) {
       result.best_x = objective.FreeValues(continued[i]);
       result.best_epsilon_rad_s = e.epsilon_rad_s;
       result.feasible = e.feasible;
       result.converged = converged[i] != 0;
     }
   }
-  // 4. Refinement of the best point (see the header): the best of a joint (λ, λ_lat) scan joins it as a
-  //    second candidate; each is carried once more from the first window to the full window, scanned along the
-  //    t0–α–λ_lon ridge and searched locally. Candidates are independent: deterministic in any thread count.
-  if (g.refine && result.feasible) {
-    const ParameterSet best_set = objective.WithFree(result.best_x);
-    std::vector<ParameterSet> candidates = {best_set};
-    std::optional<ParameterSet> joint = JointLambdaScan(objective, best_set, g, options.num_threads, &result.evaluations);
-    if (joint) candidates.push_back(*joint);
-    std::vector<ParameterSet> refined(candidates.size());
-    std::vector<Evaluation> refined_e(candidates.size());
-    std::vector<std::int64_t> refine_evaluations(candidates.size(), 0);
-    std::vector<char> refine_converged(candidates.size(), 0);
-    ParallelFor(candidates.size(), options.num_threads, [&](std::size_t i) {
-      bool ok = true;
-      // Every parameter acts already: no scans. The first windows see t0, α and λ_lon best; λ_lat and λ,
-      // weakly seen there, are settled by the last search on the full window.
-      ParameterSet at = ContinueToFullWindow(objective, candidates[i], t_first_end, t_release_ref, objective.free_ids(),
-                                             0, options, step_options, &refine_evaluations[i], &ok);
-      const Evaluation continued_e = objective.Evaluate(at);
-      ++refine_evaluations[i];
-      const std::optional<ParameterSet> ridge = RidgeScan(objective, at, g, &refine_evaluations[i]);
-      if (ridge && objective.Evaluate(*ridge).epsilon_rad_s < continued_e.epsilon_rad_s) at = *ridge;
-      ++refine_evaluations[i];
-      at = MinimizeIn(objective, at, step_options, &refine_evaluations[i], &ok);
-      refined[i] = at;
-      refined_e[i] = objective.Evaluate(at);
-      ++refine_evaluations[i];
-      refine_converged[i] = ok ? 1 : 0;
-    });
-    for (std::size_t i = 0; i < refined.size(); ++i) {
-      result.evaluations += refine_evaluations[i];
-      if (refined_e[i].feasible) result.candidates.emplace_back(objective.FreeValues(refined[i]), refined_e[i].epsilon_rad_s);
-      if (refined_e[i].feasible && refined_e[i].epsilon_rad_s < result.best_epsilon_rad_s) {
-        result.best_x = objective.FreeValues(refined[i]);
-        result.best_epsilon_rad_s = refined_e[i].epsilon_rad_s;
-        result.converged = refine_converged[i] != 0;
-      }
-    }
-  }
+
+  // 4. Refinement of the best point (see the header).
+  if (g.refine && result.feasible) Refine(objective, plan, options, &result);
+  result.evaluations = objective.counters().runs() - runs_before;
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return result;
 }
