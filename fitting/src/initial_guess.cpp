@@ -191,25 +191,19 @@ double DetectWindowEnd(const MeasuredSignal& signal, const InitialGuessOptions& 
   return times.size() >= n ? times[n - 1] : signal.t_s.back();
 }
 
-InitialGuess EstimateInitialGuess(const MeasuredSignal& signal, const core::Block& block, const ParameterSet& base,
-                                  const InitialGuessOptions& options) {
-  options.Validate();
-  signal.Validate();
-  InitialGuess guess;
-  guess.parameters = base;
-  const std::vector<double> impacts = DetectBaseImpactTimes(signal, options);
-  guess.t_first_impact_s = impacts.front();
-  const std::size_t n_end = static_cast<std::size_t>(options.window_end_impact);
-  guess.t_end_s = impacts.size() >= n_end ? impacts[n_end - 1] : signal.t_s.back();
+namespace {
 
-  const std::size_t k_peak = static_cast<std::size_t>(
-      std::lower_bound(signal.t_s.begin(), signal.t_s.end(), guess.t_first_impact_s) - signal.t_s.begin());
-  if (k_peak < 3) throw BadInput("the first impact is at the start of the recording: the release is not recorded");
-  const double sign = signal.w_B[k_peak][1] >= 0.0 ? 1.0 : -1.0;
+// The planar fall of phase 1 fitted to the samples before the first impact (the peak at k_peak, of sign `sign`).
+struct Phase1Fit {
+  double t0_s = 0.0;
+  double alpha_rad = 0.0;
+  double alpha_landing_rate_rad = 0.0;  // the coarse estimate from the landing rate
+  double alpha_swept_rad = 0.0;         // the coarse estimate from the angle swept before the impact
+};
+
+Phase1Fit FitPhase1(const MeasuredSignal& signal, const core::PlanarRocker& rocker, std::size_t k_peak, double sign) {
+  Phase1Fit fit;
   const double dt = (signal.t_s.back() - signal.t_s.front()) / static_cast<double>(signal.size() - 1);
-
-  // Phase 1: a coarse α from the landing rate, then the planar fall fitted to the samples before the impact.
-  const core::PlanarRocker rocker = core::PlanarRockerAboutEdge(block, 1, 2);
   const double alpha_max = rocker.critical_angle_rad * (1.0 - 1e-6);
   const double peak_rate = sign * signal.w_B[k_peak][1];
   const double alpha_coarse = std::min(AlphaFromLandingRate(rocker, peak_rate), alpha_max);
@@ -264,23 +258,23 @@ InitialGuess EstimateInitialGuess(const MeasuredSignal& signal, const core::Bloc
       best_scan = a;
     }
   }
-  const double alpha = GoldenMinimum(std::max(alpha_lo, best_scan - alpha_step), std::min(alpha_hi, best_scan + alpha_step),
-                                     cost_of_alpha);
+  fit.alpha_rad = GoldenMinimum(std::max(alpha_lo, best_scan - alpha_step), std::min(alpha_hi, best_scan + alpha_step),
+                                cost_of_alpha);
   double cost = 0.0;
-  const double t0 = best_t0_for(alpha, &cost);
-  const double t_impact = t0 + core::FallTime(rocker, alpha);
-  guess.landing_rate_rad_s = core::LandingRate(rocker, alpha);
-  SetValue(&guess.parameters, ParameterId::kT0, t0);
-  SetValue(&guess.parameters, ParameterId::kAlpha, alpha);
-  guess.notes.push_back(fmt::format("first impact at {:.4f} s; planar phase-1 fit: t0 = {:.4f} s, α = {:.4f} rad "
-                                    "(landing-rate estimate {:.4f} rad, swept angle {:.4f} rad)",
-                                    guess.t_first_impact_s, t0, alpha, alpha_coarse, alpha_swept));
+  fit.t0_s = best_t0_for(fit.alpha_rad, &cost);
+  fit.alpha_landing_rate_rad = alpha_coarse;
+  fit.alpha_swept_rad = alpha_swept;
+  return fit;
+}
 
-  // First jump: ω⁺ from the samples just after the impact, corrected for the planar deceleration about the far
-  // edge (the same |ψ̈| ≈ (K/2)·sin θ_c near the flat position) so that it refers to the impact instant.
+// ω⁺ after the first impact (x and y, in the sense of the fall): the medians of the first `samples` samples after
+// t_impact, ω_y corrected for the planar deceleration about the far edge (the same |ψ̈| ≈ (K/2)·sin θ_c near the
+// flat position) so that it refers to the impact instant.
+Eigen::Vector2d RateAfterImpact(const MeasuredSignal& signal, const core::PlanarRocker& rocker, double t_impact,
+                                double sign, int samples) {
   const double decel = 0.5 * rocker.K() * std::sin(rocker.critical_angle_rad);
   std::vector<double> wx, wy;
-  for (std::size_t k = 0; k < signal.size() && static_cast<int>(wy.size()) < options.post_impact_samples; ++k) {
+  for (std::size_t k = 0; k < signal.size() && static_cast<int>(wy.size()) < samples; ++k) {
     if (signal.t_s[k] <= t_impact) continue;
     wx.push_back(sign * signal.w_B[k][0]);
     wy.push_back(sign * signal.w_B[k][1] + decel * (signal.t_s[k] - t_impact));
@@ -290,32 +284,28 @@ InitialGuess EstimateInitialGuess(const MeasuredSignal& signal, const core::Bloc
     std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
     return v[v.size() / 2];
   };
-  const double wx_plus = median(wx), wy_plus = median(wy);
-  guess.jump_ratio = wy_plus / guess.landing_rate_rad_s;
+  return {median(wx), median(wy)};
+}
 
-  const core::PlanarBlock planar = core::PlanarBlockAboutY(block);
-  double lambda_lon = guess.jump_ratio != -1.0 ? core::LambdaFromAvrf(planar, guess.jump_ratio)  // inverse of (6)
-                                               : guess.parameters.value(ParameterId::kLambdaLon);
-  double lambda_lat = wx_plus >= 0.0 ? 1.0 : -1.0;
-  guess.notes.push_back(fmt::format("first jump r = ω_y⁺/ω_y⁻ = {:.4f} → λ_lon = {:.3f} by the inverse of (6); "
-                                    "ω_x⁺ = {:.3f} rad/s → sign of λ_lat {}", guess.jump_ratio, lambda_lon, wx_plus,
-                                    wx_plus >= 0.0 ? "+" : "−"));
-
-  // Refine (λ_lat, λ_lon) with the facet impact map (18)+(21): the pair whose ω⁺ is closest to the measured one,
-  // on a grid over the bounds, λ_lat restricted to the sign seen in the data.
-  const Parameter& p_lat = guess.parameters[ParameterId::kLambdaLat];
-  const Parameter& p_lon = guess.parameters[ParameterId::kLambdaLon];
-  const Eigen::Vector3d w_minus(0.0, guess.landing_rate_rad_s, 0.0);
+// The (λ_lat, λ_lon) whose facet impact map (18)+(21) sends ω⁻ = (0, landing rate, 0) closest to the measured ω⁺:
+// a grid over the bounds, then a finer one around its best, λ_lat restricted to the sign of ω_x⁺. Returns the miss
+// [rad/s] (infinite when no pair has a solution) and leaves the pair unchanged then.
+double FitFacetPairToJump(const core::Block& block, const ParameterSet& parameters, core::FacetTauRule tau_rule,
+                          double landing_rate_rad_s, const Eigen::Vector2d& w_plus, double* lambda_lat,
+                          double* lambda_lon) {
+  const Parameter& p_lat = parameters[ParameterId::kLambdaLat];
+  const Parameter& p_lon = parameters[ParameterId::kLambdaLon];
+  const Eigen::Vector3d w_minus(0.0, landing_rate_rad_s, 0.0);
   double best = std::numeric_limits<double>::infinity();
-  double best_lat = lambda_lat, best_lon = lambda_lon;
+  double best_lat = *lambda_lat, best_lon = *lambda_lon;
   auto try_pair = [&](double lat, double lon) {
     core::FacetImpactParameters fp;
     fp.lambda_lat = lat;
     fp.lambda_lon = lon;
-    fp.tau_rule = base.facet_tau_rule();
+    fp.tau_rule = tau_rule;
     const core::ImpactOutcome out = core::FacetImpact(block, 2, w_minus, fp);
     if (out.status != core::ImpactStatus::kOk) return;
-    const double d = std::hypot(out.w_plus_B.x() - wx_plus, out.w_plus_B.y() - wy_plus);
+    const double d = std::hypot(out.w_plus_B.x() - w_plus.x(), out.w_plus_B.y() - w_plus.y());
     if (d < best) {
       best = d;
       best_lat = lat;
@@ -323,8 +313,9 @@ InitialGuess EstimateInitialGuess(const MeasuredSignal& signal, const core::Bloc
     }
   };
   constexpr int kGrid = 48;
-  const double lat_lo = p_lat.fixed ? p_lat.value : (wx_plus >= 0.0 ? std::max(0.0, p_lat.lower) : p_lat.lower);
-  const double lat_hi = p_lat.fixed ? p_lat.value : (wx_plus >= 0.0 ? p_lat.upper : std::min(0.0, p_lat.upper));
+  const bool positive = w_plus.x() >= 0.0;
+  const double lat_lo = p_lat.fixed ? p_lat.value : (positive ? std::max(0.0, p_lat.lower) : p_lat.lower);
+  const double lat_hi = p_lat.fixed ? p_lat.value : (positive ? p_lat.upper : std::min(0.0, p_lat.upper));
   const double lon_lo = p_lon.fixed ? p_lon.value : p_lon.lower;
   const double lon_hi = p_lon.fixed ? p_lon.value : p_lon.upper;
   for (int pass = 0; pass < 2; ++pass) {
@@ -341,10 +332,59 @@ InitialGuess EstimateInitialGuess(const MeasuredSignal& signal, const core::Bloc
     }
   }
   if (std::isfinite(best)) {
-    lambda_lat = best_lat;
-    lambda_lon = best_lon;
+    *lambda_lat = best_lat;
+    *lambda_lon = best_lon;
+  }
+  return best;
+}
+
+}  // namespace
+
+InitialGuess EstimateInitialGuess(const MeasuredSignal& signal, const core::Block& block, const ParameterSet& base,
+                                  const InitialGuessOptions& options) {
+  options.Validate();
+  signal.Validate();
+  InitialGuess guess;
+  guess.parameters = base;
+  const std::vector<double> impacts = DetectBaseImpactTimes(signal, options);
+  guess.t_first_impact_s = impacts.front();
+  const std::size_t n_end = static_cast<std::size_t>(options.window_end_impact);
+  guess.t_end_s = impacts.size() >= n_end ? impacts[n_end - 1] : signal.t_s.back();
+
+  const std::size_t k_peak = static_cast<std::size_t>(
+      std::lower_bound(signal.t_s.begin(), signal.t_s.end(), guess.t_first_impact_s) - signal.t_s.begin());
+  if (k_peak < 3) throw BadInput("the first impact is at the start of the recording: the release is not recorded");
+  const double sign = signal.w_B[k_peak][1] >= 0.0 ? 1.0 : -1.0;
+
+  // Phase 1: a coarse α from the landing rate, then the planar fall fitted to the samples before the impact.
+  const core::PlanarRocker rocker = core::PlanarRockerAboutEdge(block, 1, 2);
+  const Phase1Fit phase1 = FitPhase1(signal, rocker, k_peak, sign);
+  const double t_impact = phase1.t0_s + core::FallTime(rocker, phase1.alpha_rad);
+  guess.landing_rate_rad_s = core::LandingRate(rocker, phase1.alpha_rad);
+  SetValue(&guess.parameters, ParameterId::kT0, phase1.t0_s);
+  SetValue(&guess.parameters, ParameterId::kAlpha, phase1.alpha_rad);
+  guess.notes.push_back(fmt::format("first impact at {:.4f} s; planar phase-1 fit: t0 = {:.4f} s, α = {:.4f} rad "
+                                    "(landing-rate estimate {:.4f} rad, swept angle {:.4f} rad)",
+                                    guess.t_first_impact_s, phase1.t0_s, phase1.alpha_rad,
+                                    phase1.alpha_landing_rate_rad, phase1.alpha_swept_rad));
+
+  // The first jump: λ_lon by the inverse of (6), the sign of λ_lat from ω_x⁺.
+  const Eigen::Vector2d w_plus = RateAfterImpact(signal, rocker, t_impact, sign, options.post_impact_samples);
+  guess.jump_ratio = w_plus.y() / guess.landing_rate_rad_s;
+  const core::PlanarBlock planar = core::PlanarBlockAboutY(block);
+  double lambda_lon = guess.jump_ratio != -1.0 ? core::LambdaFromAvrf(planar, guess.jump_ratio)  // inverse of (6)
+                                               : guess.parameters.value(ParameterId::kLambdaLon);
+  double lambda_lat = w_plus.x() >= 0.0 ? 1.0 : -1.0;
+  guess.notes.push_back(fmt::format("first jump r = ω_y⁺/ω_y⁻ = {:.4f} → λ_lon = {:.3f} by the inverse of (6); "
+                                    "ω_x⁺ = {:.3f} rad/s → sign of λ_lat {}", guess.jump_ratio, lambda_lon, w_plus.x(),
+                                    w_plus.x() >= 0.0 ? "+" : "−"));
+
+  // Refine (λ_lat, λ_lon) with the facet impact map.
+  const double miss = FitFacetPairToJump(block, guess.parameters, base.facet_tau_rule(), guess.landing_rate_rad_s,
+                                         w_plus, &lambda_lat, &lambda_lon);
+  if (std::isfinite(miss)) {
     guess.notes.push_back(fmt::format("facet map fit of ω⁺: λ_lat = {:.3f}, λ_lon = {:.3f} (miss {:.3f} rad/s)",
-                                      lambda_lat, lambda_lon, best));
+                                      lambda_lat, lambda_lon, miss));
   }
   SetValue(&guess.parameters, ParameterId::kLambdaLat, lambda_lat);
   SetValue(&guess.parameters, ParameterId::kLambdaLon, lambda_lon);
