@@ -95,33 +95,92 @@ CsvTable CsvTable::ReadFile(const std::filesystem::path& path, std::vector<std::
   return FromText(std::move(buffer).str(), name, warnings);
 }
 
-CsvTable CsvTable::FromText(std::string text, std::string display_name, std::vector<std::string>& warnings) {
-  CsvTable table;
-  table.name_ = std::move(display_name);
-  const std::string& name = table.name_;
-  const std::string expected_layout = "a header line naming the columns, then one line of numbers per sample";
+namespace {
 
-  if (text.empty()) {
-    ThrowBadInput({{name}, "", "an empty file (0 bytes)", expected_layout,
+constexpr const char* kExpectedLayout = "a header line naming the columns, then one line of numbers per sample";
+
+// Refuses what is no text at all (empty, UTF-16, NUL bytes) and drops a UTF-8 byte-order mark with a warning.
+void CheckReadableText(std::string* text, const std::string& name, std::vector<std::string>& warnings) {
+  if (text->empty()) {
+    ThrowBadInput({{name}, "", "an empty file (0 bytes)", kExpectedLayout,
                    "The recording was not written or not copied completely; copy it again from the device or "
                    "its computer."});
   }
-  if (text.size() >= 2 && ((text[0] == '\xff' && text[1] == '\xfe') || (text[0] == '\xfe' && text[1] == '\xff'))) {
+  const std::string& t = *text;
+  if (t.size() >= 2 && ((t[0] == '\xff' && t[1] == '\xfe') || (t[0] == '\xfe' && t[1] == '\xff'))) {
     ThrowBadInput({{name, 1, 1}, "", "a UTF-16 text file (byte-order mark FF FE or FE FF)", "ASCII or UTF-8 text",
                    "Save the file again as \"CSV UTF-8\" or plain CSV."});
   }
-  if (text.size() >= 3 && text.compare(0, 3, "\xef\xbb\xbf") == 0) {
-    text.erase(0, 3);
+  if (t.size() >= 3 && t.compare(0, 3, "\xef\xbb\xbf") == 0) {
+    text->erase(0, 3);
     warnings.push_back(name +
                        ": the file starts with a UTF-8 byte-order mark, which the IMU software never writes (the "
                        "file was re-saved by another program); the mark was ignored");
   }
-  if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
-    const std::size_t line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + nul, '\n'));
+  if (const std::size_t nul = text->find('\0'); nul != std::string::npos) {
+    const std::size_t line = 1 + static_cast<std::size_t>(std::count(text->begin(), text->begin() + nul, '\n'));
     ThrowBadInput({{name, line}, "", "a NUL byte (a binary file)", "a text file with comma-separated values",
                    "An x-IMU .BIN file must first be converted to CSV with the x-IMU GUI (SD card tab); "
                    "otherwise pick the CSV file."});
   }
+}
+
+// The cells of the header line (a trailing separator dropped); refuses a first line of numbers only.
+void SplitHeader(const std::string& body, Span line, char delimiter, const TextPosition& at, std::vector<Span>& cells) {
+  SplitLine(body, line, delimiter, cells);
+  if (cells.size() > 1 && cells.back().begin == cells.back().end) cells.pop_back();  // trailing separator
+  for (const Span& cell : cells) {
+    const std::string_view text_cell(body.data() + cell.begin, cell.end - cell.begin);
+    if (ParseReal(text_cell, DecimalSeparator::kComma).status != NumberStatus::kOk &&
+        ParseReal(text_cell).status != NumberStatus::kOk) {
+      return;
+    }
+  }
+  const std::string_view content(body.data() + line.begin, line.end - line.begin);
+  ThrowBadInput({at, "", "numbers in the first line ('" + std::string(content.substr(0, 40)) + "')",
+                 "a header line naming the columns, e.g. 'Packet number,Gyroscope X (deg/s),…'",
+                 "Add the header line that the device software writes, or read the file as a generic CSV "
+                 "with a header."});
+}
+
+// A data line with another number of fields than the header: names the decimal comma when that is the cause.
+[[noreturn]] void ThrowWrongFieldCount(const std::string& name, std::size_t line_number, std::string_view content,
+                                       std::size_t line_begin, const std::vector<Span>& cells, std::size_t columns,
+                                       std::size_t header_line, char delimiter) {
+  if (cells.size() > columns && delimiter == ',') {
+    if (const auto comma = FindDecimalComma(content)) {
+      ThrowBadInput(
+          {{name, line_number, *comma + 1},
+           "",
+           std::to_string(cells.size()) + " fields and numbers written with a decimal comma (" + QuoteCell(content) + ")",
+           std::to_string(columns) + " fields (one per header column) with decimal points",
+           "The file was written with decimal commas, which x-IMU GUI versions before 13.2 do on Windows set "
+           "to a language such as Hungarian or German; such rows cannot be split reliably. Export it again "
+           "with x-IMU GUI 13.2 or later, or set Windows' number format to a decimal point (Region: English "
+           "(United States)) before exporting. A spreadsheet may also save it with ';' between fields, which "
+           "rockfit reads with decimal commas."});
+    }
+  }
+  std::string todo = "Correct or delete line " + std::to_string(line_number) + ".";
+  if (cells.size() > columns && delimiter == ',') {
+    todo += " If the numbers were written with decimal commas (such as '1,25'), export the file again with "
+            "decimal points.";
+  }
+  ThrowBadInput({{name, line_number, cells.size() > columns ? cells[columns].begin - line_begin + 1 : 1},
+                 "",
+                 std::to_string(cells.size()) + " fields",
+                 std::to_string(columns) + " fields, one per column of the header on line " +
+                     std::to_string(header_line) + ", separated by " + DelimiterName(delimiter),
+                 todo});
+}
+
+}  // namespace
+
+CsvTable CsvTable::FromText(std::string text, std::string display_name, std::vector<std::string>& warnings) {
+  CsvTable table;
+  table.name_ = std::move(display_name);
+  const std::string& name = table.name_;
+  CheckReadableText(&text, name, warnings);
   table.text_ = std::move(text);
   const std::string& body = table.text_;
 
@@ -155,23 +214,10 @@ CsvTable CsvTable::FromText(std::string text, std::string display_name, std::vec
       table.delimiter_ = DetectDelimiter(content);
       table.header_line_ = line_number;
       table.header_line_start_ = line.begin;
-      SplitLine(body, line, table.delimiter_, cells);
-      if (cells.size() > 1 && cells.back().begin == cells.back().end) cells.pop_back();  // trailing separator
-      bool all_numbers = true;
+      SplitHeader(body, line, table.delimiter_, {name, line_number, 1}, cells);
       for (const Span& cell : cells) {
-        const std::string_view text_cell(body.data() + cell.begin, cell.end - cell.begin);
-        table.header_.emplace_back(text_cell);
+        table.header_.emplace_back(body.data() + cell.begin, cell.end - cell.begin);
         table.header_begin_.push_back(cell.begin);
-        if (ParseReal(text_cell, DecimalSeparator::kComma).status != NumberStatus::kOk &&
-            ParseReal(text_cell).status != NumberStatus::kOk) {
-          all_numbers = false;
-        }
-      }
-      if (all_numbers) {
-        ThrowBadInput({{name, line_number, 1}, "", "numbers in the first line ('" + std::string(content.substr(0, 40)) +
-                       "')", "a header line naming the columns, e.g. 'Packet number,Gyroscope X (deg/s),…'",
-                       "Add the header line that the device software writes, or read the file as a generic CSV "
-                       "with a header."});
       }
       if (table.delimiter_ != ',') {
         warnings.push_back(name + ": fields are separated by " + DelimiterName(table.delimiter_) +
@@ -184,39 +230,13 @@ CsvTable CsvTable::FromText(std::string text, std::string display_name, std::vec
     const std::size_t columns = table.header_.size();
     if (cells.size() == columns + 1 && cells.back().begin == cells.back().end) cells.pop_back();  // trailing separator
     if (cells.size() != columns) {
-      const bool cut_off = !terminated && cells.size() < columns;
-      if (cut_off) {
+      if (!terminated && cells.size() < columns) {
         warnings.push_back(FormatPosition({name, line_number}) + ": the last line has " + std::to_string(cells.size()) +
                            " of " + std::to_string(columns) +
                            " fields and no line end: the file was cut off while being written; that line was dropped");
         break;
       }
-      if (cells.size() > columns && table.delimiter_ == ',') {
-        if (const auto comma = FindDecimalComma(content)) {
-          ThrowBadInput(
-              {{name, line_number, *comma + 1},
-               "",
-               std::to_string(cells.size()) + " fields and numbers written with a decimal comma (" +
-                   QuoteCell(content) + ")",
-               std::to_string(columns) + " fields (one per header column) with decimal points",
-               "The file was written with decimal commas, which x-IMU GUI versions before 13.2 do on Windows set "
-               "to a language such as Hungarian or German; such rows cannot be split reliably. Export it again "
-               "with x-IMU GUI 13.2 or later, or set Windows' number format to a decimal point (Region: English "
-               "(United States)) before exporting. A spreadsheet may also save it with ';' between fields, which "
-               "rockfit reads with decimal commas."});
-        }
-      }
-      std::string todo = "Correct or delete line " + std::to_string(line_number) + ".";
-      if (cells.size() > columns && table.delimiter_ == ',') {
-        todo += " If the numbers were written with decimal commas (such as '1,25'), export the file again with "
-                "decimal points.";
-      }
-      ThrowBadInput({{name, line_number, cells.size() > columns ? cells[columns].begin - line.begin + 1 : 1},
-                     "",
-                     std::to_string(cells.size()) + " fields",
-                     std::to_string(columns) + " fields, one per column of the header on line " +
-                         std::to_string(table.header_line_) + ", separated by " + DelimiterName(table.delimiter_),
-                     todo});
+      ThrowWrongFieldCount(name, line_number, content, line.begin, cells, columns, table.header_line_, table.delimiter_);
     }
     if (!terminated && cells.back().begin == cells.back().end && columns > 1) {
       warnings.push_back(FormatPosition({name, line_number}) +
@@ -239,7 +259,7 @@ CsvTable CsvTable::FromText(std::string text, std::string display_name, std::vec
   }
 
   if (!have_header) {
-    ThrowBadInput({{name}, "", "only blank lines", expected_layout,
+    ThrowBadInput({{name}, "", "only blank lines", kExpectedLayout,
                    "The recording was not written or not copied completely; copy it again."});
   }
   if (blank_lines > 0) {
