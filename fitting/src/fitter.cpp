@@ -57,35 +57,21 @@ std::string FailureList(const std::map<std::string, std::int64_t>& failures) {
   return list;
 }
 
-}  // namespace
+double SecondsSince(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
 
-FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const FitOptions& options) {
-  options.Validate();
-  if (objective.num_free() == 0) {
-    throw InvalidArgument("every parameter is fixed: free at least one (e.g. --free alpha) or use --evaluate");
-  }
-  const auto clock_start = std::chrono::steady_clock::now();
-  const std::int64_t runs_before = objective.counters().runs();
-  const auto failures_before = objective.counters().failures_by_reason();
-  auto seconds_since = [](std::chrono::steady_clock::time_point t) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-  };
-
-  FitSummary summary;
-  summary.method = options.method;
-  summary.t_end_s = objective.t_end_s();
-  summary.model_description = objective.model().Describe();
-  const Eigen::VectorXd x_start =
-      objective.FreeValues(start_in).cwiseMax(objective.FreeLower()).cwiseMin(objective.FreeUpper());
-  summary.start = objective.WithFree(x_start);
-
+// The stages of `options` from x_start (start point, global stage, the local back ends) in turn; the summary keeps
+// the best point by (28), whatever the back end optimised. Returns the global stage's candidates.
+std::vector<std::pair<Eigen::VectorXd, double>> RunStages(const Objective& objective, const Eigen::VectorXd& x_start,
+                                                         const FitOptions& options, FitSummary* summary) {
   std::vector<Candidate> candidates;
   {
     const auto t = std::chrono::steady_clock::now();
     const Evaluation e = objective.EvaluateFree(x_start);
-    summary.epsilon_initial_rad_s = e.epsilon_rad_s;
+    summary->epsilon_initial_rad_s = e.epsilon_rad_s;
     candidates.push_back({"start", x_start, e.epsilon_rad_s, e.feasible, false, "start point"});
-    summary.stages.push_back({"start", e.epsilon_rad_s, 1, seconds_since(t), e.feasible ? "evaluated" : e.failure});
+    summary->stages.push_back({"start", e.epsilon_rad_s, 1, SecondsSince(t), e.feasible ? "evaluated" : e.failure});
   }
   Eigen::VectorXd x_current = x_start;
   std::vector<std::pair<Eigen::VectorXd, double>> global_candidates;
@@ -105,20 +91,20 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
         fmt::format("{} of {} first-window starts feasible, {} continued to the full window", g.num_feasible_samples,
                     g.num_samples, g.num_continued);
     Candidate c{"global", g.best_x, g.best_epsilon_rad_s, g.feasible, g.converged, termination};
-    summary.stages.push_back({"global", g.best_epsilon_rad_s, g.evaluations, g.wall_time_s, termination});
+    summary->stages.push_back({"global", g.best_epsilon_rad_s, g.evaluations, g.wall_time_s, termination});
     if (Better(c, candidates.front())) x_current = c.x;
     candidates.push_back(c);
   }
   if (options.method == FitMethod::kNelderMead || options.method == FitMethod::kAuto) {
     const LocalResult r = MakeNelderMead(options.nelder_mead)->Minimize(objective, x_current);
-    summary.stages.push_back({"nelder-mead", r.epsilon_rad_s, r.evaluations, r.wall_time_s, r.termination});
+    summary->stages.push_back({"nelder-mead", r.epsilon_rad_s, r.evaluations, r.wall_time_s, r.termination});
     const Candidate c = FromLocal("nelder-mead", r);
     if (r.feasible) x_current = r.x;
     candidates.push_back(c);
   }
   if (options.method == FitMethod::kCeres || options.method == FitMethod::kAuto) {
     const LocalResult r = MakeCeres(options.ceres)->Minimize(objective, x_current);
-    summary.stages.push_back({"ceres", r.epsilon_rad_s, r.evaluations, r.wall_time_s, r.termination});
+    summary->stages.push_back({"ceres", r.epsilon_rad_s, r.evaluations, r.wall_time_s, r.termination});
     candidates.push_back(FromLocal("ceres", r));
   }
 
@@ -127,101 +113,112 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
   for (const Candidate& c : candidates) {
     if (Better(c, *best)) best = &c;
   }
-  summary.parameters = objective.WithFree(best->x);
-  summary.epsilon_rad_s = best->epsilon_rad_s;
-  summary.feasible = best->feasible;
-  summary.termination = best->termination;
-  summary.kept_stage = best->stage;
+  summary->parameters = objective.WithFree(best->x);
+  summary->epsilon_rad_s = best->epsilon_rad_s;
+  summary->feasible = best->feasible;
+  summary->termination = best->termination;
+  summary->kept_stage = best->stage;
   // The start and the global stage are not convergence tests of their own; a local stage that ran from the
   // kept point and could not improve it has converged there.
-  summary.converged = best->converged;
+  summary->converged = best->converged;
   for (const Candidate& c : candidates) {
-    if (c.converged && c.feasible && c.epsilon_rad_s == best->epsilon_rad_s) summary.converged = true;
+    if (c.converged && c.feasible && c.epsilon_rad_s == best->epsilon_rad_s) summary->converged = true;
   }
 
-  // Identifiability, bounds, standard errors and intervals at the kept point. The profiles of the intervals may
-  // meet a point with a lower (28) (they leave the basin of the fit along a valley the global stage did not
-  // follow to its end): the fit then moves there by Nelder–Mead and everything is computed once more.
+  return global_candidates;
+}
+
+// Identifiability, bounds, standard errors and intervals at the kept point. The profiles of the intervals may
+// meet a point with a lower (28) (they leave the basin of the fit along a valley the global stage did not
+// follow to its end): the fit then moves there by Nelder–Mead and everything is computed once more.
+void AssessKeptPoint(const Objective& objective, const FitOptions& options,
+                     const std::vector<std::pair<Eigen::VectorXd, double>>& global_candidates, FitSummary* summary) {
   for (int pass = 0; pass < 2; ++pass) {
     // Identifiability and bounds.
-    const std::size_t warnings_before = summary.warnings.size();
-    const IdentifiabilityReport ident = CheckIdentifiability(objective, summary.parameters, options.identifiability);
-    summary.identifiable = ident.identifiable;
-    summary.std_error.fill(std::numeric_limits<double>::quiet_NaN());
-    ParameterSet for_covariance = summary.parameters;
+    const std::size_t warnings_before = summary->warnings.size();
+    const IdentifiabilityReport ident = CheckIdentifiability(objective, summary->parameters, options.identifiability);
+    summary->identifiable = ident.identifiable;
+    summary->std_error.fill(std::numeric_limits<double>::quiet_NaN());
+    ParameterSet for_covariance = summary->parameters;
     for (ParameterId id : objective.free_ids()) {
       const std::size_t k = static_cast<std::size_t>(id);
-      const Parameter& p = summary.parameters[id];
+      const Parameter& p = summary->parameters[id];
       const double range = p.upper - p.lower;
       const double margin = std::isfinite(range) ? options.at_bound_fraction * range : 0.0;
-      summary.at_bound[k] = p.value <= p.lower + margin || p.value >= p.upper - margin;
-      if (summary.at_bound[k]) {
-        summary.warnings.push_back({WarningKind::kAtBound, Name(id),
+      summary->at_bound[k] = p.value <= p.lower + margin || p.value >= p.upper - margin;
+      if (summary->at_bound[k]) {
+        summary->warnings.push_back({WarningKind::kAtBound, Name(id),
                                     fmt::format("{} = {:.6g} {} is at its {} bound; the optimum may lie beyond it", Name(id),
                                                 p.value, Unit(id), p.value <= p.lower + margin ? "lower" : "upper")});
       }
-      if (!ident.identifiable[k]) summary.warnings.push_back({WarningKind::kNotIdentifiable, Name(id), ident.reason[k]});
-      if (summary.at_bound[k] || !ident.identifiable[k]) for_covariance[id].fixed = true;
+      if (!ident.identifiable[k]) summary->warnings.push_back({WarningKind::kNotIdentifiable, Name(id), ident.reason[k]});
+      if (summary->at_bound[k] || !ident.identifiable[k]) for_covariance[id].fixed = true;
     }
 
     // Standard errors of the identifiable parameters that are not at a bound.
     Linearisation lin;
     const bool want_covariance = options.compute_std_errors || options.intervals.method != IntervalMethod::kNone;
-    if (want_covariance && summary.feasible && !for_covariance.FreeIds().empty()) {
+    if (want_covariance && summary->feasible && !for_covariance.FreeIds().empty()) {
       const Objective restricted = objective.WithParameters(for_covariance);
       const StandardErrors se =
-          ComputeStandardErrors(restricted, restricted.FreeValues(summary.parameters), options.ceres);
+          ComputeStandardErrors(restricted, restricted.FreeValues(summary->parameters), options.ceres);
       if (options.compute_std_errors) {
         for (std::size_t i = 0; i < restricted.num_free(); ++i) {
-          summary.std_error[static_cast<std::size_t>(restricted.free_ids()[i])] = se.std_error[static_cast<Eigen::Index>(i)];
+          summary->std_error[static_cast<std::size_t>(restricted.free_ids()[i])] = se.std_error[static_cast<Eigen::Index>(i)];
         }
       }
       if (se.inverse_normal_matrix.rows() > 0) {
         lin = {restricted.free_ids(), se.inverse_normal_matrix, se.jacobian, se.residuals};
       }
-      if (!se.available && options.compute_std_errors) summary.warnings.push_back({WarningKind::kStdErrorUnavailable, "", "standard errors: " + se.message});
+      if (!se.available && options.compute_std_errors) summary->warnings.push_back({WarningKind::kStdErrorUnavailable, "", "standard errors: " + se.message});
     }
 
     std::vector<ParameterSet> alternatives;
     for (const auto& c : global_candidates) alternatives.push_back(objective.WithFree(c.first));
-    summary.uncertainty = ComputeUncertainty(objective, summary.parameters, summary.epsilon_rad_s, summary.identifiable,
+    summary->uncertainty = ComputeUncertainty(objective, summary->parameters, summary->epsilon_rad_s, summary->identifiable,
                                              lin, alternatives, options.intervals, options.num_threads);
-    if (!summary.feasible || !summary.uncertainty.better_point || pass == 1) break;
+    if (!summary->feasible || !summary->uncertainty.better_point || pass == 1) break;
     const LocalResult r =
-        MakeNelderMead(options.nelder_mead)->Minimize(objective, objective.FreeValues(*summary.uncertainty.better_point));
-    summary.stages.push_back({"interval-restart", r.epsilon_rad_s, r.evaluations, r.wall_time_s, r.termination});
-    if (!(r.feasible && r.epsilon_rad_s < summary.epsilon_rad_s)) break;
-    summary.warnings.resize(warnings_before);
-    summary.warnings.push_back(
+        MakeNelderMead(options.nelder_mead)->Minimize(objective, objective.FreeValues(*summary->uncertainty.better_point));
+    summary->stages.push_back({"interval-restart", r.epsilon_rad_s, r.evaluations, r.wall_time_s, r.termination});
+    if (!(r.feasible && r.epsilon_rad_s < summary->epsilon_rad_s)) break;
+    summary->warnings.resize(warnings_before);
+    summary->warnings.push_back(
         {WarningKind::kMovedByIntervals, "",
          fmt::format("the profiles of the intervals met a lower (28) than the global stage's result: ε {:.6g} → {:.6g} "
-                     "rad/s; the fit moved there", summary.epsilon_rad_s, r.epsilon_rad_s)});
-    summary.parameters = objective.WithFree(r.x);
-    summary.epsilon_rad_s = r.epsilon_rad_s;
-    summary.termination = r.termination;
-    summary.kept_stage = "interval-restart";
-    summary.converged = r.converged;
+                     "rad/s; the fit moved there", summary->epsilon_rad_s, r.epsilon_rad_s)});
+    summary->parameters = objective.WithFree(r.x);
+    summary->epsilon_rad_s = r.epsilon_rad_s;
+    summary->termination = r.termination;
+    summary->kept_stage = "interval-restart";
+    summary->converged = r.converged;
   }
+}
+
+void AddSecondSolutionWarning(const Objective& objective, FitSummary* summary) {
   // A second solution: a candidate of the global stage in another basin that the data do not exclude.
-  if (summary.feasible && summary.uncertainty.second_solution) {
-    const ParameterSet& other = *summary.uncertainty.second_solution;
-    const double epsilon = summary.uncertainty.second_solution_epsilon_rad_s;
+  if (summary->feasible && summary->uncertainty.second_solution) {
+    const ParameterSet& other = *summary->uncertainty.second_solution;
+    const double epsilon = summary->uncertainty.second_solution_epsilon_rad_s;
     std::string values;
     for (ParameterId id : objective.free_ids()) {
       values += fmt::format("{}{} = {:.5g}", values.empty() ? "" : ", ", Name(id), other.value(id));
     }
-    summary.warnings.push_back(
+    summary->warnings.push_back(
         {WarningKind::kSecondBasin, "",
          fmt::format("a second solution in another basin fits nearly as well: {} with ε = {:.6g} rad/s ({:+.2f} % of "
                      "the result's); the data do not decide between them, the intervals include both",
-                     values, epsilon, 100.0 * (epsilon / summary.epsilon_rad_s - 1.0))});
+                     values, epsilon, 100.0 * (epsilon / summary->epsilon_rad_s - 1.0))});
   }
+}
+
+void ApplyLateralMotionCheck(const Objective& objective, const FitOptions& options, FitSummary* summary) {
   // A fit that leaves the recorded out-of-plane motion unexplained sits on the plateau next to a needle-shaped
   // basin of λ_lat (lateral_motion_check.hpp): its λ and λ_lat are those of the plateau, not fixed by the data.
-  if (summary.feasible) summary.lateral_motion = CheckLateralMotion(objective, summary.parameters, options.lateral_motion);
-  if (summary.lateral_motion.unexplained) {
-    const LateralMotionCheck& c = summary.lateral_motion;
-    summary.warnings.push_back(
+  if (summary->feasible) summary->lateral_motion = CheckLateralMotion(objective, summary->parameters, options.lateral_motion);
+  if (summary->lateral_motion.unexplained) {
+    const LateralMotionCheck& c = summary->lateral_motion;
+    summary->warnings.push_back(
         {WarningKind::kLateralMotionUnexplained, "",
          fmt::format("the model at the fit leaves {:.0f} % of the recorded out-of-plane motion unexplained (RMS of "
                      "ω_x, ω_z {:.3g} rad/s measured, {:.3g} rad/s residual, noise at rest {:.3g} rad/s): the fit "
@@ -229,53 +226,92 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
                      "that the search missed; λ and λ_lat are not determined by this fit",
                      100.0 * c.unexplained_fraction, c.measured_rms_rad_s, c.residual_rms_rad_s, c.rest_noise_rad_s)});
     for (ParameterId id : {ParameterId::kLambda, ParameterId::kLambdaLat}) {
-      auto& d = summary.uncertainty.determined[static_cast<std::size_t>(id)];
+      auto& d = summary->uncertainty.determined[static_cast<std::size_t>(id)];
       if (d) d = Determination::kNo;
     }
-    summary.uncertainty.statements = DescribeUncertainty(summary.uncertainty, summary.parameters);
+    summary->uncertainty.statements = DescribeUncertainty(summary->uncertainty, summary->parameters);
   }
+}
+
+void AddNotDeterminedWarnings(const Objective& objective, FitSummary* summary) {
   for (ParameterId id : objective.free_ids()) {
-    const auto& d = summary.uncertainty.determined[static_cast<std::size_t>(id)];
-    if (d && *d != Determination::kYes && summary.identifiable[static_cast<std::size_t>(id)]) {
-      summary.warnings.push_back({WarningKind::kNotDetermined, Name(id),
+    const auto& d = summary->uncertainty.determined[static_cast<std::size_t>(id)];
+    if (d && *d != Determination::kYes && summary->identifiable[static_cast<std::size_t>(id)]) {
+      summary->warnings.push_back({WarningKind::kNotDetermined, Name(id),
                                   fmt::format("{}: the data fix {} (see the intervals)", Name(id),
                                               *d == Determination::kSignOnly ? "only its sign" : "no useful range")});
     }
   }
 
+}
+
+void AddFailureWarning(const Objective& objective, const std::map<std::string, std::int64_t>& failures_before,
+                       FitSummary* summary) {
   // Model failures during this fit.
   std::map<std::string, std::int64_t> failures = objective.counters().failures_by_reason();
   for (const auto& [reason, count] : failures_before) failures[reason] -= count;
   for (auto it = failures.begin(); it != failures.end();) it = it->second == 0 ? failures.erase(it) : std::next(it);
-  summary.failures_by_reason = failures;
+  summary->failures_by_reason = failures;
   if (!failures.empty()) {
     std::int64_t total = 0;
     for (const auto& entry : failures) total += entry.second;
-    summary.warnings.push_back({WarningKind::kSimulationFailures, "",
+    summary->warnings.push_back({WarningKind::kSimulationFailures, "",
                                 fmt::format("{} trial point(s) were infeasible and penalised: {}", total, FailureList(failures))});
   }
+}
+
+void AddPoorFitAndConvergenceWarnings(const Objective& objective, FitSummary* summary) {
   // A fit whose mean error is a large part of the motion itself does not describe the recording.
-  if (summary.feasible) {
+  if (summary->feasible) {
     ErrorNodes nodes;
-    if (BuildErrorNodes(objective.signal(), summary.parameters.value(ParameterId::kT0), objective.t_end_s(), &nodes)) {
+    if (BuildErrorNodes(objective.signal(), summary->parameters.value(ParameterId::kT0), objective.t_end_s(), &nodes)) {
       const double mean_rate = TrajectoryError(nodes, std::vector<Eigen::Vector3d>(nodes.size(), Eigen::Vector3d::Zero()));
-      if (summary.epsilon_rad_s > kPoorFitFraction * mean_rate) {
-        summary.warnings.push_back(
+      if (summary->epsilon_rad_s > kPoorFitFraction * mean_rate) {
+        summary->warnings.push_back(
             {WarningKind::kPoorFit, "",
              fmt::format("ε is {:.0f} % of the mean measured |ω| ({:.3g} rad/s) in the window: the model does not "
                          "describe this recording; check the block size, the sensor mounting and the window",
-                         100.0 * summary.epsilon_rad_s / mean_rate, mean_rate)});
+                         100.0 * summary->epsilon_rad_s / mean_rate, mean_rate)});
       }
     }
   }
-  if (!summary.feasible) {
-    summary.warnings.push_back({WarningKind::kInfeasible, "", "no feasible point found: the model fails everywhere it was tried"});
-  } else if (!summary.converged) {
-    summary.warnings.push_back({WarningKind::kNotConverged, "", "the local search stopped before convergence: " + summary.termination});
+  if (!summary->feasible) {
+    summary->warnings.push_back({WarningKind::kInfeasible, "", "no feasible point found: the model fails everywhere it was tried"});
+  } else if (!summary->converged) {
+    summary->warnings.push_back({WarningKind::kNotConverged, "", "the local search stopped before convergence: " + summary->termination});
   }
 
+}
+
+}  // namespace
+
+FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const FitOptions& options) {
+  options.Validate();
+  if (objective.num_free() == 0) {
+    throw InvalidArgument("every parameter is fixed: free at least one (e.g. --free alpha) or use --evaluate");
+  }
+  const auto clock_start = std::chrono::steady_clock::now();
+  const std::int64_t runs_before = objective.counters().runs();
+  const auto failures_before = objective.counters().failures_by_reason();
+
+  FitSummary summary;
+  summary.method = options.method;
+  summary.t_end_s = objective.t_end_s();
+  summary.model_description = objective.model().Describe();
+  const Eigen::VectorXd x_start =
+      objective.FreeValues(start_in).cwiseMax(objective.FreeLower()).cwiseMin(objective.FreeUpper());
+  summary.start = objective.WithFree(x_start);
+
+  const auto global_candidates = RunStages(objective, x_start, options, &summary);
+  AssessKeptPoint(objective, options, global_candidates, &summary);
+  AddSecondSolutionWarning(objective, &summary);
+  ApplyLateralMotionCheck(objective, options, &summary);
+  AddNotDeterminedWarnings(objective, &summary);
+  AddFailureWarning(objective, failures_before, &summary);
+  AddPoorFitAndConvergenceWarnings(objective, &summary);
+
   summary.simulations = objective.counters().runs() - runs_before;
-  summary.wall_time_s = seconds_since(clock_start);
+  summary.wall_time_s = SecondsSince(clock_start);
   summary.simulations_per_second =
       summary.wall_time_s > 0.0 ? static_cast<double>(summary.simulations) / summary.wall_time_s : 0.0;
   return summary;
