@@ -96,15 +96,21 @@ BENCHMARK(BM_FitOneTrialIntervalsThorough)->Unit(benchmark::kMillisecond)->Itera
 BENCHMARK(BM_FitOneTrialNelderMead)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_FitOneTrialCeres)->Unit(benchmark::kMillisecond)->Iterations(3);
 
-// One evaluation of (28): one simulation of the window at the measured sample times.
-void BM_Error28Evaluation(benchmark::State& state) {
-  const Trial& trial = SyntheticTrial();
+// The synthetic trial's own parameters, t0 free within ±0.1 s.
+fitting::ParameterSet TruthOfSyntheticTrial() {
   fitting::ParameterSet p = fitting::ParameterSet::Defaults();
   p[fitting::ParameterId::kT0] = {1.0, 0.9, 1.1, false};
   p[fitting::ParameterId::kAlpha].value = 0.197;
   p[fitting::ParameterId::kLambda].value = 2.185;
   p[fitting::ParameterId::kLambdaLat].value = -2.032;
   p[fitting::ParameterId::kLambdaLon].value = 0.197;
+  return p;
+}
+
+// One evaluation of (28): one simulation of the window at the measured sample times.
+void BM_Error28Evaluation(benchmark::State& state) {
+  const Trial& trial = SyntheticTrial();
+  const fitting::ParameterSet p = TruthOfSyntheticTrial();
   const fitting::Objective objective(trial.signal, 1.0 + 0.8, std::make_shared<fitting::SimulatorModel>(trial.block), p);
   double epsilon = 0.0;
   for (auto _ : state) {
@@ -119,12 +125,7 @@ BENCHMARK(BM_Error28Evaluation)->Unit(benchmark::kMicrosecond);
 // looser tolerance saves, and how far ε moves (epsilon_change_rel against the default 1e-12).
 void BM_Error28EvaluationAtTolerance(benchmark::State& state) {
   const Trial& trial = SyntheticTrial();
-  fitting::ParameterSet p = fitting::ParameterSet::Defaults();
-  p[fitting::ParameterId::kT0] = {1.0, 0.9, 1.1, false};
-  p[fitting::ParameterId::kAlpha].value = 0.197;
-  p[fitting::ParameterId::kLambda].value = 2.185;
-  p[fitting::ParameterId::kLambdaLat].value = -2.032;
-  p[fitting::ParameterId::kLambdaLon].value = 0.197;
+  const fitting::ParameterSet p = TruthOfSyntheticTrial();
   fitting::SimulatorModelOptions loose;
   loose.simulation.rel_tol = std::pow(10.0, -static_cast<double>(state.range(0)));
   loose.simulation.abs_tol = 1e-2 * loose.simulation.rel_tol;
