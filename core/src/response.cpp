@@ -37,8 +37,8 @@ ResponseSummary SummariseResponse(const Block& block, const GroundMotion& ground
     s.peak_rotation_rad = std::max(s.peak_rotation_rad, 2.0 * std::atan2(q.vec().norm(), std::abs(q.w())));
   }
   for (const ImpactRecord& impact : trajectory.impacts) {
-    if (impact.kind == "edge" || impact.kind == "facet") ++s.num_impacts;
-    if (impact.kind == "uplift" && impact.contact_before.first == 0) s.uplift_times_s.push_back(impact.t_s);
+    if (impact.kind == ImpactKind::kEdge || impact.kind == ImpactKind::kFacet) ++s.num_impacts;
+    if (impact.kind == ImpactKind::kUplift && impact.contact_before.first == 0) s.uplift_times_s.push_back(impact.t_s);
     s.peak_rate_rad_s = std::max({s.peak_rate_rad_s, impact.w_minus_B.norm(), impact.w_plus_B.norm()});
   }
   s.min_normal_force_N = std::numeric_limits<double>::infinity();

@@ -1,6 +1,7 @@
 // Names, options and parameter validation of the simulator (simulator.hpp).
 #include <cmath>
 #include <string>
+#include <string_view>
 
 #include "rockfit/core/checks.hpp"
 #include "rockfit/core/errors.hpp"
@@ -44,6 +45,28 @@ const char* ToString(EndReason reason) {
     case EndReason::kLiftOff: return "lift_off";
   }
   return "failed";
+}
+
+const char* ToString(ImpactKind kind) {
+  switch (kind) {
+    case ImpactKind::kFacet: return "facet";
+    case ImpactKind::kEdge: return "edge";
+    case ImpactKind::kZeno: return "zeno";
+    case ImpactKind::kRest: return "rest";
+    case ImpactKind::kUplift: return "uplift";
+  }
+  return "facet";
+}
+
+bool FromString(std::string_view text, ImpactKind* kind) {
+  for (ImpactKind k :
+       {ImpactKind::kFacet, ImpactKind::kEdge, ImpactKind::kZeno, ImpactKind::kRest, ImpactKind::kUplift}) {
+    if (text == ToString(k)) {
+      *kind = k;
+      return true;
+    }
+  }
+  return false;
 }
 
 void ModelParameters::Validate(bool check_alpha) const {

@@ -366,7 +366,7 @@ HybridRun::Next HybridRun::EdgeToVertex(const EdgeMode& mode, double t, const Ed
   const Eigen::Vector3d w_B = mode.AngularVelocity_B(y);
   ImpactRecord record;
   record.t_s = t;
-  record.kind = "uplift";
+  record.kind = ImpactKind::kUplift;
   record.contact_before = mode.mode().contact;
   record.contact_after = Contact::Vertex(pivot);
   record.w_minus_B = w_B;
@@ -406,7 +406,7 @@ HybridRun::Next HybridRun::RestOnTable(double t, const Eigen::Quaterniond& q_fla
   }
   ImpactRecord record;
   record.t_s = uplift->t_s;
-  record.kind = "uplift";
+  record.kind = ImpactKind::kUplift;
   record.contact_after = uplift->contact;
   out_->impacts.push_back(record);
   edge_impacts_.Clear();
@@ -430,8 +430,8 @@ bool HybridRun::BookImpact(const ImpactRecord& record, const EndState& state, do
       kBlowUpEnergyFactor * block_.mass() * gravity_ * (block_.p_BC_B() - block_.p_BV_B(1)).norm();
   if (!(kinetic_after_J < blow_up_J)) {
     Stop(EndReason::kFailed, record.t_s, state,
-         "the kinetic energy grows without bound (" + std::to_string(kinetic_after_J) + " J after the " + record.kind +
-             " impact at t = " + FormatTime(record.t_s) +
+         "the kinetic energy grows without bound (" + std::to_string(kinetic_after_J) + " J after the " +
+             ToString(record.kind) + " impact at t = " + FormatTime(record.t_s) +
              "): the impact parameters add energy at impacts (see delta_energy in the impact log)");
     return false;
   }
@@ -441,8 +441,8 @@ bool HybridRun::BookImpact(const ImpactRecord& record, const EndState& state, do
   if (impacts_at_instant_ > kMaxImpactsAtOneInstant) {
     Stop(EndReason::kFailed, record.t_s, state,
          "more than " + std::to_string(kMaxImpactsAtOneInstant) + " impacts at t = " + FormatTime(record.t_s) +
-             " without the contact resolving (last " + record.kind + " impact " + record.contact_before.ToString() +
-             " → " + record.contact_after.ToString() + ")");
+             " without the contact resolving (last " + ToString(record.kind) + " impact " +
+             record.contact_before.ToString() + " → " + record.contact_after.ToString() + ")");
     return false;
   }
   if (out_->impacts.size() >= options_.max_impacts) {
@@ -464,7 +464,7 @@ HybridRun::Next HybridRun::AfterEdgeImpact(const VertexMode& mode, double t, con
 
   ImpactRecord record;
   record.t_s = t;
-  record.kind = "edge";
+  record.kind = ImpactKind::kEdge;
   record.contact_before = Contact::Vertex(pivot);
   record.contact_after = map.contact_after;
   record.w_minus_B = w_minus_B;
@@ -515,7 +515,7 @@ HybridRun::Next HybridRun::AfterEdgeImpact(const VertexMode& mode, double t, con
     const EdgeMode next_mode(block_, edge.first, edge.second, edge_start_.q_yaw, gravity_);
     ImpactRecord switch_record;
     switch_record.t_s = t;
-    switch_record.kind = "zeno";
+    switch_record.kind = ImpactKind::kZeno;
     switch_record.contact_before = map.contact_after;
     switch_record.contact_after = edge;
     switch_record.w_minus_B = record.w_plus_B;
@@ -549,7 +549,7 @@ HybridRun::Next HybridRun::AfterFacetImpact(const EdgeMode& mode, double t, cons
 
   ImpactRecord record;
   record.t_s = t;
-  record.kind = "facet";
+  record.kind = ImpactKind::kFacet;
   record.contact_before = mode.mode().contact;
   record.contact_after = map.contact_after;
   record.w_minus_B = w_minus_B;
@@ -625,7 +625,7 @@ HybridRun::Next HybridRun::Continue(const Contact& contact, double t, const Eige
 HybridRun::Next HybridRun::Rest(double t, const Eigen::Quaterniond& q_flat, const ImpactRecord& trigger) {
   ImpactRecord rest;
   rest.t_s = t;
-  rest.kind = "rest";
+  rest.kind = ImpactKind::kRest;
   rest.contact_before = trigger.contact_after;
   rest.contact_after = Contact{};
   rest.w_minus_B = trigger.w_plus_B;

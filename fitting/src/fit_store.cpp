@@ -108,7 +108,7 @@ void WriteFittedTrajectory(const io::hdf5::Group& g, const Objective& objective,
   const double t0_s = s.parameters.value(ParameterId::kT0);
   for (const ModelEvent& e : output.events) {
     impact_t_s.push_back(t0_s + e.t_s);
-    impact_kind.push_back(e.kind);
+    impact_kind.push_back(core::ToString(e.kind));
   }
   const io::hdf5::Group impacts = g.CreateGroup("impacts");
   impacts.WriteDoubles("t_s", impact_t_s, "s");

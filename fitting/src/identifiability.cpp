@@ -18,8 +18,8 @@ IdentifiabilityReport CheckIdentifiability(const Objective& objective, const Par
     const double window_s = objective.t_end_s() - at.value(ParameterId::kT0);
     for (const ModelEvent& e : output.events) {
       if (e.t_s > window_s) break;
-      if (e.kind == "edge") ++report.edge_impacts_in_window;
-      if (e.kind == "facet") ++report.facet_impacts_in_window;
+      if (e.kind == core::ImpactKind::kEdge) ++report.edge_impacts_in_window;
+      if (e.kind == core::ImpactKind::kFacet) ++report.facet_impacts_in_window;
     }
   }
   const double tolerance = options.relative_tolerance * std::abs(centre.epsilon_rad_s);

@@ -227,7 +227,7 @@ py::object FitRecord(FitOutcome& o) {
   std::vector<std::string> impact_kinds;
   for (const fitting::ModelEvent& e : o.output.events) {
     impact_times.push_back(t0 + e.t_s);
-    impact_kinds.push_back(e.kind);
+    impact_kinds.push_back(core::ToString(e.kind));
   }
   const bool simulated = o.output.ok() && o.output.w_B.size() == o.nodes.size();
   d["t"] = OwnedArray(std::move(o.nodes.t_s));

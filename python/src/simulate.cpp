@@ -32,9 +32,9 @@ py::list ImpactRecords(const std::vector<core::ImpactRecord>& impacts) {
   for (const core::ImpactRecord& i : impacts) {
     py::dict d;
     d["t"] = i.t_s;
-    d["kind"] = i.kind;
+    d["kind"] = core::ToString(i.kind);
     d["contact_before"] = i.contact_before.ToString();
-    d["contact_after"] = i.kind == "rest" ? std::string("base") : i.contact_after.ToString();
+    d["contact_after"] = i.kind == core::ImpactKind::kRest ? std::string("base") : i.contact_after.ToString();
     d["omega_minus_B"] = Vector3Array(i.w_minus_B);
     d["omega_plus_B"] = Vector3Array(i.w_plus_B);
     d["omega_minus_W"] = Vector3Array(i.w_minus_W);

@@ -117,7 +117,7 @@ py::object Synth(const std::string& prefix, const core::Block& block, const Synt
   }
   const core::Trajectory& t = recording.trajectory;
   std::optional<double> rest_s;
-  if (!t.impacts.empty() && t.impacts.back().kind == "rest") rest_s = o.t0_s + t.impacts.back().t_s;
+  if (!t.impacts.empty() && t.impacts.back().kind == core::ImpactKind::kRest) rest_s = o.t0_s + t.impacts.back().t_s;
   const auto optional = [](const std::optional<double>& x) { return x ? py::object(py::float_(*x)) : py::none(); };
 
   py::dict d;  // the keys of `rockfit synth --json`

@@ -63,7 +63,7 @@ testing::PlanarBaseRocking PlanarModel(const Block& block, double lambda, const 
 std::vector<double> ImpactTimes(const Trajectory& tr) {
   std::vector<double> t;
   for (const ImpactRecord& r : tr.impacts) {
-    if (r.kind == "facet" || r.kind == "edge") t.push_back(r.t_s);
+    if (r.kind == ImpactKind::kFacet || r.kind == ImpactKind::kEdge) t.push_back(r.t_s);
   }
   return t;
 }
@@ -144,7 +144,7 @@ TEST(Respond, DiagonalAccelerationRocksOnAVertex) {
   options.tail_s = 0.5;
   const Response r = Respond(block, Planar(1.0), ramp, options);
   ASSERT_FALSE(r.trajectory.impacts.empty());
-  EXPECT_EQ(r.trajectory.impacts.front().kind, "uplift");
+  EXPECT_EQ(r.trajectory.impacts.front().kind, ImpactKind::kUplift);
   EXPECT_EQ(r.trajectory.impacts.front().contact_after, Contact::Vertex(1));
   EXPECT_NEAR(r.trajectory.impacts.front().t_s, 0.5, 1e-12);
 }

@@ -1,5 +1,6 @@
 // Names, option validation and parameter validation of the simulator.
 #include <cmath>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -23,6 +24,23 @@ TEST(SimulationNames, ModesStopConditionsAndEndReasonsHaveTheirDocumentedNames) 
   EXPECT_STREQ(ToString(StopCondition::kTMax), "t_max");
   EXPECT_STREQ(ToString(EndReason::kOverturned), "overturned");
   EXPECT_STREQ(ToString(EndReason::kFailed), "failed");
+}
+
+TEST(SimulationNames, ImpactKindsReadBackFromTheirNames) {
+  const std::pair<ImpactKind, const char*> kinds[] = {{ImpactKind::kFacet, "facet"}, {ImpactKind::kEdge, "edge"},
+                                                      {ImpactKind::kZeno, "zeno"},   {ImpactKind::kRest, "rest"},
+                                                      {ImpactKind::kUplift, "uplift"}};
+  for (const auto& [kind, name] : kinds) {
+    EXPECT_STREQ(ToString(kind), name);
+    ImpactKind parsed = kind == ImpactKind::kFacet ? ImpactKind::kEdge : ImpactKind::kFacet;
+    ASSERT_TRUE(FromString(name, &parsed)) << name;
+    EXPECT_EQ(parsed, kind) << name;
+  }
+  ImpactKind unchanged = ImpactKind::kZeno;
+  for (const char* text : {"", "Facet", "facet ", "impact", "V1V2"}) {
+    EXPECT_FALSE(FromString(text, &unchanged)) << "'" << text << "'";
+    EXPECT_EQ(unchanged, ImpactKind::kZeno);
+  }
 }
 
 // Expects Validate() to throw InvalidArgument whose message contains `word`.

@@ -50,7 +50,7 @@ double MinVertexHeight(const Block& block, const Trajectory& tr) {
   return lowest;
 }
 
-std::vector<ImpactRecord> OfKind(const Trajectory& tr, const std::string& kind) {
+std::vector<ImpactRecord> OfKind(const Trajectory& tr, ImpactKind kind) {
   std::vector<ImpactRecord> out;
   for (const auto& r : tr.impacts) {
     if (r.kind == kind) out.push_back(r);
@@ -70,7 +70,7 @@ TEST(Simulator, FirstFacetImpactIsAtTheQuadratureTimeT) {
     const Trajectory tr = Simulate(block, params, options);
     ASSERT_FALSE(tr.impacts.empty()) << "α = " << alpha;
     const ImpactRecord& first = tr.impacts.front();
-    EXPECT_EQ(first.kind, "facet");
+    EXPECT_EQ(first.kind, ImpactKind::kFacet);
     EXPECT_NEAR(first.t_s, FallTime(rocker, alpha), kReleaseTimeTol_s) << "α = " << alpha;
     // The landing rate follows from energy.
     EXPECT_NEAR(first.w_minus_B.y(), LandingRate(rocker, alpha), 1e-9 * LandingRate(rocker, alpha)) << "α = " << alpha;
@@ -170,7 +170,7 @@ TEST(Simulator, PlanarMotionFollowsTheAvrfAndTheQuadratureAtEveryReturn) {
   options.sample_times_s = apex_times;
   const Trajectory tr = Simulate(block, params, options);
   ASSERT_EQ(tr.end_reason, EndReason::kTMax) << tr.message;
-  const std::vector<ImpactRecord> facets = OfKind(tr, "facet");
+  const std::vector<ImpactRecord> facets = OfKind(tr, ImpactKind::kFacet);
   ASSERT_EQ(facets.size(), times.size());
   EXPECT_EQ(facets.size(), tr.impacts.size());  // nothing but facet impacts
   for (std::size_t n = 0; n < times.size(); ++n) {
@@ -205,11 +205,11 @@ TEST(Simulator, PlanarMotionEndsInRest) {
   const Trajectory tr = Simulate(Fig14Block(), params, options);
   EXPECT_EQ(tr.end_reason, EndReason::kRest) << tr.message;
   ASSERT_FALSE(tr.impacts.empty());
-  EXPECT_EQ(tr.impacts.back().kind, "rest");
+  EXPECT_EQ(tr.impacts.back().kind, ImpactKind::kRest);
   EXPECT_LT(tr.t_end_s, options.t_max_s);
   // Facet impacts accumulate (Zeno) before the rest: the last interval is below zeno_dt, or the kinetic
   // energy left (the rest record's −ΔE) cannot lift the COM by rest_energy_height.
-  const std::vector<ImpactRecord> facets = OfKind(tr, "facet");
+  const std::vector<ImpactRecord> facets = OfKind(tr, ImpactKind::kFacet);
   ASSERT_GE(facets.size(), 3u);
   const double last_interval = facets[facets.size() - 1].t_s - facets[facets.size() - 2].t_s;
   const double kinetic_left = -tr.impacts.back().delta_energy_J;
@@ -245,7 +245,7 @@ TEST(Simulator, MirrorSymmetryLambdaLatToMinusLambdaLatGivesYToMinusY) {
   const Trajectory b = Simulate(block, minus, options);
   ASSERT_EQ(a.t_s.size(), b.t_s.size());
   ASSERT_EQ(a.impacts.size(), b.impacts.size());
-  ASSERT_GT(OfKind(a, "edge").size(), 2u);
+  ASSERT_GT(OfKind(a, ImpactKind::kEdge).size(), 2u);
   // Under y → −y an angular velocity (axial vector) maps (x, y, z) → (−x, y, −z); so do (φx, φy, φz).
   constexpr double kMirrorTol = 1e-8;  // two runs with different round-off through many impacts
   for (std::size_t i = 0; i < a.t_s.size(); ++i) {
@@ -291,7 +291,7 @@ TEST(Simulator, ImpactsWithinTheBoundsNeverAddEnergy) {
     ASSERT_NE(tr.end_reason, EndReason::kFailed) << tr.message;
     for (const ImpactRecord& r : tr.impacts) {
       const double scale = 0.5 * InertiaAboutPoint(block, block.p_BV_B(1)).norm() * r.w_minus_B.squaredNorm();
-      EXPECT_LE(r.delta_energy_J, 1e-12 * scale) << r.kind << " at t = " << r.t_s << " (λ = " << p.lambda
+      EXPECT_LE(r.delta_energy_J, 1e-12 * scale) << ToString(r.kind) << " at t = " << r.t_s << " (λ = " << p.lambda
                                                  << ", λ_lat = " << p.lambda_lat << ", λ_lon = " << p.lambda_lon << ")";
     }
   }
@@ -303,7 +303,7 @@ TEST(Simulator, ZenoSwitchKeepsTheAngularMomentumAboutTheEdge) {
   options.stop = StopCondition::kTMax;
   options.t_max_s = 0.8;  // the first Zeno switch of this case is at 0.78 s
   const Trajectory tr = Simulate(block, WithinBoundsParameters(), options);
-  const std::vector<ImpactRecord> zenos = OfKind(tr, "zeno");
+  const std::vector<ImpactRecord> zenos = OfKind(tr, ImpactKind::kZeno);
   ASSERT_FALSE(zenos.empty()) << "the within-bounds case runs into a Zeno sequence";
   for (const ImpactRecord& z : zenos) {
     ASSERT_TRUE(z.contact_before.is_vertex());
@@ -320,7 +320,7 @@ TEST(Simulator, ZenoSwitchKeepsTheAngularMomentumAboutTheEdge) {
   const double t_zeno = zenos.front().t_s;
   std::vector<double> edge_times;
   for (const ImpactRecord& r : tr.impacts) {
-    if (r.kind == "edge" && r.t_s <= t_zeno) edge_times.push_back(r.t_s);
+    if (r.kind == ImpactKind::kEdge && r.t_s <= t_zeno) edge_times.push_back(r.t_s);
   }
   ASSERT_GE(edge_times.size(), 3u);
   const std::size_t n = edge_times.size();
@@ -340,7 +340,7 @@ TEST(Simulator, EdgeContactAfterAnEdgeImpactContinuesAsEdgeRocking) {
   ASSERT_EQ(tr.end_reason, EndReason::kPhase4) << tr.message;
   ASSERT_GE(tr.impacts.size(), 2u);
   const ImpactRecord& edge = tr.impacts[1];
-  EXPECT_EQ(edge.kind, "edge");
+  EXPECT_EQ(edge.kind, ImpactKind::kEdge);
   ASSERT_TRUE(edge.contact_after.is_edge());
   const Eigen::Vector3d e = (block.p_BV_B(edge.contact_after.second) - block.p_BV_B(edge.contact_after.first)).normalized();
   EXPECT_NEAR((edge.w_plus_B - edge.w_plus_B.dot(e) * e).norm(), 0.0, 1e-14);
@@ -428,7 +428,7 @@ TEST(Simulator, LiftOffAndLandingWithinOneStepIsNotMissed) {
   }
   const Trajectory tr = Simulate(block, ModelParameters{}, options);
   ASSERT_FALSE(tr.impacts.empty());
-  EXPECT_EQ(tr.impacts.front().kind, "edge");
+  EXPECT_EQ(tr.impacts.front().kind, ImpactKind::kEdge);
   EXPECT_EQ(tr.impacts.front().contact_before.ToString(), "V3");
   EXPECT_NEAR(tr.impacts.front().t_s, t_down, 1e-7);
 }
@@ -536,7 +536,7 @@ TEST(Simulator, StopsAtPhase4OnTheFirstReleaseSideImpactAfterTheFirstFacetImpact
   const Trajectory tr = Simulate(Fig14Block(), Fig14Parameters(), SimulationOptions{});
   ASSERT_EQ(tr.end_reason, EndReason::kPhase4) << tr.message;
   ASSERT_GE(tr.impacts.size(), 2u);
-  EXPECT_EQ(tr.impacts.front().kind, "facet");
+  EXPECT_EQ(tr.impacts.front().kind, ImpactKind::kFacet);
   EXPECT_EQ(tr.impacts.front().contact_before.ToString(), "V1V2");
   const auto touches_release_side = [](const ImpactRecord& r) {
     const Contact& c = r.contact_after;

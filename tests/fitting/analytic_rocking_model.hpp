@@ -53,7 +53,7 @@ class AnalyticRockingModel final : public fitting::TrajectoryModel {
     const double t1 = std::acosh(lon_.theta_c / (lon_.theta_c - alpha)) / lon_.p;
     lon.push_back({0.0, t1, 0.0, true});
     const double w_impact = (lon_.theta_c - alpha) * lon_.p * std::sinh(lon_.p * t1);
-    out->events.push_back({t1, "facet"});
+    out->events.push_back({t1, core::ImpactKind::kFacet});
     const double r_lon = lon_.Avrf(params.lambda_lon);
     double w = r_lon * w_impact;  // keeps rotating the same way about the opposite edge
     double t = t1;
@@ -67,7 +67,7 @@ class AnalyticRockingModel final : public fitting::TrajectoryModel {
       const double half = lon_.HalfCycle(w);
       lon.push_back({t, t + half, w, false});
       t += half;
-      if (t <= t_max) out->events.push_back({t, "facet"});
+      if (t <= t_max) out->events.push_back({t, core::ImpactKind::kFacet});
       w = -r_lon * w;  // returns with −w, the impact scales it
     }
     const double lon_end = lon_rest ? t : std::numeric_limits<double>::infinity();
@@ -83,7 +83,7 @@ class AnalyticRockingModel final : public fitting::TrajectoryModel {
       if (half < kZenoDt) break;
       lat.push_back({t, t + half, wx, false});
       t += half;
-      if (t <= t_max) out->events.push_back({t, "edge"});
+      if (t <= t_max) out->events.push_back({t, core::ImpactKind::kEdge});
       wx = -r_lat * wx;
       if (r_lat >= 1.0 && lat.size() > 10000) return Fail(out, "impact infeasible", "lateral energy gain");
     }

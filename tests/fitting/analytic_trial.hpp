@@ -56,7 +56,7 @@ inline AnalyticTrial MakeAnalyticTrial(double alpha, double lambda, double lambd
   trial.data = MakeSyntheticSignal(*trial.model, trial.truth.ToModel(), disturbances);
   int facets = 0;
   for (const auto& e : trial.data.events) {
-    if (e.kind == "facet" && ++facets == 2) {
+    if (e.kind == core::ImpactKind::kFacet && ++facets == 2) {
       trial.t_end_s = std::floor((disturbances.t0_s + e.t_s) * disturbances.rate_hz) / disturbances.rate_hz;
       break;
     }

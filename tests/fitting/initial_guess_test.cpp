@@ -90,7 +90,7 @@ TEST(InitialGuess, WindowEndAfterStrongLateralRockingIsTheSideEdgeImpact) {
   const core::Trajectory phase4 = SimulateToPhase4End(block, truth);
   ASSERT_EQ(phase4.end_reason, core::EndReason::kPhase4);
   ASSERT_FALSE(phase4.impacts.empty());
-  EXPECT_EQ(phase4.impacts.back().kind, "edge") << "a side-edge impact ends phase 4 here";
+  EXPECT_EQ(phase4.impacts.back().kind, core::ImpactKind::kEdge) << "a side-edge impact ends phase 4 here";
   EXPECT_NEAR(DetectWindowEnd(trial.signal, {}), truth.t0_s + phase4.t_end_s, kWindowEndToleranceS);
 }
 
@@ -106,7 +106,7 @@ TEST(InitialGuess, WindowEndIsALandingWithASmallJump) {
   ASSERT_EQ(phase4.end_reason, core::EndReason::kPhase4);
   ASSERT_FALSE(phase4.impacts.empty());
   const core::ImpactRecord& last = phase4.impacts.back();
-  EXPECT_EQ(last.kind, "edge");
+  EXPECT_EQ(last.kind, core::ImpactKind::kEdge);
   EXPECT_LT(std::abs(last.w_plus_B.y() - last.w_minus_B.y()), 0.05 * std::abs(last.w_minus_B.y())) << "a small jump";
   EXPECT_NEAR(DetectWindowEnd(trial.signal, {}), truth.t0_s + phase4.t_end_s, kWindowEndToleranceS);
 }

@@ -31,7 +31,7 @@ TEST(SimulatorModel, SamplesAreTheSimulatorsOwnAtTheRequestedTimes) {
   for (std::size_t k = 0; k < times.size(); ++k) EXPECT_EQ(out.w_B[k], reference.w_B[k]) << "sample " << k;
   EXPECT_EQ(out.w_B.front(), Eigen::Vector3d::Zero());  // released from rest
   ASSERT_FALSE(out.events.empty());
-  EXPECT_EQ(out.events.front().kind, "facet");
+  EXPECT_EQ(out.events.front().kind, core::ImpactKind::kFacet);
   EXPECT_EQ(out.events.front().t_s, reference.impacts.front().t_s);
 }
 

@@ -74,10 +74,12 @@ nlohmann::json ResponseJson(const core::Block& block, const core::ModelParameter
   nlohmann::json impacts = nlohmann::json::array();
   for (const auto& i : r.trajectory.impacts) {
     impacts.push_back({{"t", i.t_s},
-                       {"kind", i.kind},
-                       {"contact_before", i.kind == "uplift" && i.contact_before.first == 0 ? std::string("base")
-                                                                                             : i.contact_before.ToString()},
-                       {"contact_after", i.kind == "rest" ? std::string("base") : i.contact_after.ToString()},
+                       {"kind", core::ToString(i.kind)},
+                       {"contact_before", i.kind == core::ImpactKind::kUplift && i.contact_before.first == 0
+                                              ? std::string("base")
+                                              : i.contact_before.ToString()},
+                       {"contact_after",
+                        i.kind == core::ImpactKind::kRest ? std::string("base") : i.contact_after.ToString()},
                        {"omega_minus_B", ToJson(i.w_minus_B)},
                        {"omega_plus_B", ToJson(i.w_plus_B)},
                        {"delta_energy", Clean(i.delta_energy_J)},

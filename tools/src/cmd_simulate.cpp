@@ -81,9 +81,10 @@ nlohmann::json TrajectoryJson(const core::Block& block, const core::ModelParamet
   nlohmann::json impacts = nlohmann::json::array();
   for (const auto& impact : trajectory.impacts) {
     impacts.push_back({{"t", impact.t_s},
-                       {"kind", impact.kind},
+                       {"kind", core::ToString(impact.kind)},
                        {"contact_before", impact.contact_before.ToString()},
-                       {"contact_after", impact.kind == "rest" ? std::string("base") : impact.contact_after.ToString()},
+                       {"contact_after", impact.kind == core::ImpactKind::kRest ? std::string("base")
+                                                                                : impact.contact_after.ToString()},
                        {"omega_minus_B", VectorJson(impact.w_minus_B)},
                        {"omega_plus_B", VectorJson(impact.w_plus_B)},
                        {"omega_minus_W", VectorJson(impact.w_minus_W)},

@@ -157,7 +157,7 @@ int RunSynth(const SynthCommand& cmd) {
   const core::Trajectory& t = recording.trajectory;
   // The simulator logs a "rest" record when the motion has ended; without one it lasts beyond the recording.
   std::optional<double> rest_s;
-  if (!t.impacts.empty() && t.impacts.back().kind == "rest") rest_s = o.t0_s + t.impacts.back().t_s;
+  if (!t.impacts.empty() && t.impacts.back().kind == core::ImpactKind::kRest) rest_s = o.t0_s + t.impacts.back().t_s;
   const auto optional_json = [](const std::optional<double>& x) { return x ? nlohmann::json(*x) : nlohmann::json(nullptr); };
   if (cmd.json) {
     nlohmann::json out;

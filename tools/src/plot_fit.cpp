@@ -51,7 +51,13 @@ FitPlotData ReadFitPlotData(const std::string& path, const std::string& trial) {
   d.w_measured_B = g.ReadVectors("w_B_measured");
   if (g.IsDataset("w_B_simulated")) d.w_simulated_B = g.ReadVectors("w_B_simulated");
   d.impact_t_s = g.ReadDoubles("impacts/t_s");
-  d.impact_kind = g.ReadStrings("impacts/kind");
+  for (const std::string& text : g.ReadStrings("impacts/kind")) {
+    core::ImpactKind kind = core::ImpactKind::kFacet;
+    if (!core::FromString(text, &kind)) {
+      throw BadInput(fmt::format("{}: /fits/{}/impacts/kind holds '{}', not an impact kind", path, id, text));
+    }
+    d.impact_kind.push_back(kind);
+  }
   d.epsilon_rad_s = g.GetDouble("epsilon_rad_s").value_or(std::numeric_limits<double>::quiet_NaN());
   if (g.IsDataset("parameters/interval_95_lower")) {
     const std::vector<std::int64_t> fixed = g.ReadInts("parameters/fixed");
@@ -241,7 +247,7 @@ void RenderFitPlot(const FitPlotData& d, const std::filesystem::path& output, in
   const std::string data = figure.AddData("omega", columns);
   std::string marks;
   for (std::size_t i = 0; i < d.impact_t_s.size(); ++i) {
-    const bool facet = i < d.impact_kind.size() && d.impact_kind[i] == "facet";
+    const bool facet = i < d.impact_kind.size() && d.impact_kind[i] == core::ImpactKind::kFacet;
     marks += fmt::format("set arrow from {0},graph 0 to {0},graph 1 nohead lc rgb '{1}' dt {2}\n", d.impact_t_s[i],
                          facet ? "#555555" : "#bbbbbb", facet ? 1 : 3);
   }

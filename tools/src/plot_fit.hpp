@@ -8,6 +8,8 @@
 
 #include <Eigen/Core>
 
+#include "rockfit/core/simulator.hpp"
+
 namespace rockfit::tools {
 
 struct FitPlotData {
@@ -16,7 +18,7 @@ struct FitPlotData {
   std::vector<Eigen::Vector3d> w_measured_B;  // [rad/s]
   std::vector<Eigen::Vector3d> w_simulated_B; // [rad/s]; empty when the model failed
   std::vector<double> impact_t_s;
-  std::vector<std::string> impact_kind;
+  std::vector<core::ImpactKind> impact_kind;
   double epsilon_rad_s = 0.0;
   // One line per free parameter: "t0 = 1.2001 s [1.1995, 1.2008]" (value and 95 % interval), shown under the
   // title; empty for fits without intervals.

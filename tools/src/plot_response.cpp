@@ -11,6 +11,7 @@
 #include "plot_command.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/ground_motion.hpp"
+#include "rockfit/core/simulator.hpp"
 #include "rockfit/io/hdf5_file.hpp"
 
 namespace rockfit::tools {
@@ -50,8 +51,11 @@ int RunPlotResponse(const ResponsePlotCommand& cmd) {
     for (int i = 0; i < 3; ++i) samples[2 + i].push_back(w[k][i]);
   }
   for (std::size_t k = 0; k < impact_t.size(); ++k) {
-    auto& into = impact_kind[k] == "uplift" ? uplifts : impacts;
-    if (impact_kind[k] != "edge" && impact_kind[k] != "facet" && impact_kind[k] != "uplift") continue;
+    // Impacts and uplifts only: not the rest and Zeno records, nor a kind this version does not know.
+    core::ImpactKind kind = core::ImpactKind::kRest;
+    const bool known = core::FromString(impact_kind[k], &kind);
+    if (!known || kind == core::ImpactKind::kRest || kind == core::ImpactKind::kZeno) continue;
+    auto& into = kind == core::ImpactKind::kUplift ? uplifts : impacts;
     into[0].push_back(impact_t[k]);
     into[1].push_back(0.0);
   }

@@ -244,9 +244,9 @@ void WriteContents(const Writer& w, hid_t file, const core::Block& block, const 
       w_plus_B.push_back(impact.w_plus_B);
       w_minus_W.push_back(impact.w_minus_W);
       w_plus_W.push_back(impact.w_plus_W);
-      kind.push_back(impact.kind);
+      kind.push_back(core::ToString(impact.kind));
       before.push_back(impact.contact_before.ToString());
-      after.push_back(impact.kind == "rest" ? std::string("base") : impact.contact_after.ToString());
+      after.push_back(impact.kind == core::ImpactKind::kRest ? std::string("base") : impact.contact_after.ToString());
       status.push_back(core::ToString(impact.status));
     }
     w.Numbers(g.get(), "t", t, m, 0, "s");

@@ -135,13 +135,14 @@ json TruthJson(const core::Block& block, const core::ModelParameters& params, co
   std::size_t edge = 0;
   std::size_t zeno = 0;
   for (const auto& impact : t.impacts) {
-    facet += impact.kind == "facet";
-    edge += impact.kind == "edge";
-    zeno += impact.kind == "zeno";
+    facet += impact.kind == core::ImpactKind::kFacet;
+    edge += impact.kind == core::ImpactKind::kEdge;
+    zeno += impact.kind == core::ImpactKind::kZeno;
   }
   json summary = {{"impacts", t.impacts.size()}, {"facet_impacts", facet}, {"edge_impacts", edge}, {"zeno_switches", zeno}};
   // The simulator marks the end of the motion with a "rest" record; without one the recording ends in motion.
-  summary["rest_s"] = !t.impacts.empty() && t.impacts.back().kind == "rest" ? json(o.t0_s + t.impacts.back().t_s) : json(nullptr);
+  const bool rests = !t.impacts.empty() && t.impacts.back().kind == core::ImpactKind::kRest;
+  summary["rest_s"] = rests ? json(o.t0_s + t.impacts.back().t_s) : json(nullptr);
   if (!t.impacts.empty()) {
     const double first_impact_s = o.t0_s + t.impacts.front().t_s;
     summary["first_impact_s"] = first_impact_s;
@@ -179,10 +180,10 @@ std::string TruthText(const json& truth, const core::Trajectory& trajectory, dou
     const Eigen::Vector3d& a = impact.w_minus_B;
     const Eigen::Vector3d& b = impact.w_plus_B;
     text += separator;
-    text += fmt::format("[{},\"{}\",\"{}\",\"{}\",{},{},{},{},{},{},{},{},\"{}\"]", number(t0_s + impact.t_s), impact.kind,
-                        impact.contact_before.ToString(), impact.contact_after.ToString(), number(a.x()), number(a.y()),
-                        number(a.z()), number(b.x()), number(b.y()), number(b.z()), number(impact.tau),
-                        number(impact.delta_energy_J), core::ToString(impact.status));
+    text += fmt::format("[{},\"{}\",\"{}\",\"{}\",{},{},{},{},{},{},{},{},\"{}\"]", number(t0_s + impact.t_s),
+                        core::ToString(impact.kind), impact.contact_before.ToString(), impact.contact_after.ToString(),
+                        number(a.x()), number(a.y()), number(a.z()), number(b.x()), number(b.y()), number(b.z()),
+                        number(impact.tau), number(impact.delta_energy_J), core::ToString(impact.status));
     separator = ",\n    ";
   }
   text += trajectory.impacts.empty() ? "]\n}\n" : "\n  ]\n}\n";

@@ -42,7 +42,7 @@ core::Trajectory HandMadeTrajectory(double t0, std::size_t release, std::size_t 
   }
   core::ImpactRecord facet;
   facet.t_s = 0.05;
-  facet.kind = "facet";
+  facet.kind = core::ImpactKind::kFacet;
   facet.w_minus_B = Eigen::Vector3d(0.0, 1.5, 0.0);
   facet.w_plus_B = Eigen::Vector3d(0.1, 1.2, 0.0);
   t.impacts.push_back(facet);

@@ -114,7 +114,7 @@ TEST(SynthRecording, TruthFileHoldsTheInputsAndTheImpactLog) {
   for (std::size_t i = 0; i < impacts.size(); ++i) {
     const auto& record = r.trajectory.impacts[i];
     EXPECT_NEAR(impacts[i][0].get<double>(), o.t0_s + record.t_s, 1e-11) << i;
-    EXPECT_EQ(impacts[i][1].get<std::string>(), record.kind);
+    EXPECT_EQ(impacts[i][1].get<std::string>(), core::ToString(record.kind));
     EXPECT_NEAR(impacts[i][8].get<double>(), record.w_plus_B.y(), 1e-11 * (1.0 + std::abs(record.w_plus_B.y())));
   }
   EXPECT_EQ(truth["summary"]["first_impact_s"].get<double>(), o.t0_s + r.trajectory.impacts.front().t_s);

@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -91,13 +92,23 @@ struct SimulationOptions {
   void Validate() const;
 };
 
+// What an entry of the impact log records. The string forms are used only at the edges (JSON, HDF5, CSV, text,
+// Python).
+enum class ImpactKind {
+  kFacet,   // "facet": the facet impact map (the base lands flat)
+  kEdge,    // "edge": the edge impact map (a side edge lands)
+  kZeno,    // "zeno": switch to edge rocking after accumulating edge impacts
+  kRest,    // "rest": the block stops on its base; contact_after is empty, ΔE = −the kinetic energy left
+  kUplift,  // "uplift", under ground motion only: rest → rocking about contact_after, or edge → rocking about one
+            // of its vertices when the other end's normal force vanishes; ω is continuous and ΔE = 0
+};
+const char* ToString(ImpactKind kind);
+// Reads the string form back; false (and *kind unchanged) for any other text.
+bool FromString(std::string_view text, ImpactKind* kind);
+
 struct ImpactRecord {
   double t_s = 0.0;
-  // "facet", "edge" (impact maps), "zeno" (switch to edge rocking after accumulating edge impacts), "rest"
-  // (the block stops on its base; contact_after is empty, ΔE = −the kinetic energy left) or, under ground
-  // motion only, "uplift" (rest → rocking about contact_after, or edge → rocking about one of its vertices
-  // when the other end's normal force vanishes; ω is continuous and ΔE = 0).
-  std::string kind;
+  ImpactKind kind = ImpactKind::kFacet;
   Contact contact_before;
   Contact contact_after;
   Eigen::Vector3d w_minus_B = Eigen::Vector3d::Zero();

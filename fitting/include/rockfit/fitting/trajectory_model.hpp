@@ -16,7 +16,7 @@ namespace rockfit::fitting {
 // One impact (or other discrete event) of a model run, in time after the release.
 struct ModelEvent {
   double t_s = 0.0;
-  std::string kind;  // "facet", "edge", "zeno", "rest", as in core::ImpactRecord::kind
+  core::ImpactKind kind = core::ImpactKind::kFacet;  // as in core::ImpactRecord::kind
 };
 
 struct ModelOutput {
