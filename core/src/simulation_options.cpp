@@ -69,6 +69,19 @@ bool FromString(std::string_view text, ImpactKind* kind) {
   return false;
 }
 
+const char* ToString(FailureReason reason) {
+  switch (reason) {
+    case FailureReason::kNone: return "none";
+    case FailureReason::kEdgeImpact: return "edge_impact";
+    case FailureReason::kFacetImpact: return "facet_impact";
+    case FailureReason::kIntegratorStep: return "integrator_step";
+    case FailureReason::kImpactCascade: return "impact_cascade";
+    case FailureReason::kMaxImpacts: return "max_impacts";
+    case FailureReason::kEnergyBlowUp: return "energy_blow_up";
+  }
+  return "none";
+}
+
 void ModelParameters::Validate(bool check_alpha) const {
   if (check_alpha) RequirePositive(alpha_rad, "the release tilt alpha", "radians");
   RequireFinite(lambda, "the edge-impact parameter lambda");

@@ -184,6 +184,8 @@ class HybridRun {
                 int pivot, int vertex_off_ground_first, int vertex_off_ground_second);
   Next Rest(double t, const Eigen::Quaterniond& q_flat, const ImpactRecord& trigger);
   Next Stop(EndReason reason, double t, const EndState& state, std::string message = {});
+  // Stop as Failed for `failure`, explained by `message`.
+  Next Fail(FailureReason failure, double t, const EndState& state, std::string message);
   // The end of a segment of `mode` (rocking about `what`) that did not stop at a guard event: t_max or an
   // integrator failure; nullopt when it ended at an event.
   template <typename ModeT>
@@ -296,7 +298,7 @@ std::optional<HybridRun::Next> HybridRun::StopUnlessEvent(const ModeT& mode, con
       }
       return Stop(EndReason::kTMax, outcome.t_s, end);
     case SegmentEnd::kStepFailure:
-      return Stop(EndReason::kFailed, outcome.t_s, end,
+      return Fail(FailureReason::kIntegratorStep, outcome.t_s, end,
                   "the integrator could not continue rocking about " + Pivot(mode) + " at t = " + FormatTime(outcome.t_s) +
                       " (step size below round-off)");
     case SegmentEnd::kEvent:
@@ -429,7 +431,7 @@ bool HybridRun::BookImpact(const ImpactRecord& record, const EndState& state, do
   const double blow_up_J =
       kBlowUpEnergyFactor * block_.mass() * gravity_ * (block_.p_BC_B() - block_.p_BV_B(1)).norm();
   if (!(kinetic_after_J < blow_up_J)) {
-    Stop(EndReason::kFailed, record.t_s, state,
+    Fail(FailureReason::kEnergyBlowUp, record.t_s, state,
          "the kinetic energy grows without bound (" + std::to_string(kinetic_after_J) + " J after the " +
              ToString(record.kind) + " impact at t = " + FormatTime(record.t_s) +
              "): the impact parameters add energy at impacts (see delta_energy in the impact log)");
@@ -439,14 +441,14 @@ bool HybridRun::BookImpact(const ImpactRecord& record, const EndState& state, do
   impacts_at_instant_ = (record.t_s - last_impact_t_ <= same_instant) ? impacts_at_instant_ + 1 : 1;
   last_impact_t_ = record.t_s;
   if (impacts_at_instant_ > kMaxImpactsAtOneInstant) {
-    Stop(EndReason::kFailed, record.t_s, state,
+    Fail(FailureReason::kImpactCascade, record.t_s, state,
          "more than " + std::to_string(kMaxImpactsAtOneInstant) + " impacts at t = " + FormatTime(record.t_s) +
              " without the contact resolving (last " + ToString(record.kind) + " impact " +
              record.contact_before.ToString() + " → " + record.contact_after.ToString() + ")");
     return false;
   }
   if (out_->impacts.size() >= options_.max_impacts) {
-    Stop(EndReason::kFailed, record.t_s, state,
+    Fail(FailureReason::kMaxImpacts, record.t_s, state,
          "more than max_impacts = " + std::to_string(options_.max_impacts) + " impacts by t = " + FormatTime(record.t_s));
     return false;
   }
@@ -477,7 +479,7 @@ HybridRun::Next HybridRun::AfterEdgeImpact(const VertexMode& mode, double t, con
   const EndState before{mode.mode(), q_WB, w_minus_B};
   if (map.status != ImpactStatus::kOk || !map.w_plus_W.allFinite()) {
     out_->impacts.push_back(record);
-    return Stop(EndReason::kFailed, t, before,
+    return Fail(FailureReason::kEdgeImpact, t, before,
                 std::string("the edge impact on V") + std::to_string(pivot) + "V" + std::to_string(landing) +
                     " at t = " + FormatTime(t) + " has no solution (map status " + ToString(map.status) + ")");
   }
@@ -562,7 +564,7 @@ HybridRun::Next HybridRun::AfterFacetImpact(const EdgeMode& mode, double t, cons
   const EndState before{mode.mode(), q_flat, w_minus_B};
   if (map.status != ImpactStatus::kOk || !map.w_plus_B.allFinite()) {
     out_->impacts.push_back(record);
-    return Stop(EndReason::kFailed, t, before,
+    return Fail(FailureReason::kFacetImpact, t, before,
                 "the facet impact after rocking about " + mode.mode().ToString() + " at t = " + FormatTime(t) +
                     " has no solution (map status " + ToString(map.status) + ")");
   }
@@ -652,6 +654,11 @@ HybridRun::Next HybridRun::Stop(EndReason reason, double t, const EndState& stat
   out_->end_reason = reason;
   out_->message = std::move(message);
   return Next::kStopped;
+}
+
+HybridRun::Next HybridRun::Fail(FailureReason failure, double t, const EndState& state, std::string message) {
+  out_->failure = failure;
+  return Stop(EndReason::kFailed, t, state, std::move(message));
 }
 
 }  // namespace

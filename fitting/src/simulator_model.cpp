@@ -13,8 +13,6 @@ namespace {
 // Impacts allowed in one fitting run; the paper's Fig. 14 window has about 25.
 constexpr std::size_t kMaxImpactsPerRun = 5000;
 
-bool Contains(const std::string& text, const char* word) { return text.find(word) != std::string::npos; }
-
 }  // namespace
 
 core::SimulationOptions SimulatorModelOptions::DefaultFittingSimulation() {
@@ -34,16 +32,24 @@ void SimulatorModelOptions::Validate() const {
   }
 }
 
-std::string SimulationFailureCategory(const std::string& message) {
-  const bool edge = Contains(message, "edge impact");
-  const bool facet = Contains(message, "facet impact");
-  const bool no_solution = Contains(message, "no solution");
-  for (const char* status : {"infeasible", "ambiguous", "singular"}) {
-    if (no_solution && Contains(message, status)) return fmt::format("{} impact {}", edge ? "edge" : (facet ? "facet" : "an"), status);
+std::string SimulationFailureCategory(core::FailureReason reason, core::ImpactStatus status) {
+  switch (reason) {
+    case core::FailureReason::kEdgeImpact:
+    case core::FailureReason::kFacetImpact:
+      // A map that reports ok but gave a non-finite ω⁺ has no status to name.
+      if (status == core::ImpactStatus::kOk) return "failed";
+      return fmt::format("{} impact {}", reason == core::FailureReason::kEdgeImpact ? "edge" : "facet",
+                         core::ToString(status));
+    case core::FailureReason::kIntegratorStep:
+      return "integrator";
+    case core::FailureReason::kImpactCascade:
+      return "impact cascade";
+    case core::FailureReason::kMaxImpacts:
+      return "too many impacts";
+    case core::FailureReason::kEnergyBlowUp:
+    case core::FailureReason::kNone:
+      break;
   }
-  if (Contains(message, "integrator")) return "integrator";
-  if (Contains(message, "without the contact resolving")) return "impact cascade";
-  if (Contains(message, "max_impacts")) return "too many impacts";
   return "failed";
 }
 
@@ -81,7 +87,9 @@ void SimulatorModel::Evaluate(const core::ModelParameters& params, const std::ve
       out->failure_detail = fmt::format("the block overturns at t = {:.4f} s after the release", trajectory.t_end_s);
       return;
     case core::EndReason::kFailed:
-      out->failure = SimulationFailureCategory(trajectory.message);
+      // The failing impact, if any, is the last of the log.
+      out->failure = SimulationFailureCategory(
+          trajectory.failure, trajectory.impacts.empty() ? core::ImpactStatus::kOk : trajectory.impacts.back().status);
       out->failure_detail = trajectory.message;
       return;
     default:

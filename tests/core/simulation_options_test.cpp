@@ -43,6 +43,16 @@ TEST(SimulationNames, ImpactKindsReadBackFromTheirNames) {
   }
 }
 
+TEST(SimulationNames, FailureReasonsHaveTheirDocumentedNames) {
+  EXPECT_STREQ(ToString(FailureReason::kNone), "none");
+  EXPECT_STREQ(ToString(FailureReason::kEdgeImpact), "edge_impact");
+  EXPECT_STREQ(ToString(FailureReason::kFacetImpact), "facet_impact");
+  EXPECT_STREQ(ToString(FailureReason::kIntegratorStep), "integrator_step");
+  EXPECT_STREQ(ToString(FailureReason::kImpactCascade), "impact_cascade");
+  EXPECT_STREQ(ToString(FailureReason::kMaxImpacts), "max_impacts");
+  EXPECT_STREQ(ToString(FailureReason::kEnergyBlowUp), "energy_blow_up");
+}
+
 // Expects Validate() to throw InvalidArgument whose message contains `word`.
 void ExpectRejected(const SimulationOptions& options, const std::string& word) {
   try {

@@ -516,6 +516,9 @@ TEST(Simulator, RandomParameterSetsAlwaysEndWithAStatus) {
     EXPECT_TRUE(std::isfinite(tr.t_end_s)) << where;
     if (tr.end_reason == EndReason::kFailed) {
       EXPECT_FALSE(tr.message.empty()) << where;
+      EXPECT_NE(tr.failure, FailureReason::kNone) << where;
+    } else {
+      EXPECT_EQ(tr.failure, FailureReason::kNone) << where;
     }
     for (std::size_t k = 0; k < tr.t_s.size(); ++k) {
       ASSERT_TRUE(tr.w_B[k].allFinite()) << where;
@@ -643,6 +646,7 @@ TEST(Simulator, ImpactsThatKeepAddingEnergyEndAsFailedWithAMessage) {
   options.stop = StopCondition::kRest;
   const Trajectory tr = Simulate(Fig14Block(), params, options);
   EXPECT_EQ(tr.end_reason, EndReason::kFailed);
+  EXPECT_EQ(tr.failure, FailureReason::kEnergyBlowUp) << ToString(tr.failure);
   EXPECT_NE(tr.message.find("energy"), std::string::npos) << tr.message;
   ASSERT_FALSE(tr.impacts.empty());
   EXPECT_GT(tr.impacts.back().delta_energy_J, 0.0);
@@ -654,6 +658,7 @@ TEST(Simulator, TooManyImpactsEndAsFailedWithAMessage) {
   options.stop = StopCondition::kRest;
   const Trajectory tr = Simulate(Fig14Block(), Fig14Parameters(), options);
   EXPECT_EQ(tr.end_reason, EndReason::kFailed);
+  EXPECT_EQ(tr.failure, FailureReason::kMaxImpacts) << ToString(tr.failure);
   EXPECT_NE(tr.message.find("max_impacts"), std::string::npos) << tr.message;
   EXPECT_EQ(tr.impacts.size(), 3u);
 }

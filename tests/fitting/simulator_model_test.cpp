@@ -77,13 +77,26 @@ TEST(SimulatorModel, InvalidParametersAreAFailureNotAnException) {
 }
 
 TEST(SimulationFailureCategory, NamesTheImpactStatusOrTheIntegrator) {
-  EXPECT_EQ(SimulationFailureCategory("the edge impact on V3V4 at t = 0.5 s has no solution (map status singular)"),
-            "edge impact singular");
-  EXPECT_EQ(SimulationFailureCategory("the facet impact after rocking about V1V2 at t = 0.4 s has no solution (map "
-                                      "status infeasible)"),
+  using core::FailureReason;
+  using core::ImpactStatus;
+  EXPECT_EQ(SimulationFailureCategory(FailureReason::kEdgeImpact, ImpactStatus::kSingular), "edge impact singular");
+  EXPECT_EQ(SimulationFailureCategory(FailureReason::kEdgeImpact, ImpactStatus::kAmbiguous), "edge impact ambiguous");
+  EXPECT_EQ(SimulationFailureCategory(FailureReason::kFacetImpact, ImpactStatus::kInfeasible),
             "facet impact infeasible");
-  EXPECT_EQ(SimulationFailureCategory("the integrator could not continue rocking about V3 at t = 1 s"), "integrator");
-  EXPECT_EQ(SimulationFailureCategory("more than max_impacts = 10 impacts by t = 1 s"), "too many impacts");
+  EXPECT_EQ(SimulationFailureCategory(FailureReason::kFacetImpact, ImpactStatus::kOk), "failed");  // non-finite ω⁺
+  EXPECT_EQ(SimulationFailureCategory(FailureReason::kIntegratorStep), "integrator");
+  EXPECT_EQ(SimulationFailureCategory(FailureReason::kImpactCascade), "impact cascade");
+  EXPECT_EQ(SimulationFailureCategory(FailureReason::kMaxImpacts), "too many impacts");
+  EXPECT_EQ(SimulationFailureCategory(FailureReason::kEnergyBlowUp), "failed");
+}
+
+TEST(SimulatorModel, ARunWithTooManyImpactsFailsAsTooManyImpacts) {
+  SimulatorModelOptions options;
+  options.simulation.max_impacts = 2;
+  ModelOutput out;
+  SimulatorModel(kBlock, options).Evaluate(Params(0.2, -2.0), {0.0, 0.5, 1.0, 2.0}, &out);
+  EXPECT_EQ(out.failure, "too many impacts") << out.failure_detail;
+  EXPECT_NE(out.failure_detail.find("max_impacts"), std::string::npos) << out.failure_detail;
 }
 
 }  // namespace

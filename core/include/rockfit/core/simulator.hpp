@@ -129,6 +129,20 @@ struct SegmentDiagnostics {
   double energy_drift_rel = 0.0;     // |E_end − E_begin| / E_begin, E = kinetic + m g z_C (z_C above ground)
 };
 
+// Why a run ended as EndReason::kFailed. For the two impact reasons the impact map's status (infeasible,
+// ambiguous, singular; ok when ω⁺ came out non-finite) is that of the failing impact, the last entry of the
+// impact log.
+enum class FailureReason {
+  kNone,            // "none": the run did not fail
+  kEdgeImpact,      // "edge_impact": an edge impact map has no solution
+  kFacetImpact,     // "facet_impact": a facet impact map has no solution
+  kIntegratorStep,  // "integrator_step": the integrator's step size fell below round-off
+  kImpactCascade,   // "impact_cascade": too many impacts at one instant without the contact resolving
+  kMaxImpacts,      // "max_impacts": more impacts than SimulationOptions::max_impacts
+  kEnergyBlowUp,    // "energy_blow_up": the kinetic energy after an impact grows without bound
+};
+const char* ToString(FailureReason reason);
+
 // Samples (t_s, w_B, q_WB, euler_zyx, mode: one entry per sample time up to t_end_s), the impact log, one
 // SegmentDiagnostics per continuous segment, and how the run ended.
 struct Trajectory {
@@ -141,7 +155,8 @@ struct Trajectory {
   std::vector<SegmentDiagnostics> segments;
   double t_end_s = 0.0;
   EndReason end_reason = EndReason::kFailed;
-  std::string message;  // why a Failed run failed
+  FailureReason failure = FailureReason::kNone;  // why a Failed run failed
+  std::string message;                           // the same in words, with times and contacts
   double wall_time_s = 0.0;  // of Simulate() itself
   long num_steps = 0;        // accepted integrator steps over all segments
   long num_evaluations = 0;  // right-hand-side evaluations over all segments
