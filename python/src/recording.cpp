@@ -43,7 +43,7 @@ TrialRecording FromArrays(const py::object& t, const py::object& w_B, const py::
   }
   if (rate_hz && !(std::isfinite(*rate_hz) && *rate_hz > 0.0)) throw InvalidArgument("rate must be a positive number of Hz");
   rec.rate_hz = rate_hz.value_or(static_cast<double>(n - 1) / (rec.t_s.back() - rec.t_s.front()));
-  rec.rate_source = rate_hz ? "option" : "timestamps";
+  rec.rate_source = rate_hz ? io::RateSource::kOption : io::RateSource::kTimestamps;
   rec.format = "python";
   rec.source = "python arrays";
   rec.mounting = "identity";
@@ -99,7 +99,8 @@ void RegisterRecording(py::module_& m) {
       .def_property_readonly("source", [](const TrialRecording& r) { return r.recording.source; }, "The path read")
       .def_property_readonly("rate_hz", [](const TrialRecording& r) { return r.recording.rate_hz; },
                              "Nominal gyro sample rate [Hz]")
-      .def_property_readonly("rate_source", [](const TrialRecording& r) { return r.recording.rate_source; },
+      .def_property_readonly("rate_source",
+                             [](const TrialRecording& r) { return io::ToString(r.recording.rate_source); },
                              "Where the rate came from: registers, timestamps, manifest, option, file")
       .def_property_readonly("orientation_source", [](const TrialRecording& r) { return r.recording.orientation_source; },
                              "File(s) the attitude was read from ('' without attitude)")

@@ -154,7 +154,7 @@ void FitSampleCampaign(benchmark::State& state, fitting::IntervalMethod interval
   for (const io::TrialSpec& trial : manifest.trials) {
     io::LoadOptions o;
     o.rate_hz = trial.rate_hz;
-    o.rate_origin = "manifest";
+    o.rate_origin = io::RateSource::kManifest;
     if (!trial.mounting.empty()) o.mounting = io::Mounting::Parse(trial.mounting);
     const io::Recording r = io::LoadRecording(trial.files, o);
     signals.push_back({r.t_s, r.w_B});

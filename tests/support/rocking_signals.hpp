@@ -153,7 +153,7 @@ inline MeasuredRecording MakeRecording(const std::vector<double>& t_s, const std
   rec.format = "test";
   rec.source = "synthetic planar rocking";
   rec.rate_hz = rate_hz;
-  rec.rate_source = "option";
+  rec.rate_source = io::RateSource::kOption;
   rec.t_s = t_s;
   std::mt19937_64 rng(model.seed);
   std::normal_distribution<double> normal(0.0, 1.0);

@@ -51,12 +51,15 @@ nlohmann::json RangesJson(const std::vector<Eigen::Vector3d>& values, const std:
   return out;
 }
 
-std::string RateSourceText(const std::string& source) {
-  if (source == "registers") return "from _Registers.csv, register 69";
-  if (source == "timestamps") return "from the timestamps, 1 / median step";
-  if (source == "option") return "from --rate";
-  if (source == "manifest") return "from the manifest";
-  return "from " + source;
+std::string RateSourceText(io::RateSource source) {
+  switch (source) {
+    case io::RateSource::kRegisters: return "from _Registers.csv, register 69";
+    case io::RateSource::kTimestamps: return "from the timestamps, 1 / median step";
+    case io::RateSource::kOption: return "from --rate";
+    case io::RateSource::kManifest: return "from the manifest";
+    case io::RateSource::kFile: break;
+  }
+  return std::string("from ") + io::ToString(source);
 }
 
 io::LoadOptions MakeOptions(const InspectCommand& cmd) {
@@ -85,7 +88,7 @@ void PrintJsonSummary(const io::Recording& r) {
   out["format"] = r.format;
   out["source"] = r.source;
   out["rate_hz"] = r.rate_hz;
-  out["rate_source"] = r.rate_source;
+  out["rate_source"] = io::ToString(r.rate_source);
   out["samples"] = r.size();
   out["duration_s"] = r.duration_s();
   out["columns"] = r.columns;

@@ -28,7 +28,7 @@ bool IsRockfitHdf5(const std::filesystem::path& path, const std::string& format)
 }
 
 io::LoadOptions MakeLoadOptions(const std::string& format, const std::optional<double>& rate_hz,
-                                const std::string& rate_origin, const std::string& mounting, const std::string& columns,
+                                io::RateSource rate_origin, const std::string& mounting, const std::string& columns,
                                 const std::string& orientation) {
   io::LoadOptions options;
   const auto parsed_format = io::ParseFormatName(format);
@@ -93,7 +93,7 @@ io::Recording LoadManifestTrial(const io::TrialSpec& trial) {
   if (IsRockfitHdf5(trial.files, trial.format)) return io::ReadRecordingHdf5(trial.files, "");
   io::LoadOptions options;
   try {
-    options = MakeLoadOptions(trial.format, trial.rate_hz, "manifest", trial.mounting, "", "auto");
+    options = MakeLoadOptions(trial.format, trial.rate_hz, io::RateSource::kManifest, trial.mounting, "", "auto");
   } catch (const InvalidArgument& e) {  // a manifest entry is input data
     throw BadInput(fmt::format("trial '{}' (line {}): {}", trial.id, trial.where.line, e.what()));
   }
@@ -138,7 +138,8 @@ TrialInput LoadTrialInput(const RecordingArgs& args) {
     throw InvalidArgument("--trial selects a trial of a manifest or of an HDF5 file; " + args.path + " is neither");
   }
   input.recording = io::LoadRecording(
-      args.path, MakeLoadOptions(args.format, args.rate_hz, "option", args.mounting, args.columns, args.orientation));
+      args.path,
+      MakeLoadOptions(args.format, args.rate_hz, io::RateSource::kOption, args.mounting, args.columns, args.orientation));
   input.trial_id = TrialNameFrom(std::filesystem::path(args.path).filename().string());
   return input;
 }

@@ -186,12 +186,13 @@ Recording ReadGenericCsvRecording(const std::filesystem::path& file, const LoadO
                      "Check the time column's unit in the column map (time=NAME@s, @ms or @us)."});
     }
     recording.rate_hz = base.rate_hz;
-    recording.rate_source = "timestamps";
+    recording.rate_source = RateSource::kTimestamps;
     if (options.rate_hz && std::abs(*options.rate_hz / base.rate_hz - 1.0) > kGivenRateTolerance) {
       ThrowBadInput({table.HeaderPosition(time_column), table.DescribeColumn(time_column),
                      fmt::format("times {:.6g} s apart (median), i.e. {:.6g} Hz", base.median_step_s, base.rate_hz),
                      fmt::format("the rate given {} ({:g} Hz)",
-                                 options.rate_origin == "manifest" ? "in the manifest" : "with --rate", *options.rate_hz),
+                                 options.rate_origin == RateSource::kManifest ? "in the manifest" : "with --rate",
+                                 *options.rate_hz),
                      "The file carries its own time: leave the rate out, or correct it."});
     }
     samples.t_s = std::move(base.t_s);

@@ -8,6 +8,7 @@
 #include <fmt/ranges.h>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/io/load_options.hpp"
 #include "rockfit/io/mounting_estimate.hpp"
 
 namespace rockfit::io {
@@ -105,7 +106,7 @@ void WriteTrialHdf5(const hdf5::Group& root, const std::string& trial_id, const 
   g.SetString("source", recording.source);
   g.SetString("format", recording.format);
   g.SetDouble("rate_hz", recording.rate_hz);
-  g.SetString("rate_source", recording.rate_source);
+  g.SetString("rate_source", ToString(recording.rate_source));
 
   g.WriteDoubles("time_s", recording.t_s, "s");
   g.WriteVectors("w_B_rad_s", recording.w_B, "rad/s");
@@ -200,9 +201,9 @@ StoredTrial ReadTrialHdf5(const std::filesystem::path& path, const std::string& 
   stored.labels.notes = g.GetString("notes").value_or("");
 
   Recording& rec = stored.recording;
-  rec.format = "rockfit-hdf5";
+  rec.format = FormatName(RecordingFormat::kRockfitHdf5);
   rec.source = path.string() + "#" + stored.id;
-  rec.rate_source = "file";
+  rec.rate_source = RateSource::kFile;
   rec.rate_hz = g.GetDouble("rate_hz").value_or(0.0);
   rec.t_s = g.ReadDoubles("time_s");
   rec.w_B = g.ReadVectors("w_B_rad_s");

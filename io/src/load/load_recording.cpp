@@ -17,8 +17,8 @@ namespace rockfit::io {
 
 namespace {
 
-Recording ReadRecording(const std::filesystem::path& path, const LoadOptions& options) {
-  const DetectedSource source = DetectRecordingSource(path, options.format);
+// Reads `source` (detected from `path` and options.format).
+Recording ReadRecording(const std::filesystem::path& path, const DetectedSource& source, const LoadOptions& options) {
   if (options.columns && source.format != RecordingFormat::kGenericCsv) {
     throw InvalidArgument("a column map applies to generic CSV files, but '" + path.string() + "' is read as " +
                           FormatName(source.format) + "; add --format csv to read that file as a generic CSV");
@@ -54,8 +54,9 @@ Recording ReadRecording(const std::filesystem::path& path, const LoadOptions& op
 
 Recording LoadRecording(const std::filesystem::path& path, const LoadOptions& options) {
   options.Validate();
-  Recording recording = ReadRecording(path, options);
-  if (recording.format == FormatName(RecordingFormat::kRockfitHdf5)) return recording;  // stored in block axes
+  const DetectedSource source = DetectRecordingSource(path, options.format);
+  Recording recording = ReadRecording(path, source, options);
+  if (source.format == RecordingFormat::kRockfitHdf5) return recording;  // stored in block axes
 
   const MountingEstimate estimate = EstimateMounting(recording);
   MountingCheck check = estimate.check;
@@ -76,7 +77,7 @@ Recording LoadRecording(const std::filesystem::path& path, const LoadOptions& op
   LoadOptions corrected = options;
   corrected.mounting = CorrectedMounting(options.mounting, estimate);
   corrected.estimate_mounting = false;
-  Recording result = ReadRecording(path, corrected);
+  Recording result = ReadRecording(path, source, corrected);
   check.estimated = true;
   if (check.status == "partial") {
     check.warning = "mounting estimate: " + check.message;

@@ -65,8 +65,9 @@ void LoadOptions::Validate() const {
   if (rate_hz && !(std::isfinite(*rate_hz) && *rate_hz > 0.0 && *rate_hz <= kMaxRate_hz)) {
     throw InvalidArgument(fmt::format("the sample rate must be a number of Hz in (0, {:g}], got {}", kMaxRate_hz, *rate_hz));
   }
-  if (rate_origin != "option" && rate_origin != "manifest") {
-    throw InvalidArgument("rate_origin must be \"option\" or \"manifest\", got \"" + rate_origin + "\"");
+  if (rate_origin != RateSource::kOption && rate_origin != RateSource::kManifest) {
+    throw InvalidArgument(std::string("rate_origin must be \"option\" or \"manifest\", got \"") +
+                          ToString(rate_origin) + "\"");
   }
   if (columns) columns->Validate();
 }

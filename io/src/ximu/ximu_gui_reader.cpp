@@ -233,11 +233,12 @@ Recording ReadXimuGuiRecording(const XimuGuiFileSet& files, const LoadOptions& o
                          " and give the rate with --rate."});
     }
     rate_hz = reg.rate_hz;
-    recording.rate_source = "registers";
+    recording.rate_source = RateSource::kRegisters;
     if (options.rate_hz && std::abs(*options.rate_hz - rate_hz) > 1e-9 * rate_hz) {
       ThrowBadInput({reg.at, "InertialAndMagneticDataRate (register 69)",
                      fmt::format("{} ({:g} Hz)", reg.value, rate_hz),
-                     fmt::format("the rate given {} ({:g} Hz)", options.rate_origin == "manifest" ? "in the manifest" : "with --rate",
+                     fmt::format("the rate given {} ({:g} Hz)",
+                                 options.rate_origin == RateSource::kManifest ? "in the manifest" : "with --rate",
                                  *options.rate_hz),
                      "The registers record what the device was set to: remove the given rate or correct it."});
     }
@@ -275,8 +276,9 @@ Recording ReadXimuGuiRecording(const XimuGuiFileSet& files, const LoadOptions& o
                      fmt::format("{:g} inertial rows per real-time-clock second (median of {} s)", rtc->rows_per_second,
                                  rtc->seconds),
                      fmt::format("{:g} rows per second, the rate from {}", rate_hz,
-                                 recording.rate_source == "registers" ? "the registers"
-                                                                      : (recording.rate_source == "manifest" ? "the manifest" : "--rate")),
+                                 recording.rate_source == RateSource::kRegisters  ? "the registers"
+                                 : recording.rate_source == RateSource::kManifest ? "the manifest"
+                                                                                  : "--rate"),
                      "The rate is wrong: correct it (the clock counts real seconds)."});
     }
     if (relative < -kLostPacketTolerance) {

@@ -159,12 +159,13 @@ Recording ReadXimu3Recording(const std::filesystem::path& directory, const LoadO
   for (std::size_t k = 0; k < n; ++k) times_s[k] = (timestamps_us[k] - timestamps_us[0]) * ToSi(TimeUnit::kMicroseconds);
   TimestampTimeBase base = TimeBaseFromTimestamps(times_s);
   recording.rate_hz = base.rate_hz;
-  recording.rate_source = "timestamps";
+  recording.rate_source = RateSource::kTimestamps;
   if (options.rate_hz && std::abs(*options.rate_hz / base.rate_hz - 1.0) > kGivenRateTolerance) {
     ThrowBadInput({{inertial_path->string(), inertial.header_line(), inertial.HeaderPosition(*c[0]).column},
                    inertial.DescribeColumn(*c[0]),
                    fmt::format("timestamps {:.0f} µs apart (median), i.e. {:.6g} Hz", base.median_step_s * 1e6, base.rate_hz),
-                   fmt::format("the rate given {} ({:g} Hz)", options.rate_origin == "manifest" ? "in the manifest" : "with --rate",
+                   fmt::format("the rate given {} ({:g} Hz)",
+                               options.rate_origin == RateSource::kManifest ? "in the manifest" : "with --rate",
                                *options.rate_hz),
                    "x-IMU3 files carry their own time: leave the rate out, or correct it."});
   }

@@ -67,7 +67,7 @@ TEST(ReadGenericCsvRecording, ConvertsUnitsAndTakesTimeFromTheTimeColumn) {
   ASSERT_EQ(r.size(), 4u);
   EXPECT_EQ(r.format, "generic-csv");
   EXPECT_NEAR(r.rate_hz, 400.0, 1e-6);
-  EXPECT_EQ(r.rate_source, "timestamps");
+  EXPECT_EQ(r.rate_source, RateSource::kTimestamps);
   EXPECT_NEAR(r.t_s[3], 0.01, 1e-12);
   EXPECT_NEAR(r.w_B[0].x(), kPi, 1e-12);
   EXPECT_NEAR(r.w_B[2].z(), -kPi / 4, 1e-12);
@@ -84,7 +84,7 @@ TEST(ReadGenericCsvRecording, UsesTheGivenRateWithoutATimeColumnAndAnExplicitMap
   options.columns = ColumnMap::Parse("gyro=wx,wy,wz@rad/s;euler=r,p,y@deg");
   const Recording r = ReadGenericCsvRecording(file, options);
   ASSERT_EQ(r.size(), 2u);
-  EXPECT_EQ(r.rate_source, "option");
+  EXPECT_EQ(r.rate_source, RateSource::kOption);
   EXPECT_DOUBLE_EQ(r.t_s[1], 0.01);
   EXPECT_DOUBLE_EQ(r.w_B[0].x(), 0.5);
   EXPECT_NEAR(r.euler_zyx[1][0], 91.0 * kRadPerDeg, 1e-12);

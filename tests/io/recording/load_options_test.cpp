@@ -18,7 +18,7 @@ TEST(LoadOptions, RefusesRatesThatAreNotAPositiveNumberOfHertz) {
     EXPECT_THROW(options.Validate(), InvalidArgument) << rate;
   }
   LoadOptions options;
-  options.rate_origin = "guess";
+  options.rate_origin = RateSource::kRegisters;  // a rate found in the files, not given
   EXPECT_THROW(options.Validate(), InvalidArgument);
 }
 

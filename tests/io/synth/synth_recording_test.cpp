@@ -134,7 +134,7 @@ void ExpectReadBackEqualsTruth(const std::string& mounting_text, double quaterni
   load.mounting = mounting;
   const Recording rec = LoadRecording(dir.path() / "t", load);
   EXPECT_EQ(rec.format, "ximu-gui");
-  EXPECT_EQ(rec.rate_source, "registers");
+  EXPECT_EQ(rec.rate_source, RateSource::kRegisters);
   EXPECT_EQ(rec.rate_hz, 256.0);
   EXPECT_TRUE(rec.warnings.empty()) << rec.warnings.front();
   EXPECT_TRUE(rec.gaps.empty());
@@ -179,7 +179,7 @@ TEST(SynthRecording, EveryBundledSampleLoadsWithoutWarningWithTheRegisterRate) {
     LoadOptions options;  // the mounting the trial was made with, as the manifest gives it
     options.mounting = Mounting::Parse(truth["mounting"]["text"].get<std::string>());
     const Recording rec = LoadRecording(prefix, options);
-    EXPECT_EQ(rec.rate_source, "registers") << prefix;
+    EXPECT_EQ(rec.rate_source, RateSource::kRegisters) << prefix;
     EXPECT_EQ(rec.rate_hz, 256.0) << prefix;
     EXPECT_TRUE(rec.warnings.empty()) << prefix << ": " << rec.warnings.front();
     EXPECT_TRUE(rec.gaps.empty()) << prefix;

@@ -54,7 +54,7 @@ TEST(ReadXimuGuiRecording, TimeIsRowOverRateAndAttitudeIsTheSpinThatWasWritten) 
   dir.Write("S_EulerAngles.csv", spin.euler);
   const Recording r = ReadXimuGuiRecording(XimuGuiFileSet::Find(dir / "S"), WithRate(256.0));
   ASSERT_EQ(r.size(), 600u);
-  EXPECT_EQ(r.rate_source, "option");
+  EXPECT_EQ(r.rate_source, RateSource::kOption);
   EXPECT_DOUBLE_EQ(r.t_s[599], 599.0 / 256.0);
   EXPECT_DOUBLE_EQ(r.orientation_rate_hz, 256.0);
   for (std::size_t k = 0; k < r.size(); k += 37) {
@@ -118,7 +118,7 @@ TEST(ReadXimuGuiRecording, RatesComeFromTheRegistersAndMustAgreeWithWhatIsGiven)
   const XimuGuiFileSet files = XimuGuiFileSet::Find(dir / "S");
   const Recording r = ReadXimuGuiRecording(files, {});
   EXPECT_DOUBLE_EQ(r.rate_hz, 128.0);
-  EXPECT_EQ(r.rate_source, "registers");
+  EXPECT_EQ(r.rate_source, RateSource::kRegisters);
   EXPECT_DOUBLE_EQ(r.orientation_rate_hz, 128.0);
   EXPECT_NO_THROW(ReadXimuGuiRecording(files, WithRate(128.0)));
   EXPECT_THAT(LoadError(files, WithRate(256.0)),

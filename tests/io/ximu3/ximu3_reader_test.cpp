@@ -40,7 +40,7 @@ TEST(ReadXimu3Recording, TimeIsDeviceTimeFromTheFirstRowAndLongStepsAreGaps) {
   const Recording r = ReadXimu3Recording(dir.path(), {});
   ASSERT_EQ(r.size(), 9u);
   EXPECT_EQ(r.format, "ximu3");
-  EXPECT_EQ(r.rate_source, "timestamps");
+  EXPECT_EQ(r.rate_source, RateSource::kTimestamps);
   EXPECT_NEAR(r.rate_hz, 1e6 / 19990.5, 1e-9);  // eight steps: median of 19 990 and 19 991 µs
   EXPECT_DOUBLE_EQ(r.t_s[0], 0.0);
   EXPECT_NEAR(r.t_s[3], (19991 + 19990 + 39980) * 1e-6, 1e-12);

@@ -8,6 +8,7 @@
 
 #include "rockfit/io/column_map.hpp"
 #include "rockfit/io/mounting.hpp"
+#include "rockfit/io/recording.hpp"
 
 namespace rockfit::io {
 
@@ -38,8 +39,8 @@ struct LoadOptions {
   // Gyro sample rate [Hz] for files that do not state it (x-IMU GUI sets without _Registers.csv,
   // generic CSV without a time column). When the files do state it, the two must agree.
   std::optional<double> rate_hz;
-  // How rate_hz was given: "option" (--rate) or "manifest"; reported as Recording::rate_source.
-  std::string rate_origin = "option";
+  // How rate_hz was given: RateSource::kOption (--rate) or kManifest; reported as Recording::rate_source.
+  RateSource rate_origin = RateSource::kOption;
   Mounting mounting;                 // sensor → block; identity by default
   // "--mounting auto": estimate the mounting from the recording (mounting_estimate.hpp), starting at `mounting`,
   // and read the recording again with the estimate. Without it the estimate only checks `mounting` (a warning
@@ -49,7 +50,8 @@ struct LoadOptions {
   OrientationChoice orientation = OrientationChoice::kAuto;
   RecordingFormat format = RecordingFormat::kAuto;
 
-  // Throws InvalidArgument: rate not finite/positive or above kMaxRate_hz, bad column map.
+  // Throws InvalidArgument: rate not finite/positive or above kMaxRate_hz, a rate_origin other than option or
+  // manifest, bad column map.
   void Validate() const;
 };
 

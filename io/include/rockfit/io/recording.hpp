@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -36,11 +37,24 @@ struct MountingCheck {
   bool has_estimate() const { return status == "ok" || status == "partial"; }
 };
 
+// Where a recording's sample rate came from. The names are used only at the edges (HDF5 attribute, JSON, text,
+// Python).
+enum class RateSource {
+  kOption,      // "option": given by the caller (--rate, or a Recording built in code)
+  kManifest,    // "manifest": given in the campaign manifest
+  kRegisters,   // "registers": the x-IMU's _Registers.csv (register 69)
+  kTimestamps,  // "timestamps": 1 / the median step of the file's time column or timestamps
+  kFile,        // "file": rockfit's HDF5 store
+};
+const char* ToString(RateSource source);
+// Reads the name back; false (and *source unchanged) for any other text.
+bool FromString(std::string_view text, RateSource* source);
+
 struct Recording {
   std::string format;   // "ximu-gui", "ximu3", "generic-csv", "rockfit-hdf5"
   std::string source;   // the path the recording was read from
   double rate_hz = 0.0; // nominal sample rate of the gyro
-  std::string rate_source;  // where the rate came from: "registers", "timestamps", "manifest", "option", "file"
+  RateSource rate_source = RateSource::kOption;  // where the rate came from
 
   std::vector<double> t_s;                 // sample times [s], first sample at 0
   std::vector<Eigen::Vector3d> w_B;        // angular velocity in the block frame [rad/s]
