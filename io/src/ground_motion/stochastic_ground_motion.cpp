@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "rockfit/core/checks.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/synth_random.hpp"
 
@@ -13,12 +14,6 @@ namespace {
 
 // More samples than this are refused (a day at 1 kHz is below it).
 constexpr double kMaxSamples = 1e8;
-
-void RequirePositive(double value, const char* name) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw InvalidArgument(std::string(name) + " must be a positive finite number, got " + std::to_string(value));
-  }
-}
 
 // State (x_g, ẋ_g, x_f, ẋ_f) of the two filters.
 using FilterState = std::array<double, 4>;
@@ -53,7 +48,7 @@ void CloughPenzienOptions::Validate() const {
   RequirePositive(duration_s, "duration");
   RequirePositive(dt_s, "dt");
   RequirePositive(pga_m_s2, "pga");
-  if (!(decay_per_s >= 0.0) || !std::isfinite(decay_per_s)) throw InvalidArgument("decay must be non-negative");
+  RequireNonNegative(decay_per_s, "decay");
   if (!(t_strong_end_s >= t_rise_s) || !std::isfinite(t_strong_end_s)) {
     throw InvalidArgument("the end of the strong phase t_2 must not come before the rise time t_1");
   }

@@ -82,8 +82,8 @@ void CheckKeys(const Reporter& report, const toml::table& table, const std::stri
 
 const toml::node* Find(const toml::table& table, const char* key) { return table.get(key); }
 
-std::string RequireString(const Reporter& report, const toml::table& table, const char* key, const std::string& what,
-                          SourcePosition table_where) {
+std::string ReadRequiredString(const Reporter& report, const toml::table& table, const char* key,
+                               const std::string& what, SourcePosition table_where) {
   const toml::node* node = Find(table, key);
   if (!node) report.Fail(table_where, fmt::format("{} has no '{}' (a string); add {} = \"…\"", what, key, key));
   const auto* value = node->as_string();
@@ -93,8 +93,8 @@ std::string RequireString(const Reporter& report, const toml::table& table, cons
   return value->get();
 }
 
-std::string OptionalString(const Reporter& report, const toml::table& table, const char* key, const std::string& what,
-                           std::string fallback = {}) {
+std::string ReadOptionalString(const Reporter& report, const toml::table& table, const char* key,
+                               const std::string& what, std::string fallback = {}) {
   const toml::node* node = Find(table, key);
   if (!node) return fallback;
   const auto* value = node->as_string();
@@ -104,8 +104,8 @@ std::string OptionalString(const Reporter& report, const toml::table& table, con
   return value->get();
 }
 
-std::optional<double> OptionalPositive(const Reporter& report, const toml::table& table, const char* key,
-                                       const std::string& what, const char* unit) {
+std::optional<double> ReadOptionalPositive(const Reporter& report, const toml::table& table, const char* key,
+                                           const std::string& what, const char* unit) {
   const toml::node* node = Find(table, key);
   if (!node) return std::nullopt;
   double value = 0.0;
@@ -123,9 +123,9 @@ std::optional<double> OptionalPositive(const Reporter& report, const toml::table
   return value;
 }
 
-double RequirePositive(const Reporter& report, const toml::table& table, const char* key, const std::string& what,
-                       const char* unit, SourcePosition table_where) {
-  const auto value = OptionalPositive(report, table, key, what, unit);
+double ReadRequiredPositive(const Reporter& report, const toml::table& table, const char* key,
+                            const std::string& what, const char* unit, SourcePosition table_where) {
+  const auto value = ReadOptionalPositive(report, table, key, what, unit);
   if (!value) report.Fail(table_where, fmt::format("{} has no '{}' (a positive number [{}])", what, key, unit));
   return *value;
 }
@@ -157,20 +157,20 @@ BlockSpec ParseBlock(const Reporter& report, const toml::table& table, std::size
   block.where = PositionOf(table.source());
   const std::string anonymous = fmt::format("[[blocks]] number {}", ordinal);
   CheckKeys(report, table, anonymous, {"id", "b1", "b2", "h", "density", "mass", "notes"});
-  block.id = RequireString(report, table, "id", anonymous, block.where);
+  block.id = ReadRequiredString(report, table, "id", anonymous, block.where);
   const std::string what = fmt::format("[[blocks]] '{}'", block.id);
   const toml::node* id_node = table.get("id");
   CheckId(report, block.id, "block", PositionOf(id_node->source()));
-  block.b1_m = RequirePositive(report, table, "b1", what, "m", block.where);
-  block.b2_m = RequirePositive(report, table, "b2", what, "m", block.where);
-  block.h_m = RequirePositive(report, table, "h", what, "m", block.where);
-  block.density_kg_m3 = OptionalPositive(report, table, "density", what, "kg/m³");
-  block.mass_kg = OptionalPositive(report, table, "mass", what, "kg");
+  block.b1_m = ReadRequiredPositive(report, table, "b1", what, "m", block.where);
+  block.b2_m = ReadRequiredPositive(report, table, "b2", what, "m", block.where);
+  block.h_m = ReadRequiredPositive(report, table, "h", what, "m", block.where);
+  block.density_kg_m3 = ReadOptionalPositive(report, table, "density", what, "kg/m³");
+  block.mass_kg = ReadOptionalPositive(report, table, "mass", what, "kg");
   if (block.density_kg_m3.has_value() == block.mass_kg.has_value()) {
     report.Fail(block.where, fmt::format("{} needs exactly one of 'density' [kg/m³] or 'mass' [kg]{}", what,
                                          block.mass_kg ? ", not both" : ""));
   }
-  block.notes = OptionalString(report, table, "notes", what);
+  block.notes = ReadOptionalString(report, table, "notes", what);
   return block;
 }
 
@@ -180,28 +180,28 @@ TrialSpec ParseTrial(const Reporter& report, const toml::table& table, std::size
   trial.where = PositionOf(table.source());
   const std::string anonymous = fmt::format("[[trials]] number {}", ordinal);
   CheckKeys(report, table, anonymous, {"id", "block", "position", "files", "format", "rate", "mounting", "notes"});
-  trial.id = RequireString(report, table, "id", anonymous, trial.where);
+  trial.id = ReadRequiredString(report, table, "id", anonymous, trial.where);
   CheckId(report, trial.id, "trial", PositionOf(table.get("id")->source()));
   const std::string what = fmt::format("[[trials]] '{}'", trial.id);
-  trial.block_id = RequireString(report, table, "block", what, trial.where);
-  trial.position = RequireString(report, table, "position", what, trial.where);
+  trial.block_id = ReadRequiredString(report, table, "block", what, trial.where);
+  trial.position = ReadRequiredString(report, table, "position", what, trial.where);
   if (trial.position.empty()) report.Fail(PositionOf(table.get("position")->source()), what + ": 'position' is empty");
-  trial.files_as_written = RequireString(report, table, "files", what, trial.where);
+  trial.files_as_written = ReadRequiredString(report, table, "files", what, trial.where);
   if (trial.files_as_written.empty()) report.Fail(PositionOf(table.get("files")->source()), what + ": 'files' is empty");
   const std::filesystem::path files(trial.files_as_written);
   trial.files = files.is_absolute() ? files : (base_dir / files).lexically_normal();
-  trial.format = OptionalString(report, table, "format", what, "auto");
+  trial.format = ReadOptionalString(report, table, "format", what, "auto");
   if (!ParseFormatName(trial.format)) {
     report.Fail(PositionOf(table.get("format")->source()),
                 fmt::format("{}: unknown format '{}'; use one of {}", what, trial.format, fmt::join(ManifestFormats(), ", ")));
   }
-  trial.rate_hz = OptionalPositive(report, table, "rate", what, "Hz");
+  trial.rate_hz = ReadOptionalPositive(report, table, "rate", what, "Hz");
   if (trial.rate_hz && *trial.rate_hz > kMaxRate_hz) {
     report.Fail(PositionOf(table.get("rate")->source()),
                 fmt::format("{}: rate {} Hz is above {} Hz, faster than any IMU rockfit reads", what, *trial.rate_hz,
                             kMaxRate_hz));
   }
-  trial.mounting = OptionalString(report, table, "mounting", what);
+  trial.mounting = ReadOptionalString(report, table, "mounting", what);
   if (!trial.mounting.empty()) {
     try {
       (void)MountingOption::Parse(trial.mounting);
@@ -209,7 +209,7 @@ TrialSpec ParseTrial(const Reporter& report, const toml::table& table, std::size
       report.Fail(PositionOf(table.get("mounting")->source()), fmt::format("{}: {}", what, e.what()));
     }
   }
-  trial.notes = OptionalString(report, table, "notes", what);
+  trial.notes = ReadOptionalString(report, table, "notes", what);
   return trial;
 }
 

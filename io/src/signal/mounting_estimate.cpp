@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
+#include "rockfit/core/checks.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/units.hpp"
 
@@ -134,17 +135,12 @@ std::optional<std::string> NearPermutation(const Eigen::Matrix3d& R_BS, double w
 }  // namespace
 
 void MountingEstimateOptions::Validate() const {
-  const auto positive = [](double v, const char* name) {
-    if (!(v > 0.0) || !std::isfinite(v)) throw InvalidArgument(fmt::format("mounting estimate: {} must be positive", name));
-  };
-  positive(rest_rate_rad_s, "rest_rate_rad_s");
-  positive(min_rest_s, "min_rest_s");
-  positive(prior_deg, "prior_deg");
-  positive(undetermined_std_deg, "undetermined_std_deg");
-  positive(direction_floor_deg, "direction_floor_deg");
-  if (!(rest_margin_s >= 0.0) || !std::isfinite(rest_margin_s)) {
-    throw InvalidArgument("mounting estimate: rest_margin_s must be ≥ 0");
-  }
+  RequirePositive(rest_rate_rad_s, "mounting estimate: rest_rate_rad_s");
+  RequirePositive(min_rest_s, "mounting estimate: min_rest_s");
+  RequirePositive(prior_deg, "mounting estimate: prior_deg");
+  RequirePositive(undetermined_std_deg, "mounting estimate: undetermined_std_deg");
+  RequirePositive(direction_floor_deg, "mounting estimate: direction_floor_deg");
+  RequireNonNegative(rest_margin_s, "mounting estimate: rest_margin_s");
   if (!(phase1_min_fraction > 0.0 && phase1_min_fraction < 1.0) ||
       !(first_impact_fraction > 0.0 && first_impact_fraction <= 1.0)) {
     throw InvalidArgument("mounting estimate: phase1_min_fraction must lie in (0, 1), first_impact_fraction in (0, 1]");

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "rockfit/core/checks.hpp"
 #include "rockfit/core/errors.hpp"
 #include "recording/attitude.hpp"
 #include "rockfit/io/synth_random.hpp"
@@ -33,19 +34,6 @@ Eigen::Vector3f ToSensorFloat(const Eigen::Vector3d& value, double resolution, d
     out[i] = static_cast<float>(v);
   }
   return out;
-}
-
-void RequireNonNegative(double value, const char* name) {
-  if (!(std::isfinite(value) && value >= 0.0)) {
-    throw InvalidArgument(std::string("measurement option ") + name + " must be a finite number ≥ 0, got " +
-                          std::to_string(value));
-  }
-}
-void RequirePositive(double value, const char* name) {
-  if (!(std::isfinite(value) && value > 0.0)) {
-    throw InvalidArgument(std::string("measurement option ") + name + " must be a finite number > 0, got " +
-                          std::to_string(value));
-  }
 }
 
 // Index of the continuous piece of motion that time t belongs to: the number of breaks at or before t
@@ -137,20 +125,20 @@ MeasurementOptions MeasurementOptions::Ideal() {
 }
 
 void MeasurementOptions::Validate() const {
-  RequireNonNegative(gyro_noise_dps, "gyro_noise_dps");
+  RequireNonNegative(gyro_noise_dps, "measurement option gyro_noise_dps");
   if (!gyro_bias_dps.allFinite()) throw InvalidArgument("measurement option gyro_bias_dps must be finite");
-  RequirePositive(gyro_full_scale_dps, "gyro_full_scale_dps");
-  RequireNonNegative(ringing_gain, "ringing_gain");
-  RequirePositive(ringing_frequency_hz, "ringing_frequency_hz");
-  RequirePositive(ringing_decay_time_s, "ringing_decay_time_s");
+  RequirePositive(gyro_full_scale_dps, "measurement option gyro_full_scale_dps");
+  RequireNonNegative(ringing_gain, "measurement option ringing_gain");
+  RequirePositive(ringing_frequency_hz, "measurement option ringing_frequency_hz");
+  RequirePositive(ringing_decay_time_s, "measurement option ringing_decay_time_s");
   if (!drift_slope_dps.allFinite()) throw InvalidArgument("measurement option drift_slope_dps must be finite");
   if (!drift_walk_deg_per_rt_s.allFinite() || (drift_walk_deg_per_rt_s.array() < 0.0).any()) {
     throw InvalidArgument("measurement option drift_walk_deg_per_rt_s must be finite and ≥ 0");
   }
-  RequireNonNegative(accel_noise_g, "accel_noise_g");
-  RequirePositive(accel_full_scale_g, "accel_full_scale_g");
+  RequireNonNegative(accel_noise_g, "measurement option accel_noise_g");
+  RequirePositive(accel_full_scale_g, "measurement option accel_full_scale_g");
   if (!mag_field_W_G.allFinite()) throw InvalidArgument("measurement option mag_field_W_G must be finite");
-  RequireNonNegative(mag_noise_G, "mag_noise_G");
+  RequireNonNegative(mag_noise_G, "measurement option mag_noise_G");
 }
 
 Eigen::Vector3f XimuEulerDegFromFileQuaternion(const Eigen::Vector4f& q) {

@@ -61,6 +61,18 @@ TEST(StochasticGroundMotion, RejectsBadOptions) {
   o = CloughPenzienOptions{};
   o.t_strong_end_s = 1.0;
   EXPECT_THROW(CloughPenzienRecord(o), InvalidArgument);
+  // The shared checks (core/checks.hpp) name the option and the value.
+  o = CloughPenzienOptions{};
+  o.omega_g_rad_s = -2.5;
+  try {
+    o.Validate();
+    FAIL();
+  } catch (const InvalidArgument& e) {
+    EXPECT_STREQ(e.what(), "omega_g must be a positive finite number, got -2.5");
+  }
+  o = CloughPenzienOptions{};
+  o.decay_per_s = -1.0;
+  EXPECT_THROW(o.Validate(), InvalidArgument);
 }
 
 }  // namespace
