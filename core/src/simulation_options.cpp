@@ -35,6 +35,17 @@ const char* ToString(StopCondition stop) {
   return "phase4";
 }
 
+bool FromString(std::string_view text, StopCondition* stop) {
+  for (StopCondition s :
+       {StopCondition::kPhase4, StopCondition::kRest, StopCondition::kOverturned, StopCondition::kTMax}) {
+    if (text == ToString(s)) {
+      *stop = s;
+      return true;
+    }
+  }
+  return false;
+}
+
 const char* ToString(EndReason reason) {
   switch (reason) {
     case EndReason::kPhase4: return "phase4";

@@ -13,10 +13,8 @@ namespace rockfit::python {
 namespace {
 
 core::StopCondition ParseStop(const std::string& text) {
-  if (text == "phase4") return core::StopCondition::kPhase4;
-  if (text == "rest") return core::StopCondition::kRest;
-  if (text == "overturned") return core::StopCondition::kOverturned;
-  if (text == "t_max") return core::StopCondition::kTMax;
+  core::StopCondition stop = core::StopCondition::kPhase4;
+  if (core::FromString(text, &stop)) return stop;
   throw InvalidArgument("stop must be 'phase4', 'rest', 'overturned' or 't_max', got '" + text + "'");
 }
 

@@ -26,6 +26,20 @@ TEST(SimulationNames, ModesStopConditionsAndEndReasonsHaveTheirDocumentedNames) 
   EXPECT_STREQ(ToString(EndReason::kFailed), "failed");
 }
 
+TEST(SimulationNames, StopConditionsReadBackFromTheirNames) {
+  for (StopCondition stop : {StopCondition::kPhase4, StopCondition::kRest, StopCondition::kOverturned,
+                             StopCondition::kTMax}) {
+    StopCondition parsed = stop == StopCondition::kTMax ? StopCondition::kPhase4 : StopCondition::kTMax;
+    ASSERT_TRUE(FromString(ToString(stop), &parsed)) << ToString(stop);
+    EXPECT_EQ(parsed, stop);
+  }
+  StopCondition unchanged = StopCondition::kRest;
+  for (const char* text : {"", "tmax", "Phase4", "failed", "lift_off"}) {
+    EXPECT_FALSE(FromString(text, &unchanged)) << "'" << text << "'";
+    EXPECT_EQ(unchanged, StopCondition::kRest);
+  }
+}
+
 TEST(SimulationNames, ImpactKindsReadBackFromTheirNames) {
   const std::pair<ImpactKind, const char*> kinds[] = {{ImpactKind::kFacet, "facet"}, {ImpactKind::kEdge, "edge"},
                                                       {ImpactKind::kZeno, "zeno"},   {ImpactKind::kRest, "rest"},

@@ -51,11 +51,11 @@ std::pair<int, int> ParseEdge(const std::string& text) {
   }
 }
 
+// --stop is one of the names already (CLI::IsMember).
 core::StopCondition ParseStop(const std::string& text) {
-  if (text == "phase4") return core::StopCondition::kPhase4;
-  if (text == "rest") return core::StopCondition::kRest;
-  if (text == "overturned") return core::StopCondition::kOverturned;
-  return core::StopCondition::kTMax;
+  core::StopCondition stop = core::StopCondition::kTMax;
+  core::FromString(text, &stop);
+  return stop;
 }
 
 // −0 (e.g. ψ̇·a_B with ψ̇ = 0) printed as 0.

@@ -40,6 +40,8 @@ enum class StopCondition { kPhase4, kRest, kOverturned, kTMax };
 // the ground (free flight is not modelled), and the run ends at that instant.
 enum class EndReason { kPhase4, kRest, kOverturned, kTMax, kFailed, kLiftOff };
 const char* ToString(StopCondition stop);  // "phase4", "rest", "overturned", "t_max"
+// Reads a stop condition's name back (command line, Python); false (and *stop unchanged) for any other text.
+bool FromString(std::string_view text, StopCondition* stop);
 const char* ToString(EndReason reason);    // "phase4", "rest", "overturned", "t_max", "failed", "lift_off"
 
 // Initial conditions and impact parameters of one run (constant during the run).
