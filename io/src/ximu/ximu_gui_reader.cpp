@@ -13,6 +13,7 @@
 #include "recording/time_base.hpp"
 #include "rockfit/io/units.hpp"
 #include "ximu/ximu_inertial_columns.hpp"
+#include "ximu/rotation_matrix_row.hpp"
 #include "ximu/ximu_registers.hpp"
 #include "ximu/ximu_rtc_rate.hpp"
 
@@ -81,21 +82,7 @@ AttitudeRows ReadRotationMatrixFile(const std::filesystem::path& path, Recording
   const auto c = ResolveColumns(table, specs);
   AttitudeRows rows{FileName(path), PacketNumbers(table, c[0]), {}};
   rows.q_WS.reserve(table.row_count());
-  constexpr double kOrthogonalityTolerance = 0.01;  // max |MᵀM − I|; 7 printed digits give ~1e-6
-  for (std::size_t row = 0; row < table.row_count(); ++row) {
-    Eigen::Matrix3d M;
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) M(i, j) = table.Real(row, *c[static_cast<std::size_t>(1 + 3 * i + j)]);
-    }
-    double error = 0.0;
-    double determinant = 0.0;
-    const Eigen::Matrix3d R_WS = NearestRotation(M, &error, &determinant);
-    if (!(error <= kOrthogonalityTolerance) || determinant <= 0.0) {
-      table.FailAt(row, *c[1], fmt::format("a matrix with max |MᵀM − I| = {:.3g} and determinant {:.4g}", error, determinant),
-                   "a rotation matrix", "The row is damaged; correct or delete line " + std::to_string(table.Line(row)) + ".");
-    }
-    rows.q_WS.push_back(Eigen::Quaterniond(R_WS).normalized());
-  }
+  for (std::size_t row = 0; row < table.row_count(); ++row) rows.q_WS.push_back(RotationMatrixRow(table, row, c, 1));
   for (std::size_t k = 1; k < c.size(); ++k) recording.columns.push_back(rows.file + ": " + table.header()[*c[k]]);
   return rows;
 }

@@ -15,6 +15,7 @@
 #include "recording/time_base.hpp"
 #include "rockfit/io/units.hpp"
 #include "ximu/ximu_inertial_columns.hpp"
+#include "ximu/rotation_matrix_row.hpp"
 #include "ximu/ximu_gui_reader.hpp"
 
 namespace rockfit::io {
@@ -102,19 +103,7 @@ bool ReadAhrsFile(const std::filesystem::path& path, AhrsKind kind, int priority
       const double yaw = table.Real(row, *c[3]) * angle_scale[2];
       q_WS = QuaternionFromEulerZyx({yaw, pitch, roll});
     } else if (kind == AhrsKind::kMatrix) {
-      Eigen::Matrix3d M;
-      for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) M(i, j) = table.Real(row, *c[static_cast<std::size_t>(1 + 3 * i + j)]);
-      }
-      double error = 0.0;
-      double determinant = 0.0;
-      const Eigen::Matrix3d R_WS = NearestRotation(M, &error, &determinant);
-      constexpr double kOrthogonalityTolerance = 0.01;  // max |MᵀM − I|; the device prints 1.000486 diagonals
-      if (!(error <= kOrthogonalityTolerance) || determinant <= 0.0) {
-        table.FailAt(row, *c[1], fmt::format("a matrix with max |MᵀM − I| = {:.3g}, determinant {:.4g}", error, determinant),
-                     "a rotation matrix", "The row is damaged; correct or delete line " + std::to_string(table.Line(row)) + ".");
-      }
-      q_WS = Eigen::Quaterniond(R_WS).normalized();
+      q_WS = RotationMatrixRow(table, row, c, 1);
     } else {
       const Eigen::Quaterniond q(table.Real(row, *c[1]), table.Real(row, *c[2]), table.Real(row, *c[3]),
                                  table.Real(row, *c[4]));
