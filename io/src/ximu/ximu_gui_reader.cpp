@@ -178,15 +178,8 @@ double NearestPowerOfTwoRate(double rate, double ratio) {
                  wanted, todo});
 }
 
-}  // namespace
-
-Recording ReadXimuGuiRecording(const XimuGuiFileSet& files, const LoadOptions& options) {
-  options.Validate();
-  Recording recording;
-  recording.format = FormatName(RecordingFormat::kXimuGui);
-  recording.source = files.prefix.string();
-  std::vector<std::string>& warnings = recording.warnings;
-
+// The calibrated inertial file must be there: raw counts alone cannot be converted.
+void RequireCalibratedInertial(const XimuGuiFileSet& files) {
   if (!files.cal_inertial) {
     if (files.raw_inertial) {
       ThrowBadInput({{files.raw_inertial->string()}, "", "only raw sensor counts (lsb)",
@@ -198,18 +191,14 @@ Recording ReadXimuGuiRecording(const XimuGuiFileSet& files, const LoadOptions& o
                 "Check the prefix: it is the file name without '_CalInertialAndMag.csv'.");
   }
 
-  // Inertial rows: packet numbers, gyroscope, accelerometer.
-  const CsvTable inertial = CsvTable::ReadFile(*files.cal_inertial, warnings);
-  const std::string inertial_name = FileName(*files.cal_inertial);
-  std::vector<ColumnSpec> specs = {{{"Packet number"}, "the shared packet counter", false}};
-  for (ColumnSpec& spec : XimuInertialColumnSpecs()) specs.push_back(std::move(spec));
-  const auto c = ResolveColumns(inertial, specs);
-  const std::vector<double> packets = PacketNumbers(inertial, c[0]);
-  const std::size_t n = inertial.row_count();
+}
 
-  // Sample rate.
-  std::optional<XimuRegisterSettings> registers;
-  if (files.registers) registers = ReadXimuRegisters(CsvTable::ReadFile(*files.registers, warnings));
+// The inertial sample rate: register 69, else the rate given (--rate or the manifest); cross-checked with the
+// real-time clock of the _DateTime.csv file when there is one. Sets recording->rate_hz and rate_source.
+void DetermineRate(const XimuGuiFileSet& files, const std::optional<XimuRegisterSettings>& registers,
+                   const LoadOptions& options, const std::vector<double>& packets, const std::string& inertial_name,
+                   Recording* recording) {
+  std::vector<std::string>& warnings = recording->warnings;
   double rate_hz = 0.0;
   if (registers && registers->inertial) {
     const XimuRegisterRate& reg = *registers->inertial;
@@ -220,7 +209,7 @@ Recording ReadXimuGuiRecording(const XimuGuiFileSet& files, const LoadOptions& o
                          " and give the rate with --rate."});
     }
     rate_hz = reg.rate_hz;
-    recording.rate_source = RateSource::kRegisters;
+    recording->rate_source = RateSource::kRegisters;
     if (options.rate_hz && std::abs(*options.rate_hz - rate_hz) > 1e-9 * rate_hz) {
       ThrowBadInput({reg.at, "InertialAndMagneticDataRate (register 69)",
                      fmt::format("{} ({:g} Hz)", reg.value, rate_hz),
@@ -231,7 +220,7 @@ Recording ReadXimuGuiRecording(const XimuGuiFileSet& files, const LoadOptions& o
     }
   } else if (options.rate_hz) {
     rate_hz = *options.rate_hz;
-    recording.rate_source = options.rate_origin;
+    recording->rate_source = options.rate_origin;
   }
 
   // Cross-check with the real-time clock.
@@ -263,8 +252,8 @@ Recording ReadXimuGuiRecording(const XimuGuiFileSet& files, const LoadOptions& o
                      fmt::format("{:g} inertial rows per real-time-clock second (median of {} s)", rtc->rows_per_second,
                                  rtc->seconds),
                      fmt::format("{:g} rows per second, the rate from {}", rate_hz,
-                                 recording.rate_source == RateSource::kRegisters  ? "the registers"
-                                 : recording.rate_source == RateSource::kManifest ? "the manifest"
+                                 recording->rate_source == RateSource::kRegisters  ? "the registers"
+                                 : recording->rate_source == RateSource::kManifest ? "the manifest"
                                                                                   : "--rate"),
                      "The rate is wrong: correct it (the clock counts real seconds)."});
     }
@@ -275,36 +264,37 @@ Recording ReadXimuGuiRecording(const XimuGuiFileSet& files, const LoadOptions& o
           FileName(*files.date_time), rtc->rows_per_second, rate_hz, -100.0 * relative));
     }
   }
-  recording.rate_hz = rate_hz;
+  recording->rate_hz = rate_hz;
 
-  // Gyroscope and accelerometer in SI, sensor axes.
-  SensorSamples samples;
-  samples.t_s = UniformTimes(n, rate_hz);
-  ReadXimuInertialColumns(inertial, c, 1, samples);
-  for (std::size_t k = 1; k < c.size(); ++k) {
-    if (c[k]) recording.columns.push_back(inertial_name + ": " + inertial.header()[*c[k]]);
-  }
-  if (registers && registers->gyroscope_full_scale_dps) {
-    // Samples at the rail are clipped: the block turned faster than the gyroscope can tell.
-    const double rail_rad_s = (*registers->gyroscope_full_scale_dps - kGyroscopeRailMargin_dps) * kRadPerDeg;
-    std::size_t clipped = 0;
-    std::size_t first = 0;
-    for (std::size_t row = 0; row < n; ++row) {
-      if (samples.w_S[row].cwiseAbs().maxCoeff() < rail_rad_s) continue;
-      if (clipped++ == 0) first = row;
-    }
-    if (clipped > 0) {
-      warnings.push_back(fmt::format(
-          "{}: {} gyroscope sample(s) at the ±{:g} °/s full scale of the x-IMU (register 8), first on line {} "
-          "(t = {:.4f} s): the angular velocity there is clipped",
-          inertial_name, clipped, *registers->gyroscope_full_scale_dps, inertial.Line(first), samples.t_s[first]));
-    }
-  }
+}
 
-  // Attitude.
+// Gyroscope samples at the rail of the full scale (register 8) are clipped: the block turned faster than the
+// gyroscope can tell. One warning with the count and the first.
+void WarnClippedGyro(const std::optional<XimuRegisterSettings>& registers, const SensorSamples& samples,
+                     const CsvTable& inertial, const std::string& inertial_name, std::vector<std::string>& warnings) {
+  if (!registers || !registers->gyroscope_full_scale_dps) return;
+  const std::size_t n = samples.w_S.size();
+  // Samples at the rail are clipped: the block turned faster than the gyroscope can tell.
+  const double rail_rad_s = (*registers->gyroscope_full_scale_dps - kGyroscopeRailMargin_dps) * kRadPerDeg;
+  std::size_t clipped = 0;
+  std::size_t first = 0;
+  for (std::size_t row = 0; row < n; ++row) {
+    if (samples.w_S[row].cwiseAbs().maxCoeff() < rail_rad_s) continue;
+    if (clipped++ == 0) first = row;
+  }
+  if (clipped > 0) {
+    warnings.push_back(fmt::format(
+        "{}: {} gyroscope sample(s) at the ±{:g} °/s full scale of the x-IMU (register 8), first on line {} "
+        "(t = {:.4f} s): the angular velocity there is clipped",
+        inertial_name, clipped, *registers->gyroscope_full_scale_dps, inertial.Line(first), samples.t_s[first]));
+  }
+}
+
+// The attitude file that --orientation asks for (auto: Euler angles, then quaternion, then rotation matrix).
+std::optional<AttitudeRows> ReadAttitude(const XimuGuiFileSet& files, OrientationChoice choice, Recording& recording) {
   std::optional<AttitudeRows> attitude;
   const std::string prefix_name = files.prefix.filename().string();
-  switch (options.orientation) {
+  switch (choice) {
     case OrientationChoice::kNone:
       break;
     case OrientationChoice::kAuto:
@@ -326,78 +316,123 @@ Recording ReadXimuGuiRecording(const XimuGuiFileSet& files, const LoadOptions& o
       break;
   }
 
-  if (attitude) {
-    recording.orientation_source = attitude->file;
-    const std::size_t m = attitude->q_WS.size();
-    std::size_t before_first = 0;
-    std::size_t decimated = 0;
-    std::size_t within_span = 0;  // attitude rows between the first and last inertial packet
-    if (!packets.empty() && !attitude->packets.empty()) {
-      std::size_t i = 0;
-      std::size_t last_paired = n;  // none yet
-      for (std::size_t j = 0; j < m; ++j) {
-        const double packet = attitude->packets[j];
-        while (i < n && packets[i] < packet) ++i;
-        if (i < n && packets[i] == packet) {
-          ThrowBadInput({{(files.prefix.parent_path() / attitude->file).string()}, "",
-                         fmt::format("packet number {:.0f}, which is also an inertial packet in {}", packet, inertial_name),
-                         "packet numbers that never repeat across the files of one recording", kPacketRepeatTodo});
-        }
-        if (i == 0) {
-          ++before_first;
-          continue;
-        }
-        if (i < n) ++within_span;
-        const std::size_t k = i - 1;
-        if (k == last_paired) {
-          ++decimated;
-          continue;
-        }
-        samples.orientation.t_s.push_back(samples.t_s[k]);
-        samples.orientation.q_WS.push_back(attitude->q_WS[j]);
-        last_paired = k;
-      }
-    } else if (m == n) {
-      samples.orientation.t_s = samples.t_s;
-      samples.orientation.q_WS = attitude->q_WS;
-      within_span = n;
-      warnings.push_back(attitude->file + ": no packet numbers to pair attitude rows with inertial rows; they were "
-                         "paired row by row, as both files have " + std::to_string(n) + " rows");
-    } else {
-      ThrowBadInput({{(files.prefix.parent_path() / attitude->file).string()}, "",
-                     fmt::format("{} attitude rows and {} inertial rows, and no packet numbers in {}", m, n,
-                                 packets.empty() ? inertial_name : attitude->file),
-                     "a 'Packet number' column to pair the rows of the two files",
-                     "Export the recording again with a GUI that writes packet numbers, or read the gyro data alone "
-                     "with --orientation none."});
-    }
-    if (before_first > 0) {
-      warnings.push_back(fmt::format("{}: {} attitude row(s) before the first inertial packet were not used",
-                                     attitude->file, before_first));
-    }
+  return attitude;
+}
 
-    // The attitude rate, from register 70 or from the ratio of rows, and its cross-check.
-    const double observed = rate_hz * static_cast<double>(within_span) / static_cast<double>(n);
-    if (registers && registers->orientation && registers->orientation->rate_hz > 0.0) {
-      const XimuRegisterRate& reg = *registers->orientation;
-      recording.orientation_rate_hz = reg.rate_hz;
-      if (within_span > 1 && std::abs(observed / reg.rate_hz - 1.0) > kRateMismatchTolerance) {
-        ThrowBadInput({reg.at, "QuaternionDataRate (register 70)", fmt::format("{} ({:g} Hz)", reg.value, reg.rate_hz),
-                       fmt::format("the rate of the attitude rows in {}: {:g} per {:g} inertial rows at {:g} Hz, i.e. "
-                                   "{:.4g} Hz", attitude->file, static_cast<double>(within_span), static_cast<double>(n),
-                                   rate_hz, observed),
-                       "The files do not belong together, or the inertial rate is wrong: check the prefix and the rate."});
+// Pairs each attitude row with the last inertial row at or before its packet (the x-IMU numbers all packets of a
+// recording from one counter) and sets the attitude rate from register 70 or from the ratio of rows.
+void PairAttitude(const XimuGuiFileSet& files, const AttitudeRows& attitude, const std::vector<double>& packets,
+                  const std::optional<XimuRegisterSettings>& registers, const std::string& inertial_name,
+                  SensorSamples& samples, Recording* recording) {
+  std::vector<std::string>& warnings = recording->warnings;
+  const std::size_t n = samples.t_s.size();
+  const double rate_hz = recording->rate_hz;
+  recording->orientation_source = attitude.file;
+  const std::size_t m = attitude.q_WS.size();
+  std::size_t before_first = 0;
+  std::size_t decimated = 0;
+  std::size_t within_span = 0;  // attitude rows between the first and last inertial packet
+  if (!packets.empty() && !attitude.packets.empty()) {
+    std::size_t i = 0;
+    std::size_t last_paired = n;  // none yet
+    for (std::size_t j = 0; j < m; ++j) {
+      const double packet = attitude.packets[j];
+      while (i < n && packets[i] < packet) ++i;
+      if (i < n && packets[i] == packet) {
+        ThrowBadInput({{(files.prefix.parent_path() / attitude.file).string()}, "",
+                       fmt::format("packet number {:.0f}, which is also an inertial packet in {}", packet, inertial_name),
+                       "packet numbers that never repeat across the files of one recording", kPacketRepeatTodo});
       }
-    } else {
-      recording.orientation_rate_hz = NearestPowerOfTwoRate(rate_hz, observed / rate_hz);
+      if (i == 0) {
+        ++before_first;
+        continue;
+      }
+      if (i < n) ++within_span;
+      const std::size_t k = i - 1;
+      if (k == last_paired) {
+        ++decimated;
+        continue;
+      }
+      samples.orientation.t_s.push_back(samples.t_s[k]);
+      samples.orientation.q_WS.push_back(attitude.q_WS[j]);
+      last_paired = k;
     }
-    if (decimated > 0 && recording.orientation_rate_hz > rate_hz) {
-      warnings.push_back(fmt::format("{}: attitude at {:g} Hz is faster than the gyro ({:g} Hz); the first attitude "
-                                     "row after each inertial row was used ({} rows left out)",
-                                     attitude->file, recording.orientation_rate_hz, rate_hz, decimated));
-    }
+  } else if (m == n) {
+    samples.orientation.t_s = samples.t_s;
+    samples.orientation.q_WS = attitude.q_WS;
+    within_span = n;
+    warnings.push_back(attitude.file + ": no packet numbers to pair attitude rows with inertial rows; they were "
+                       "paired row by row, as both files have " + std::to_string(n) + " rows");
+  } else {
+    ThrowBadInput({{(files.prefix.parent_path() / attitude.file).string()}, "",
+                   fmt::format("{} attitude rows and {} inertial rows, and no packet numbers in {}", m, n,
+                               packets.empty() ? inertial_name : attitude.file),
+                   "a 'Packet number' column to pair the rows of the two files",
+                   "Export the recording again with a GUI that writes packet numbers, or read the gyro data alone "
+                   "with --orientation none."});
+  }
+  if (before_first > 0) {
+    warnings.push_back(fmt::format("{}: {} attitude row(s) before the first inertial packet were not used",
+                                   attitude.file, before_first));
   }
 
+  // The attitude rate, from register 70 or from the ratio of rows, and its cross-check.
+  const double observed = rate_hz * static_cast<double>(within_span) / static_cast<double>(n);
+  if (registers && registers->orientation && registers->orientation->rate_hz > 0.0) {
+    const XimuRegisterRate& reg = *registers->orientation;
+    recording->orientation_rate_hz = reg.rate_hz;
+    if (within_span > 1 && std::abs(observed / reg.rate_hz - 1.0) > kRateMismatchTolerance) {
+      ThrowBadInput({reg.at, "QuaternionDataRate (register 70)", fmt::format("{} ({:g} Hz)", reg.value, reg.rate_hz),
+                     fmt::format("the rate of the attitude rows in {}: {:g} per {:g} inertial rows at {:g} Hz, i.e. "
+                                 "{:.4g} Hz", attitude.file, static_cast<double>(within_span), static_cast<double>(n),
+                                 rate_hz, observed),
+                     "The files do not belong together, or the inertial rate is wrong: check the prefix and the rate."});
+    }
+  } else {
+    recording->orientation_rate_hz = NearestPowerOfTwoRate(rate_hz, observed / rate_hz);
+  }
+  if (decimated > 0 && recording->orientation_rate_hz > rate_hz) {
+    warnings.push_back(fmt::format("{}: attitude at {:g} Hz is faster than the gyro ({:g} Hz); the first attitude "
+                                   "row after each inertial row was used ({} rows left out)",
+                                   attitude.file, recording->orientation_rate_hz, rate_hz, decimated));
+  }
+}
+
+}  // namespace
+
+Recording ReadXimuGuiRecording(const XimuGuiFileSet& files, const LoadOptions& options) {
+  options.Validate();
+  Recording recording;
+  recording.format = FormatName(RecordingFormat::kXimuGui);
+  recording.source = files.prefix.string();
+  std::vector<std::string>& warnings = recording.warnings;
+  RequireCalibratedInertial(files);
+
+  // Inertial rows: packet numbers, gyroscope, accelerometer.
+  const CsvTable inertial = CsvTable::ReadFile(*files.cal_inertial, warnings);
+  const std::string inertial_name = FileName(*files.cal_inertial);
+  std::vector<ColumnSpec> specs = {{{"Packet number"}, "the shared packet counter", false}};
+  for (ColumnSpec& spec : XimuInertialColumnSpecs()) specs.push_back(std::move(spec));
+  const auto c = ResolveColumns(inertial, specs);
+  const std::vector<double> packets = PacketNumbers(inertial, c[0]);
+  const std::size_t n = inertial.row_count();
+
+  std::optional<XimuRegisterSettings> registers;
+  if (files.registers) registers = ReadXimuRegisters(CsvTable::ReadFile(*files.registers, warnings));
+  DetermineRate(files, registers, options, packets, inertial_name, &recording);
+
+  // Gyroscope and accelerometer in SI, sensor axes.
+  SensorSamples samples;
+  samples.t_s = UniformTimes(n, recording.rate_hz);
+  ReadXimuInertialColumns(inertial, c, 1, samples);
+  for (std::size_t k = 1; k < c.size(); ++k) {
+    if (c[k]) recording.columns.push_back(inertial_name + ": " + inertial.header()[*c[k]]);
+  }
+  WarnClippedGyro(registers, samples, inertial, inertial_name, warnings);
+
+  if (const std::optional<AttitudeRows> attitude = ReadAttitude(files, options.orientation, recording)) {
+    PairAttitude(files, *attitude, packets, registers, inertial_name, samples, &recording);
+  }
   AssembleRecording(std::move(samples), options.mounting, recording);
   return recording;
 }
