@@ -367,6 +367,14 @@ StoredParameters ReadFitParameters(const io::hdf5::Group& fit) {
   s.interval_95_lower = OptionalColumn(fit, "interval_95_lower", rows, nan);
   s.interval_95_upper = OptionalColumn(fit, "interval_95_upper", rows, nan);
   s.determined = OptionalColumn<std::string>(fit, "determined", rows, "");
+  s.has_intervals = fit.IsDataset("parameters/interval_95_lower");
+  if (fit.IsDataset("parameters/fixed")) {
+    const std::vector<std::int64_t> fixed = fit.ReadInts("parameters/fixed");
+    CheckColumnLength(fit, "fixed", fixed, rows);
+    s.fixed.assign(fixed.begin(), fixed.end());
+  } else {
+    s.fixed.assign(rows, false);
+  }
   for (const auto* column : {&s.lower, &s.upper, &s.interval_68_lower, &s.interval_68_upper, &s.interval_95_lower,
                              &s.interval_95_upper}) {
     CheckColumnLength(fit, "interval or bound", *column, rows);

@@ -14,6 +14,7 @@
 #include "gnuplot.hpp"
 #include "plot_command.hpp"
 #include "rockfit/core/errors.hpp"
+#include "rockfit/fitting/fit_store.hpp"
 #include "rockfit/io/hdf5_file.hpp"
 
 namespace rockfit::tools {
@@ -24,10 +25,17 @@ const char* const kComponent[3] = {"ω_x", "ω_y", "ω_z"};
 
 io::hdf5::Group OpenFits(const io::hdf5::File& file, const std::string& path) {
   const io::hdf5::Group root = file.Root();
-  if (!root.IsGroup("fits") || root.OpenGroup("fits").Children().empty()) {
+  if (fitting::StoredFitTrials(root).empty()) {
     throw BadInput(fmt::format("{}: no /fits group; write one with `rockfit fit ... -o {}` or `rockfit batch`", path, path));
   }
   return root.OpenGroup("fits");
+}
+
+// The pooled estimates of /summary/fits/per_group (written by `batch`); none when the file has no such table or
+// one from before the pooled columns (its bands are simply not drawn).
+std::vector<fitting::GroupSummary> PooledGroups(const io::hdf5::Group& root) {
+  if (!fitting::HasFitGroupSummaries(root) || !root.IsDataset("summary/fits/per_group/n")) return {};
+  return fitting::ReadFitGroupSummaries(root);
 }
 
 FitPlotData ReadFitPlotData(const std::string& path, const std::string& trial) {
@@ -35,7 +43,7 @@ FitPlotData ReadFitPlotData(const std::string& path, const std::string& trial) {
   const io::hdf5::Group fits = OpenFits(file, path);
   std::string id = trial;
   if (id.empty()) {
-    const std::vector<std::string> children = fits.Children();
+    const std::vector<std::string> children = fitting::StoredFitTrials(file.Root());
     if (children.size() != 1) {
       std::string list;
       for (const std::string& c : children) list += (list.empty() ? "" : ", ") + c;
@@ -58,14 +66,10 @@ FitPlotData ReadFitPlotData(const std::string& path, const std::string& trial) {
     }
     d.impact_kind.push_back(kind);
   }
-  d.epsilon_rad_s = g.GetDouble("epsilon_rad_s").value_or(std::numeric_limits<double>::quiet_NaN());
-  if (g.IsDataset("parameters/interval_95_lower")) {
-    const std::vector<std::int64_t> fixed = g.ReadInts("parameters/fixed");
-    d.parameter_lines = ParameterLines(g.ReadStrings("parameters/name"), g.ReadStrings("parameters/unit"),
-                                       g.ReadDoubles("parameters/value"),
-                                       std::vector<bool>(fixed.begin(), fixed.end()),
-                                       g.ReadDoubles("parameters/interval_95_lower"),
-                                       g.ReadDoubles("parameters/interval_95_upper"));
+  d.epsilon_rad_s = fitting::ReadFitLabels(g).epsilon_rad_s;
+  const fitting::StoredParameters p = fitting::ReadFitParameters(g);
+  if (p.has_intervals) {
+    d.parameter_lines = ParameterLines(p.name, p.unit, p.value, p.fixed, p.interval_95_lower, p.interval_95_upper);
   }
   return d;
 }
@@ -95,33 +99,22 @@ int RunPlotParameters(const PlotParametersCommand& cmd) {
     std::map<std::string, double> value, lower, upper;  // value and 95 % interval (open ends at the bound)
   };
   std::vector<Row> rows;
-  for (const std::string& id : fits.Children()) {
+  for (const std::string& id : fitting::StoredFitTrials(file.Root())) {
     const io::hdf5::Group g = fits.OpenGroup(id);
     if (!g.IsGroup("parameters")) continue;
+    const fitting::StoredFitLabels labels = fitting::ReadFitLabels(g);
+    const fitting::StoredParameters p = fitting::ReadFitParameters(g);
     Row r;
     r.trial = id;
-    const std::string block = g.GetString("block").value_or("");
-    const std::string position = g.GetString("position").value_or("");
-    r.group = block.empty() ? "—" : block + " " + position;
-    const std::vector<std::string> names = g.ReadStrings("parameters/name");
-    const std::vector<double> values = g.ReadDoubles("parameters/value");
-    for (std::size_t k = 0; k < names.size() && k < values.size(); ++k) r.value[names[k]] = values[k];
-    if (g.IsDataset("parameters/interval_95_lower")) {
-      const std::vector<double> lo = g.ReadDoubles("parameters/interval_95_lower");
-      const std::vector<double> hi = g.ReadDoubles("parameters/interval_95_upper");
-      const std::vector<double> lower_bound = g.ReadDoubles("parameters/lower");
-      const std::vector<double> upper_bound = g.ReadDoubles("parameters/upper");
-      const std::vector<std::string> determined = g.IsDataset("parameters/determined")
-                                                      ? g.ReadStrings("parameters/determined")
-                                                      : std::vector<std::string>(names.size(), "");
-      for (std::size_t k = 0; k < names.size() && k < lo.size(); ++k) {
-        if (determined[k] == "fixed") continue;
-        // An open end reaches the bound: the bar shows how far the data leave the parameter free.
-        r.lower[names[k]] = std::isnan(lo[k]) ? lower_bound[k] : lo[k];
-        r.upper[names[k]] = std::isnan(hi[k]) ? upper_bound[k] : hi[k];
-      }
+    r.group = labels.block.empty() ? "—" : labels.block + " " + labels.position;
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      r.value[p.name[k]] = p.value[k];
+      if (!p.has_intervals || p.determined[k] == "fixed") continue;
+      // An open end reaches the bound: the bar shows how far the data leave the parameter free.
+      r.lower[p.name[k]] = std::isnan(p.interval_95_lower[k]) ? p.lower[k] : p.interval_95_lower[k];
+      r.upper[p.name[k]] = std::isnan(p.interval_95_upper[k]) ? p.upper[k] : p.interval_95_upper[k];
     }
-    r.value["epsilon"] = g.GetDouble("epsilon_rad_s").value_or(std::nan(""));
+    r.value["epsilon"] = labels.epsilon_rad_s;
     rows.push_back(r);
   }
   std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.group < b.group; });
@@ -153,23 +146,17 @@ int RunPlotParameters(const PlotParametersCommand& cmd) {
   // The pooled range of each block and position (/summary/fits/per_group, written by `batch`): a band over the
   // group's trials from the lower to the upper end of the pooled 95 % interval, a line at the pooled value.
   std::array<std::string, 5> bands;
-  const io::hdf5::Group root = file.Root();
-  if (root.IsGroup("summary/fits/per_group") && root.IsDataset("summary/fits/per_group/alpha_pooled")) {
-    const io::hdf5::Group g = root.OpenGroup("summary/fits/per_group");
-    const std::vector<std::string> block = g.ReadStrings("block"), position = g.ReadStrings("position");
+  for (const fitting::GroupSummary& group : PooledGroups(file.Root())) {
+    const auto it = group_rows.find(group.block.empty() ? "—" : group.block + " " + group.position);
+    if (it == group_rows.end()) continue;
+    const double x1 = static_cast<double>(it->second.first) - 0.4, x2 = static_cast<double>(it->second.second) + 0.4;
     for (std::size_t p = 0; p < 4; ++p) {
-      const std::string name = panels[p];
-      const std::vector<double> pooled = g.ReadDoubles(name + "_pooled");
-      const std::vector<double> lo = g.ReadDoubles(name + "_pooled_95_lower");
-      const std::vector<double> hi = g.ReadDoubles(name + "_pooled_95_upper");
-      for (std::size_t k = 0; k < block.size(); ++k) {
-        const auto it = group_rows.find(block[k].empty() ? "—" : block[k] + " " + position[k]);
-        if (it == group_rows.end() || !std::isfinite(pooled[k])) continue;
-        const double x1 = static_cast<double>(it->second.first) - 0.4, x2 = static_cast<double>(it->second.second) + 0.4;
-        bands[p] += fmt::format("set object rect from {},{} to {},{} fc rgb '#ff7f0e' fs transparent solid 0.2 noborder "
-                                "behind\nset arrow from {},{} to {},{} nohead lc rgb '#ff7f0e' lw 2\n",
-                                x1, lo[k], x2, hi[k], x1, pooled[k], x2, pooled[k]);
-      }
+      const auto pooled = group.pooled.find(panels[p]);
+      if (pooled == group.pooled.end() || !std::isfinite(pooled->second.pooled)) continue;
+      const fitting::PooledEstimate& e = pooled->second;
+      bands[p] += fmt::format("set object rect from {},{} to {},{} fc rgb '#ff7f0e' fs transparent solid 0.2 noborder "
+                              "behind\nset arrow from {},{} to {},{} nohead lc rgb '#ff7f0e' lw 2\n",
+                              x1, e.interval_95[0], x2, e.interval_95[1], x1, e.pooled, x2, e.pooled);
     }
   }
   std::string body = fmt::format("set multiplot layout 5,1 title {} font ',13'\n",

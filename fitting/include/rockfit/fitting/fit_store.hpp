@@ -36,6 +36,8 @@ struct StoredParameters {
   std::vector<std::string> name, unit, determined;
   std::vector<double> value, lower, upper;
   std::vector<double> interval_68_lower, interval_68_upper, interval_95_lower, interval_95_upper;  // NaN: open
+  std::vector<bool> fixed;      // held fixed in the fit (false for a file without the column)
+  bool has_intervals = false;   // the file has the interval columns (written since the intervals exist)
   std::size_t size() const { return name.size(); }
   // The row of `parameter` ("alpha", …), or size() when the table has none.
   std::size_t Row(const std::string& parameter) const;
