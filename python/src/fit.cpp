@@ -11,6 +11,9 @@
 #include <thread>
 
 #include <fmt/format.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "bindings.hpp"
 #include "fit_setup.hpp"
@@ -307,12 +310,11 @@ py::list FitCampaign(const std::string& manifest_path, const py::object& trials,
         o.trial = tools::TrialNameFrom(spec.id);
       }
     };
-    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-    const std::size_t n = std::min<std::size_t>(selected.size(), jobs > 0 ? static_cast<std::size_t>(jobs) : cores);
-    std::vector<std::thread> threads;
-    for (std::size_t w = 1; w < n; ++w) threads.emplace_back(worker);
-    worker();
-    for (std::thread& t : threads) t.join();
+    // The TBB pool of the library and of `rockfit batch`: at most one trial per core (0: all cores).
+    const int cores = tbb::info::default_concurrency();
+    const int n = static_cast<int>(std::min<std::size_t>(selected.size(), static_cast<std::size_t>(jobs > 0 ? std::min(jobs, cores) : cores)));
+    tbb::task_arena arena(std::max(1, n));
+    arena.execute([&] { tbb::parallel_for(0, std::max(1, n), [&](int) { worker(); }); });
     return true;
   };
   RunInterruptibly<bool>(work, interrupted);
@@ -411,7 +413,7 @@ void RegisterFit(py::module_& m) {
         py::arg("t_end") = py::none(), py::arg("max_evaluations") = 0, py::arg("global_stage") = true,
         py::arg("keep_bias") = false,
         (std::string("Fits every trial of a campaign manifest in parallel, as `rockfit batch` (one thread per trial,\n"
-                     "jobs trials at once; 0: all cores), without writing a file.\n\n"
+                     "jobs trials at once, at most one per core; 0: all cores), without writing a file.\n\n"
                      "trials: a list of trial ids (default: all).\n") +
          kProblemArgs +
          "\nReturns a list in manifest order: a 'FitResult' per fitted trial (see fit()), or a Record 'FitFailure'\n"
