@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
+#include "rockfit/io/hdf5_file.hpp"
 #include "scratch_dir.hpp"
 #include "test_paths.hpp"
 
@@ -55,6 +56,38 @@ TEST(CliRespond, Hdf5OutputFeedsPlotResponse) {
   if (plot.exit_code == 4 && plot.err.find("gnuplot") != std::string::npos) GTEST_SKIP() << "gnuplot not installed";
   ASSERT_EQ(plot.exit_code, 0) << plot.err;
   EXPECT_TRUE(std::filesystem::exists(png));
+}
+
+// A response file of schema version 1 (names without units, root attribute `schema_version`) still plots.
+TEST(CliRespond, PlotResponseReadsAFileOfSchemaVersionOne) {
+  ScratchDir dir("cli_respond");
+  const std::string h5 = (dir.path() / "v1.h5").string();
+  {
+    const io::hdf5::File file = io::hdf5::File::Create(h5);
+    const io::hdf5::Group root = file.Root();
+    root.SetString("schema", "rockfit.simulation");
+    root.SetInt("schema_version", 1);
+    const std::vector<double> t = {0.0, 0.01, 0.02};
+    const std::vector<Eigen::Vector3d> xyz(3, Eigen::Vector3d(0.1, 0.0, 0.0));
+    const io::hdf5::Group samples = root.CreateGroup("samples");
+    samples.WriteDoubles("t", t, "s");
+    samples.WriteVectors("a_g_W", xyz, "m/s^2");
+    samples.WriteDoubles("tilt", {0.0, 0.001, 0.0}, "rad");
+    samples.WriteVectors("w_B", xyz, "rad/s");
+    const io::hdf5::Group ground = root.CreateGroup("ground_motion");
+    ground.WriteDoubles("t", t, "s");
+    ground.WriteVectors("a_W", xyz, "m/s^2");
+    const io::hdf5::Group impacts = root.CreateGroup("impacts");
+    impacts.WriteDoubles("t", {0.01}, "s");
+    impacts.WriteStrings("kind", {"uplift"});
+    root.CreateGroup("result").SetString("end_reason", "rest");
+    root.CreateGroup("response").SetDouble("critical_tilt_rad", 0.245);
+  }
+  const std::string png = (dir.path() / "v1.png").string();
+  const CommandResult plot = RunRockfit({"plot", "response", h5, "-o", png});
+  if (plot.exit_code == 4 && plot.err.find("gnuplot") != std::string::npos) GTEST_SKIP() << "gnuplot not installed";
+  ASSERT_EQ(plot.exit_code, 0) << plot.err;
+  EXPECT_NE(plot.out.find("written"), std::string::npos) << plot.out;
 }
 
 TEST(CliRespond, BadRecordIsExitTwoWithFileAndLine) {

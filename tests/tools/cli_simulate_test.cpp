@@ -100,9 +100,9 @@ TEST(CliSimulate, Hdf5OpensInH5py) {
   const std::string script =
       "import h5py, sys\n"
       "f = h5py.File(sys.argv[1], 'r')\n"
-      "assert f.attrs['schema_version'] == 1, f.attrs['schema_version']\n"
-      "w = f['samples/w_B']\n"
-      "assert w.shape[1] == 3 and w.shape[0] == f['samples/t'].shape[0]\n"
+      "assert f.attrs['rockfit_schema_version'] == 2, f.attrs['rockfit_schema_version']\n"
+      "w = f['samples/w_B_rad_s']\n"
+      "assert w.shape[1] == 3 and w.shape[0] == f['samples/time_s'].shape[0]\n"
       "assert w.attrs['units'] in ('rad/s', b'rad/s')\n"
       "assert f['samples/q_WB'].shape[1] == 4\n"
       "kinds = [k.decode() if isinstance(k, bytes) else k for k in f['impacts/kind'][:]]\n"

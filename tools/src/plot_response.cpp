@@ -13,6 +13,7 @@
 #include "rockfit/core/ground_motion.hpp"
 #include "rockfit/core/simulator.hpp"
 #include "rockfit/io/hdf5_file.hpp"
+#include "rockfit/io/trajectory_hdf5.hpp"
 
 namespace rockfit::tools {
 namespace {
@@ -25,17 +26,27 @@ struct ResponsePlotCommand {
 int RunPlotResponse(const ResponsePlotCommand& cmd) {
   const io::hdf5::File file = io::hdf5::File::Open(cmd.path);
   const io::hdf5::Group root = file.Root();
-  if (!root.IsGroup("ground_motion") || !root.IsDataset("samples/tilt")) {
-    throw BadInput(cmd.path + ": no /ground_motion and /samples/tilt; this plot reads the file of `rockfit respond "
+  // Schema 2 names its datasets with units (time_s, tilt_rad, …); files of schema 1 (`schema_version` 1) did not.
+  const std::optional<std::int64_t> version = root.GetInt("rockfit_schema_version");
+  if (version && *version > io::kTrajectorySchemaVersion) {
+    throw BadInput(fmt::format("{}: schema version {} of a newer rockfit (this one reads up to {}); update rockfit",
+                               cmd.path, *version, io::kTrajectorySchemaVersion));
+  }
+  const bool named_with_units = version.has_value();
+  const auto name = [named_with_units](const char* with_units, const char* without) {
+    return std::string(named_with_units ? with_units : without);
+  };
+  if (!root.IsGroup("ground_motion") || !root.IsDataset(name("samples/tilt_rad", "samples/tilt"))) {
+    throw BadInput(cmd.path + ": no /ground_motion and /samples/tilt_rad; this plot reads the file of `rockfit respond "
                               "--format hdf5 -o FILE`");
   }
-  const std::vector<double> t = root.ReadDoubles("samples/t");
-  const std::vector<Eigen::Vector3d> a = root.ReadVectors("samples/a_g_W");
-  const std::vector<double> tilt = root.ReadDoubles("samples/tilt");
-  const std::vector<Eigen::Vector3d> w = root.ReadVectors("samples/w_B");
-  const std::vector<double> tg = root.ReadDoubles("ground_motion/t");
-  const std::vector<Eigen::Vector3d> ag = root.ReadVectors("ground_motion/a_W");
-  const std::vector<double> impact_t = root.ReadDoubles("impacts/t");
+  const std::vector<double> t = root.ReadDoubles(name("samples/time_s", "samples/t"));
+  const std::vector<Eigen::Vector3d> a = root.ReadVectors(name("samples/a_g_W_m_s2", "samples/a_g_W"));
+  const std::vector<double> tilt = root.ReadDoubles(name("samples/tilt_rad", "samples/tilt"));
+  const std::vector<Eigen::Vector3d> w = root.ReadVectors(name("samples/w_B_rad_s", "samples/w_B"));
+  const std::vector<double> tg = root.ReadDoubles(name("ground_motion/time_s", "ground_motion/t"));
+  const std::vector<Eigen::Vector3d> ag = root.ReadVectors(name("ground_motion/a_W_m_s2", "ground_motion/a_W"));
+  const std::vector<double> impact_t = root.ReadDoubles(name("impacts/t_s", "impacts/t"));
   const std::vector<std::string> impact_kind = root.ReadStrings("impacts/kind");
   const std::string end_reason = root.GetString("end_reason", "result").value_or("?");
   const double critical = root.GetDouble("critical_tilt_rad", "response").value_or(0.0);

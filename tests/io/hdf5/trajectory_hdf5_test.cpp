@@ -76,29 +76,29 @@ TEST(TrajectoryHdf5, WritesSamplesImpactsAndUnitsThatReadBack) {
   ASSERT_GE(file, 0);
   EXPECT_EQ(ReadStringAttribute(file, "schema"), kTrajectorySchemaName);
   long long version = 0;
-  const hid_t version_attribute = H5Aopen(file, "schema_version", H5P_DEFAULT);
+  const hid_t version_attribute = H5Aopen(file, "rockfit_schema_version", H5P_DEFAULT);
   H5Aread(version_attribute, H5T_NATIVE_LLONG, &version);
   H5Aclose(version_attribute);
   EXPECT_EQ(version, kTrajectorySchemaVersion);
 
   std::vector<hsize_t> dims;
-  const std::vector<double> t = ReadDoubles(file, "/samples/t", &dims);
+  const std::vector<double> t = ReadDoubles(file, "/samples/time_s", &dims);
   ASSERT_EQ(dims, std::vector<hsize_t>{static_cast<hsize_t>(run.trajectory.t_s.size())});
   EXPECT_EQ(t, run.trajectory.t_s);
-  const std::vector<double> w = ReadDoubles(file, "/samples/w_B", &dims);
+  const std::vector<double> w = ReadDoubles(file, "/samples/w_B_rad_s", &dims);
   ASSERT_EQ(dims, (std::vector<hsize_t>{static_cast<hsize_t>(run.trajectory.t_s.size()), 3}));
   EXPECT_EQ(w[3 * 10 + 1], run.trajectory.w_B[10].y());
   const std::vector<double> q = ReadDoubles(file, "/samples/q_WB", &dims);
   ASSERT_EQ(dims, (std::vector<hsize_t>{static_cast<hsize_t>(run.trajectory.t_s.size()), 4}));
   EXPECT_EQ(q[4 * 10], run.trajectory.q_WB[10].w());  // scalar first
-  const std::vector<double> impact_t = ReadDoubles(file, "/impacts/t", &dims);
+  const std::vector<double> impact_t = ReadDoubles(file, "/impacts/t_s", &dims);
   ASSERT_EQ(dims, std::vector<hsize_t>{static_cast<hsize_t>(run.trajectory.impacts.size())});
   EXPECT_EQ(impact_t.back(), run.trajectory.impacts.back().t_s);
 
-  const hid_t w_dataset = H5Dopen2(file, "/samples/w_B", H5P_DEFAULT);
+  const hid_t w_dataset = H5Dopen2(file, "/samples/w_B_rad_s", H5P_DEFAULT);
   EXPECT_EQ(ReadStringAttribute(w_dataset, "units"), "rad/s");
   H5Dclose(w_dataset);
-  const hid_t energy_dataset = H5Dopen2(file, "/impacts/delta_energy", H5P_DEFAULT);
+  const hid_t energy_dataset = H5Dopen2(file, "/impacts/delta_energy_J", H5P_DEFAULT);
   EXPECT_EQ(ReadStringAttribute(energy_dataset, "units"), "J");
   H5Dclose(energy_dataset);
   const hid_t result = H5Gopen2(file, "/result", H5P_DEFAULT);
