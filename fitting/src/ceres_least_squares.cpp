@@ -270,12 +270,18 @@ class CeresLeastSquares final : public LocalOptimizer {
     result.termination = fmt::format("ceres: {}: {}", ceres::TerminationTypeToString(summary.termination_type),
                                      summary.message);
     result.converged = summary.termination_type == ceres::CONVERGENCE;
+    result.termination_type = summary.termination_type == ceres::CONVERGENCE     ? TerminationType::kConvergence
+                              : summary.termination_type == ceres::NO_CONVERGENCE ? TerminationType::kNoConvergence
+                                                                                  : TerminationType::kFailure;
     // Ceres leaves x at the best accepted point; report (28) there.
     result.x = x;
     const Evaluation e = objective.EvaluateFree(x);
     result.epsilon_rad_s = e.epsilon_rad_s;
     result.feasible = e.feasible;
-    if (!e.feasible) result.converged = false;
+    if (!e.feasible) {
+      result.converged = false;
+      result.termination_type = TerminationType::kFailure;
+    }
     result.evaluations = evaluator.evaluations() + 1;
     result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;

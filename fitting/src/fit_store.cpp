@@ -80,6 +80,7 @@ void WriteFitAttributes(const io::hdf5::Group& g, const std::string& settings, c
   g.SetInt("simulations", s.simulations);
   g.SetDouble("wall_s", s.wall_time_s);
   g.SetString("termination", s.termination);
+  g.SetString("termination_type", ToString(s.termination_type));
   g.SetString("method", ToString(s.method));
   g.SetString("uncertainty_method", ToString(s.uncertainty.method));
   g.SetString("uncertainty", s.uncertainty.description);

@@ -120,6 +120,7 @@ std::string FitSummary::ToJson(const std::string& trial) const {
   j["wall_s"] = wall_time_s;
   j["method"] = ToString(method);
   j["termination"] = termination;
+  j["termination_type"] = ToString(termination_type);
   j["converged"] = converged;
   j["kept_stage"] = kept_stage;
   nlohmann::json warnings_json = nlohmann::json::array();
@@ -134,6 +135,7 @@ std::string FitSummary::ToJson(const std::string& trial) const {
                            {"epsilon", s.epsilon_rad_s},
                            {"evaluations", s.evaluations},
                            {"wall_s", s.wall_time_s},
+                           {"termination_type", ToString(s.termination_type)},
                            {"termination", s.termination}});
   }
   j["stages"] = stages_json;

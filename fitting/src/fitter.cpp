@@ -38,6 +38,7 @@ struct Candidate {
   double epsilon_rad_s = 0.0;
   bool feasible = false;
   bool converged = false;
+  TerminationType termination_type = TerminationType::kNotASearch;
   std::string termination;
 };
 
@@ -48,7 +49,7 @@ bool Better(const Candidate& a, const Candidate& b) {
 }
 
 Candidate FromLocal(const std::string& stage, const LocalResult& r) {
-  return {stage, r.x, r.epsilon_rad_s, r.feasible, r.converged, r.termination};
+  return {stage, r.x, r.epsilon_rad_s, r.feasible, r.converged, r.termination_type, r.termination};
 }
 
 std::string FailureList(const std::map<std::string, std::int64_t>& failures) {
@@ -70,8 +71,9 @@ std::vector<std::pair<Eigen::VectorXd, double>> RunStages(const Objective& objec
     const auto t = std::chrono::steady_clock::now();
     const Evaluation e = objective.EvaluateFree(x_start);
     summary->epsilon_initial_rad_s = e.epsilon_rad_s;
-    candidates.push_back({"start", x_start, e.epsilon_rad_s, e.feasible, false, "start point"});
-    summary->stages.push_back({"start", e.epsilon_rad_s, 1, SecondsSince(t), e.feasible ? "evaluated" : e.failure});
+    candidates.push_back({"start", x_start, e.epsilon_rad_s, e.feasible, false, TerminationType::kNotASearch, "start point"});
+    summary->stages.push_back({"start", e.epsilon_rad_s, 1, SecondsSince(t), TerminationType::kNotASearch,
+                               e.feasible ? "evaluated" : e.failure});
   }
   Eigen::VectorXd x_current = x_start;
   std::vector<std::pair<Eigen::VectorXd, double>> global_candidates;
@@ -90,21 +92,22 @@ std::vector<std::pair<Eigen::VectorXd, double>> RunStages(const Objective& objec
     const std::string termination =
         fmt::format("{} of {} first-window starts feasible, {} continued to the full window", g.num_feasible_samples,
                     g.num_samples, g.num_continued);
-    Candidate c{"global", g.best_x, g.best_epsilon_rad_s, g.feasible, g.converged, termination};
-    summary->stages.push_back({"global", g.best_epsilon_rad_s, g.evaluations, g.wall_time_s, termination});
+    Candidate c{"global", g.best_x, g.best_epsilon_rad_s, g.feasible, g.converged, TerminationType::kNotASearch, termination};
+    summary->stages.push_back(
+        {"global", g.best_epsilon_rad_s, g.evaluations, g.wall_time_s, TerminationType::kNotASearch, termination});
     if (Better(c, candidates.front())) x_current = c.x;
     candidates.push_back(c);
   }
   if (options.method == FitMethod::kNelderMead || options.method == FitMethod::kAuto) {
     const LocalResult r = MakeNelderMead(options.nelder_mead)->Minimize(objective, x_current);
-    summary->stages.push_back({"nelder-mead", r.epsilon_rad_s, r.evaluations, r.wall_time_s, r.termination});
+    summary->stages.push_back({"nelder-mead", r.epsilon_rad_s, r.evaluations, r.wall_time_s, r.termination_type, r.termination});
     const Candidate c = FromLocal("nelder-mead", r);
     if (r.feasible) x_current = r.x;
     candidates.push_back(c);
   }
   if (options.method == FitMethod::kCeres || options.method == FitMethod::kAuto) {
     const LocalResult r = MakeCeres(options.ceres)->Minimize(objective, x_current);
-    summary->stages.push_back({"ceres", r.epsilon_rad_s, r.evaluations, r.wall_time_s, r.termination});
+    summary->stages.push_back({"ceres", r.epsilon_rad_s, r.evaluations, r.wall_time_s, r.termination_type, r.termination});
     candidates.push_back(FromLocal("ceres", r));
   }
 
@@ -116,6 +119,7 @@ std::vector<std::pair<Eigen::VectorXd, double>> RunStages(const Objective& objec
   summary->parameters = objective.WithFree(best->x);
   summary->epsilon_rad_s = best->epsilon_rad_s;
   summary->feasible = best->feasible;
+  summary->termination_type = best->termination_type;
   summary->termination = best->termination;
   summary->kept_stage = best->stage;
   // The start and the global stage are not convergence tests of their own; a local stage that ran from the
@@ -180,7 +184,8 @@ void AssessKeptPoint(const Objective& objective, const FitOptions& options,
     if (!summary->feasible || !summary->uncertainty.better_point || pass == 1) break;
     const LocalResult r =
         MakeNelderMead(options.nelder_mead)->Minimize(objective, objective.FreeValues(*summary->uncertainty.better_point));
-    summary->stages.push_back({"interval-restart", r.epsilon_rad_s, r.evaluations, r.wall_time_s, r.termination});
+    summary->stages.push_back(
+        {"interval-restart", r.epsilon_rad_s, r.evaluations, r.wall_time_s, r.termination_type, r.termination});
     if (!(r.feasible && r.epsilon_rad_s < summary->epsilon_rad_s)) break;
     summary->warnings.resize(warnings_before);
     summary->warnings.push_back(
@@ -189,6 +194,7 @@ void AssessKeptPoint(const Objective& objective, const FitOptions& options,
                      "rad/s; the fit moved there", summary->epsilon_rad_s, r.epsilon_rad_s)});
     summary->parameters = objective.WithFree(r.x);
     summary->epsilon_rad_s = r.epsilon_rad_s;
+    summary->termination_type = r.termination_type;
     summary->termination = r.termination;
     summary->kept_stage = "interval-restart";
     summary->converged = r.converged;

@@ -99,22 +99,30 @@ class NelderMead final : public LocalOptimizer {
         result.termination = std::string("nlopt: ") + ResultText(code);
         result.converged = code == nlopt::SUCCESS || code == nlopt::FTOL_REACHED || code == nlopt::XTOL_REACHED ||
                            code == nlopt::STOPVAL_REACHED;
+        result.termination_type = result.converged                                      ? TerminationType::kConvergence
+                                  : code == nlopt::MAXEVAL_REACHED || code == nlopt::MAXTIME_REACHED ? TerminationType::kNoConvergence
+                                                                                                      : TerminationType::kFailure;
       } catch (const nlopt::roundoff_limited&) {
         // The simplex cannot shrink further in floating point: a normal end at a (locally) flat minimum.
         result.termination = "nlopt: roundoff limited";
         result.converged = true;
+        result.termination_type = TerminationType::kConvergence;
       } catch (const nlopt::forced_stop&) {
         result.termination = "nlopt: forced stop";
         result.converged = false;
+        result.termination_type = TerminationType::kFailure;
       } catch (const std::bad_alloc&) {
         result.termination = "nlopt: out of memory";
         result.converged = false;
+        result.termination_type = TerminationType::kFailure;
       } catch (const std::invalid_argument& e) {
         result.termination = std::string("nlopt: invalid argument: ") + e.what();
         result.converged = false;
+        result.termination_type = TerminationType::kFailure;
       } catch (const std::runtime_error& e) {
         result.termination = std::string("nlopt: failure: ") + e.what();
         result.converged = false;
+        result.termination_type = TerminationType::kFailure;
       }
       if (!result.converged) break;
       if (run > 0 && !(problem.best_epsilon < best_before - options_.ftol_abs_rad_s)) break;  // no progress
@@ -131,7 +139,10 @@ class NelderMead final : public LocalOptimizer {
       result.epsilon_rad_s = e.epsilon_rad_s;
       result.feasible = e.feasible;
     }
-    if (!result.feasible) result.converged = false;
+    if (!result.feasible) {  // a search that found no feasible point has failed, whatever NLopt's test said
+      result.converged = false;
+      result.termination_type = TerminationType::kFailure;
+    }
     result.evaluations = problem.evaluations;
     result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;

@@ -22,6 +22,13 @@ ParameterSet TwoFree(const testing::AnalyticTrial& trial) {
   return p;
 }
 
+TEST(TerminationType, NamesAreTheDocumentedOnes) {
+  EXPECT_STREQ(ToString(TerminationType::kConvergence), "convergence");
+  EXPECT_STREQ(ToString(TerminationType::kNoConvergence), "no_convergence");
+  EXPECT_STREQ(ToString(TerminationType::kFailure), "failure");
+  EXPECT_STREQ(ToString(TerminationType::kNotASearch), "not_a_search");
+}
+
 TEST(NelderMead, FindsTheTrueParametersOfNoiseFreeData) {
   const auto trial = MakeAnalyticTrial(0.2, 0.8, -2.0, 0.6);
   const Objective objective = trial.MakeObjective(TwoFree(trial));
@@ -30,6 +37,7 @@ TEST(NelderMead, FindsTheTrueParametersOfNoiseFreeData) {
   const LocalResult r = MakeNelderMead(NelderMeadOptions{})->Minimize(objective, x0);
   ASSERT_TRUE(r.feasible) << r.termination;
   EXPECT_TRUE(r.converged) << r.termination;
+  EXPECT_EQ(r.termination_type, TerminationType::kConvergence) << r.termination;
   EXPECT_NEAR(r.x[0], 0.2, kAlphaTolerance);
   EXPECT_NEAR(r.x[1], 0.6, kLambdaLonTolerance);
   EXPECT_LT(r.epsilon_rad_s, objective.EvaluateFree(x0).epsilon_rad_s);
@@ -56,6 +64,7 @@ TEST(NelderMead, ABudgetStopIsReportedAsNotConverged) {
   x0 << 0.15, 1.0;
   const LocalResult r = MakeNelderMead(options)->Minimize(objective, x0);
   EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.termination_type, TerminationType::kNoConvergence) << r.termination;
   EXPECT_EQ(r.termination, "nlopt: max evaluations reached");
   EXPECT_LE(r.evaluations, 5);
 }
@@ -71,6 +80,7 @@ TEST(NelderMead, AStartOnTheInfeasiblePlateauIsReportedNotHidden) {
   const LocalResult r = MakeNelderMead(NelderMeadOptions{})->Minimize(objective, x0);
   EXPECT_FALSE(r.feasible);
   EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.termination_type, TerminationType::kFailure) << r.termination;
   EXPECT_EQ(r.epsilon_rad_s, objective.options().failure_penalty_rad_s);
   EXPECT_GT(objective.counters().failures_by_reason().at("overturned"), 0);
 }

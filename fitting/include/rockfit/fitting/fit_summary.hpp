@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rockfit/fitting/fit_options.hpp"
+#include "rockfit/fitting/local_optimizer.hpp"
 #include "rockfit/fitting/parameters.hpp"
 #include "rockfit/fitting/lateral_motion_check.hpp"
 #include "rockfit/fitting/uncertainty.hpp"
@@ -43,6 +44,7 @@ struct StageReport {
   double epsilon_rad_s = 0.0;  // (28) at the stage's best point
   std::int64_t evaluations = 0;
   double wall_time_s = 0.0;
+  TerminationType termination_type = TerminationType::kNotASearch;
   std::string termination;
 };
 
@@ -67,7 +69,8 @@ struct FitSummary {
   std::int64_t simulations = 0;  // model runs of the whole fit
   double simulations_per_second = 0.0;
   double wall_time_s = 0.0;
-  std::string termination;  // of the stage whose point was kept
+  TerminationType termination_type = TerminationType::kFailure;  // of the stage whose point was kept
+  std::string termination;  // the same in words (the back end's message)
   bool converged = false;
   std::string kept_stage;   // name of the stage whose point was kept
 

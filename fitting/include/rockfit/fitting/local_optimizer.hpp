@@ -14,11 +14,21 @@
 
 namespace rockfit::fitting {
 
+// How a search ended, as Ceres' TerminationType; the text beside it says it in the back end's words.
+enum class TerminationType {
+  kConvergence,    // a convergence test was met (tolerance, or a simplex that cannot shrink in floating point)
+  kNoConvergence,  // the evaluation budget ran out first
+  kFailure,        // a forced stop, an infeasible end or an error of the back end
+  kNotASearch,     // the start point and the global stage: evaluated points, not a convergence test
+};
+const char* ToString(TerminationType type);  // "convergence", "no_convergence", "failure", "not_a_search"
+
 struct LocalResult {
   Eigen::VectorXd x;           // the best point found (free parameters, in the order of free_ids())
   double epsilon_rad_s = 0.0;  // (28) at x (the penalty when no feasible point was found)
   bool feasible = false;
   bool converged = false;      // stopped by a convergence test, not by a budget or a failure
+  TerminationType termination_type = TerminationType::kFailure;
   std::string termination;     // "nlopt: xtol reached", "ceres: CONVERGENCE: …", "nlopt: roundoff limited", …
   std::int64_t evaluations = 0;  // objective evaluations (model runs plus points rejected before a run)
   double wall_time_s = 0.0;
