@@ -82,11 +82,12 @@ std::vector<std::pair<Eigen::VectorXd, double>> RunStages(const Objective& objec
     GlobalStageResult g = RunGlobalStage(GlobalStageObjective(objective, options.global), x_start, options);
     // The stage's ε came from its own tolerance: every candidate is evaluated again at the model's.
     for (auto& [x, epsilon] : g.candidates) epsilon = objective.EvaluateFree(x).epsilon_rad_s;
+    g.evaluations += static_cast<std::int64_t>(g.candidates.size());
     if (g.feasible) {
       const Evaluation best = objective.EvaluateFree(g.best_x);
       g.best_epsilon_rad_s = best.epsilon_rad_s;
       g.feasible = best.feasible;
-      g.evaluations += 1 + static_cast<std::int64_t>(g.candidates.size());
+      ++g.evaluations;
     }
     global_candidates = g.candidates;
     const std::string termination =
