@@ -344,7 +344,12 @@ StandardErrors ComputeStandardErrors(const Objective& objective, const Eigen::Ve
   // evaluator's cache, so this costs no model run.
   {
     ceres::CRSMatrix crs;
-    problem.Evaluate(ceres::Problem::EvaluateOptions(), nullptr, nullptr, nullptr, &crs);
+    // Fails where the model fails within the difference steps around x (a point at the edge of the feasible set).
+    if (!problem.Evaluate(ceres::Problem::EvaluateOptions(), nullptr, nullptr, nullptr, &crs) ||
+        crs.num_cols != static_cast<int>(n) || crs.rows.size() != static_cast<std::size_t>(crs.num_rows) + 1) {
+      result.message = "the Jacobian cannot be evaluated at the optimum (the model fails within the difference steps)";
+      return result;
+    }
     Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
     for (int row = 0; row < crs.num_rows; ++row) {
       for (int i = crs.rows[static_cast<std::size_t>(row)]; i < crs.rows[static_cast<std::size_t>(row) + 1]; ++i) {

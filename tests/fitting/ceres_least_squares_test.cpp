@@ -6,6 +6,8 @@
 
 #include "analytic_trial.hpp"
 #include "rockfit/fitting/local_optimizer.hpp"
+#include "rockfit/fitting/trial_problem.hpp"
+#include "synth_trial.hpp"
 
 namespace rockfit::fitting {
 namespace {
@@ -99,6 +101,19 @@ TEST(Ceres, StandardErrorsAreUnavailableForAParameterWithoutInfluence) {
   const StandardErrors se = ComputeStandardErrors(objective, objective.FreeValues(trial.truth), CeresOptions{});
   EXPECT_FALSE(se.available);
   EXPECT_NE(se.message.find("rank-deficient"), std::string::npos) << se.message;
+}
+
+TEST(Ceres, StandardErrorsAreUnavailableWhereTheModelFailsWithinTheDifferenceSteps) {
+  // α just below θ_c: the model runs at the point, but the difference step of α (0.5 mrad) tips the block over.
+  // The Jacobian cannot be formed; that is a message, never a crash (it once read an empty sparse matrix).
+  const testing::SynthTrial trial = testing::MakeSynthTrial(0.2, 0.8, -2.0, 0.6, 7);
+  const TrialProblem problem = PrepareTrialProblem(trial.signal, trial.block, ParameterSet::Defaults());
+  ParameterSet at = trial.truth;
+  at[ParameterId::kAlpha].value = std::atan(trial.block.b1() / trial.block.h()) - 1e-4;
+  ASSERT_TRUE(problem.objective.Evaluate(at).feasible);
+  const StandardErrors se = ComputeStandardErrors(problem.objective, problem.objective.FreeValues(at), CeresOptions{});
+  EXPECT_FALSE(se.available);
+  EXPECT_NE(se.message.find("cannot be evaluated"), std::string::npos) << se.message;
 }
 
 }  // namespace
