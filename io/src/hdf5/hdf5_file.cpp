@@ -314,7 +314,13 @@ struct OpenedDataset {
   Handle dataset;
   Handle space;
   std::vector<hsize_t> dims;
+  std::size_t count = 0;  // number of elements (checked against the file's size, see below)
 };
+
+// A dataset's stored bytes can be compressed, but not by more than this factor: a larger logical size than
+// kMaxExpansion × the file's size on disk is a damaged shape, refused before any buffer is allocated for it
+// (a damaged header can claim terabytes). Deflate reaches about 1000 on constant data.
+constexpr double kMaxExpansion = 4096.0;
 
 OpenedDataset OpenDataset(const Group& group, const std::string& name) {
   const std::string where = group.path() == "/" ? "/" + name : group.path() + "/" + name;
@@ -330,13 +336,23 @@ OpenedDataset OpenDataset(const Group& group, const std::string& name) {
   if (rank < 0) FailRead(group.file_name(), fmt::format("cannot read the shape of {}", where));
   out.dims.resize(static_cast<std::size_t>(rank));
   H5Sget_simple_extent_dims(out.space.id(), out.dims.data(), nullptr);
+  // The element count, with the bytes it needs (8 per value at most as rockfit reads it) bounded by the file.
+  hsize_t file_bytes = 0;
+  const Handle file(H5Iget_file_id(out.dataset.id()), CloseFile);
+  if (!file.valid() || H5Fget_filesize(file.id(), &file_bytes) < 0) {
+    FailRead(group.file_name(), fmt::format("cannot read the size of the file holding {}", where));
+  }
+  const double max_count = kMaxExpansion * static_cast<double>(file_bytes) / 8.0;
+  double count = 1.0;
+  for (hsize_t d : out.dims) count *= static_cast<double>(d);
+  if (!(count <= max_count)) {
+    std::string shape;
+    for (hsize_t d : out.dims) shape += (shape.empty() ? "" : " × ") + std::to_string(d);
+    throw BadInput(fmt::format("{}: dataset {} claims a shape of {} values in a file of {} bytes: the file is damaged",
+                               group.file_name(), where, shape, file_bytes));
+  }
+  out.count = static_cast<std::size_t>(count);
   return out;
-}
-
-std::size_t Count(const std::vector<hsize_t>& dims) {
-  std::size_t n = 1;
-  for (hsize_t d : dims) n *= static_cast<std::size_t>(d);
-  return n;
 }
 
 }  // namespace
@@ -353,7 +369,7 @@ std::vector<double> Group::ReadDoubles(const std::string& name, std::vector<std:
   if (type_class != H5T_FLOAT && type_class != H5T_INTEGER) {
     throw BadInput(fmt::format("{}: dataset {} is not numeric", file_name_, ChildPath(name)));
   }
-  std::vector<double> values(Count(d.dims));
+  std::vector<double> values(d.count);
   if (!values.empty() &&
       H5Dread(d.dataset.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
     FailRead(file_name_, fmt::format("cannot read dataset {}", ChildPath(name)));
@@ -381,7 +397,7 @@ std::vector<std::int64_t> Group::ReadInts(const std::string& name) const {
   if (H5Tget_class(type.id()) != H5T_INTEGER) {
     throw BadInput(fmt::format("{}: dataset {} is not an integer dataset", file_name_, ChildPath(name)));
   }
-  std::vector<std::int64_t> values(Count(d.dims));
+  std::vector<std::int64_t> values(d.count);
   if (!values.empty() &&
       H5Dread(d.dataset.id(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
     FailRead(file_name_, fmt::format("cannot read dataset {}", ChildPath(name)));
@@ -395,7 +411,7 @@ std::vector<std::string> Group::ReadStrings(const std::string& name) const {
   if (H5Tget_class(file_type.id()) != H5T_STRING) {
     throw BadInput(fmt::format("{}: dataset {} does not hold strings", file_name_, ChildPath(name)));
   }
-  const std::size_t n = Count(d.dims);
+  const std::size_t n = d.count;
   std::vector<std::string> values;
   values.reserve(n);
   if (n == 0) return values;
