@@ -26,6 +26,7 @@ const char* ToString(WarningKind kind) {
     case WarningKind::kNotDetermined: return "not_determined";
     case WarningKind::kMovedByIntervals: return "moved_by_intervals";
     case WarningKind::kLateralMotionUnexplained: return "lateral_motion_unexplained";
+    case WarningKind::kMovedByLateralRescan: return "moved_by_lateral_rescan";
   }
   return "?";
 }

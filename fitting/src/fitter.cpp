@@ -14,6 +14,7 @@
 #include "rockfit/fitting/identifiability.hpp"
 #include "rockfit/fitting/local_optimizer.hpp"
 #include "rockfit/fitting/lateral_motion_check.hpp"
+#include "rockfit/fitting/lateral_rescan.hpp"
 #include "rockfit/fitting/uncertainty.hpp"
 
 namespace rockfit::fitting {
@@ -131,6 +132,47 @@ std::vector<std::pair<Eigen::VectorXd, double>> RunStages(const Objective& objec
   }
 
   return global_candidates;
+}
+
+// A kept point that leaves the recorded out-of-plane motion unexplained may lie on the plateau next to the
+// needle-shaped basin of λ_lat: λ_lat is rescanned over growing windows (lateral_rescan.hpp) and polished by
+// Nelder–Mead on the full window; the fit moves there when (28) is lower. The point it leaves stays among the
+// candidates (the intervals and the second-solution check see it).
+void RescanUnexplainedLateralMotion(const Objective& objective, const FitOptions& options, FitSummary* summary,
+                                    std::vector<std::pair<Eigen::VectorXd, double>>* candidates) {
+  // A search of its own: not with --no-global (a local search from the estimate only was asked for).
+  if (!options.lateral_rescan.enabled || !options.global.enabled || !summary->feasible) return;
+  if (!CheckLateralMotion(objective, summary->parameters, options.lateral_motion).unexplained) return;
+  const LateralRescanResult rescan =
+      RunLateralRescan(objective, summary->parameters, options.lateral_rescan, options.nelder_mead, options.num_threads);
+  if (!rescan.ran || !rescan.feasible) return;
+  LocalResult polish = MakeNelderMead(options.nelder_mead)->Minimize(objective, objective.FreeValues(rescan.at));
+  if (!(polish.feasible && polish.epsilon_rad_s <= rescan.epsilon_rad_s)) {
+    // The polish did not improve on the rescan (or failed): keep the rescan's point, unconverged.
+    polish.x = objective.FreeValues(rescan.at);
+    polish.epsilon_rad_s = rescan.epsilon_rad_s;
+    polish.converged = false;
+    polish.termination_type = TerminationType::kNoConvergence;
+    polish.termination = "the polish did not improve on the rescan: " + polish.termination;
+  }
+  summary->stages.push_back({"lateral-rescan", polish.epsilon_rad_s, rescan.evaluations + polish.evaluations,
+                             rescan.wall_time_s + polish.wall_time_s, polish.termination_type,
+                             fmt::format("{} windows; {}", rescan.windows, polish.termination)});
+  if (!(polish.epsilon_rad_s < summary->epsilon_rad_s)) return;
+  const ParameterSet moved = objective.WithFree(polish.x);
+  candidates->emplace_back(objective.FreeValues(summary->parameters), summary->epsilon_rad_s);
+  summary->warnings.push_back(
+      {WarningKind::kMovedByLateralRescan, "",
+       fmt::format("the search's result left the recorded out-of-plane motion unexplained; a rescan of λ_lat over "
+                   "growing windows found a lower (28): ε {:.6g} → {:.6g} rad/s, λ_lat {:.5g} → {:.5g}; the fit moved "
+                   "there", summary->epsilon_rad_s, polish.epsilon_rad_s, summary->parameters.value(ParameterId::kLambdaLat),
+                   moved.value(ParameterId::kLambdaLat))});
+  summary->parameters = moved;
+  summary->epsilon_rad_s = polish.epsilon_rad_s;
+  summary->termination_type = polish.termination_type;
+  summary->termination = polish.termination;
+  summary->kept_stage = "lateral-rescan";
+  summary->converged = polish.converged;
 }
 
 // Identifiability, bounds, standard errors and intervals at the kept point. The profiles of the intervals may
@@ -309,7 +351,8 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
       objective.FreeValues(start_in).cwiseMax(objective.FreeLower()).cwiseMin(objective.FreeUpper());
   summary.start = objective.WithFree(x_start);
 
-  const auto global_candidates = RunStages(objective, x_start, options, &summary);
+  auto global_candidates = RunStages(objective, x_start, options, &summary);
+  RescanUnexplainedLateralMotion(objective, options, &summary, &global_candidates);
   AssessKeptPoint(objective, options, global_candidates, &summary);
   AddSecondSolutionWarning(objective, &summary);
   ApplyLateralMotionCheck(objective, options, &summary);

@@ -33,37 +33,12 @@ std::optional<Objective> ActingParameters(const Objective& window, const Paramet
   return window.WithParameters(params);
 }
 
-// Time of the model's first impact at `at` in recording time, if any.
-std::optional<double> FirstImpactTime(const Objective& objective, const ParameterSet& at) {
-  ErrorNodes nodes;
-  ModelOutput output;
-  if (!objective.EvaluateDetailed(at, &nodes, &output).feasible || output.events.empty()) return std::nullopt;
-  return at.value(ParameterId::kT0) + output.events.front().t_s;
-}
-
 // Nelder–Mead on `window` from the full parameter set `from`; returns the full parameter set it reached.
 ParameterSet MinimizeIn(const Objective& window, const ParameterSet& from, const NelderMeadOptions& options,
                         bool* converged) {
   const LocalResult r = MakeNelderMead(options)->Minimize(window, window.FreeValues(from));
   *converged = r.converged;
   return window.WithFree(r.x);
-}
-
-// The best of `points` equally spaced values of `id` over its bounds (and its current value), others held.
-ParameterSet ScanParameter(const Objective& window, const ParameterSet& at, ParameterId id, int points) {
-  const Parameter& p = window.parameters()[id];
-  ParameterSet best = at;
-  Evaluation best_e = window.Evaluate(at);
-  for (int j = 0; j < points; ++j) {
-    ParameterSet trial = at;
-    trial[id].value = p.lower + (p.upper - p.lower) * (j + 0.5) / points;
-    const Evaluation e = window.Evaluate(trial);
-    if (e.feasible && (!best_e.feasible || e.epsilon_rad_s < best_e.epsilon_rad_s)) {
-      best = trial;
-      best_e = e;
-    }
-  }
-  return best;
 }
 
 // Carries `from` through windows growing by `continuation_growth` after `t_release_ref` from `window_end` to the
@@ -411,6 +386,29 @@ void Refine(const Objective& objective, const Continuation& plan, const FitOptio
 }
 
 }  // namespace
+
+ParameterSet ScanParameter(const Objective& window, const ParameterSet& at, ParameterId id, int points) {
+  const Parameter& p = window.parameters()[id];
+  ParameterSet best = at;
+  Evaluation best_e = window.Evaluate(at);
+  for (int j = 0; j < points; ++j) {
+    ParameterSet trial = at;
+    trial[id].value = p.lower + (p.upper - p.lower) * (j + 0.5) / points;
+    const Evaluation e = window.Evaluate(trial);
+    if (e.feasible && (!best_e.feasible || e.epsilon_rad_s < best_e.epsilon_rad_s)) {
+      best = trial;
+      best_e = e;
+    }
+  }
+  return best;
+}
+
+std::optional<double> FirstImpactTime(const Objective& objective, const ParameterSet& at) {
+  ErrorNodes nodes;
+  ModelOutput output;
+  if (!objective.EvaluateDetailed(at, &nodes, &output).feasible || output.events.empty()) return std::nullopt;
+  return at.value(ParameterId::kT0) + output.events.front().t_s;
+}
 
 GlobalStageResult RunGlobalStage(const Objective& objective, const Eigen::VectorXd& estimate_in,
                                  const FitOptions& options) {

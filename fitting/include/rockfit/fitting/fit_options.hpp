@@ -7,6 +7,7 @@
 #include <string>
 
 #include "rockfit/fitting/lateral_motion_check.hpp"
+#include "rockfit/fitting/lateral_rescan.hpp"
 #include "rockfit/fitting/parameters.hpp"
 
 namespace rockfit::fitting {
@@ -155,6 +156,9 @@ struct FitOptions {
   // Whether the model at the fit reproduces the recorded out-of-plane motion; if not, λ and λ_lat are reported
   // not determined (lateral_motion_check.hpp).
   LateralMotionCheckOptions lateral_motion;
+  // When that check flags the kept point: a rescan of λ_lat over growing windows (lateral_rescan.hpp); the fit
+  // moves to its result when (28) is lower there.
+  LateralRescanOptions lateral_rescan;
   // Worker threads for the global stage; 0 = all cores (TBB default). Batches set 1 per trial.
   int num_threads = 0;
   // A value closer than this fraction of its range to a bound is reported "at bound".

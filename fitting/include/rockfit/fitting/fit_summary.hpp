@@ -29,6 +29,7 @@ enum class WarningKind {
   kNotDetermined,              // "not_determined"
   kMovedByIntervals,           // "moved_by_intervals"
   kLateralMotionUnexplained,   // "lateral_motion_unexplained"
+  kMovedByLateralRescan,       // "moved_by_lateral_rescan"
 };
 const char* ToString(WarningKind kind);
 

@@ -27,6 +27,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -57,6 +58,13 @@ struct GlobalStageResult {
 // phase 1), every other free parameter over its whole bounds; always clipped to the bounds.
 void GlobalSamplingBox(const Objective& objective, const Eigen::VectorXd& estimate, const GlobalStageOptions& options,
                        Eigen::VectorXd* lower, Eigen::VectorXd* upper);
+
+// The best of `points` equally spaced values of `id` over its bounds and its value at `at` (others held).
+ParameterSet ScanParameter(const Objective& window, const ParameterSet& at, ParameterId id, int points);
+
+// Time of the model's first impact at `at` (values of every parameter) in recording time; nullopt when the model
+// fails there or has no impact in the window.
+std::optional<double> FirstImpactTime(const Objective& objective, const ParameterSet& at);
 
 // Deterministic for a given seed whatever the number of threads (options.num_threads, 0 = all cores).
 GlobalStageResult RunGlobalStage(const Objective& objective, const Eigen::VectorXd& estimate,

@@ -3,8 +3,9 @@
 // With weak lateral motion on a narrow block (|λ_lat| ≲ 0.5, b2 < b1) the error (28) has, next to the basin of
 // the truth, a broad plateau of parameter sets whose model barely leaves the plane: the out-of-plane components
 // ω_x, ω_z of the model stay near zero while the recording's do not. The truth's basin there is a needle (a
-// change of λ_lat by 10⁻³ changes the sequence of contact modes), which the global stage can miss. Such a fit
-// has a near-optimal in-plane component ω_y but leaves most of the out-of-plane signal in the residual.
+// change of λ_lat by 10⁻³ changes the sequence of contact modes), which the global stage can miss; the fitter
+// then searches it once more (lateral_rescan.hpp). Such a fit has a near-optimal in-plane component ω_y but
+// leaves most of the out-of-plane signal in the residual.
 //
 // The check compares, over the fitting window (weights of (28)), the variance of the out-of-plane residual and
 // of the out-of-plane measured signal with the variance of the gyro noise measured at rest before the release:

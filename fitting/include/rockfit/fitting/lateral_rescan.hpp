@@ -1,0 +1,63 @@
+// A second search for the narrow basin of λ_lat, for fits that leave the recorded out-of-plane motion unexplained
+// (fitting/README.md, "Lateral rescan").
+//
+// With weak lateral motion on a narrow block the basin of the truth in λ_lat is a needle over the full window
+// (about 10⁻³ wide), next to a broad plateau of nearly planar model motion where the global stage can end
+// (lateral_motion_check.hpp). Over a shorter window the needle is wider: the lateral half-cycles that a wrong
+// λ_lat puts out of phase are fewer. The rescan therefore starts from the kept point on a window that ends
+// first_window_s after the model's first impact, and grows it by window_step_s up to the full window. In every
+// window λ_lat is scanned over a fine grid on [−half_range, half_range] (clipped to its bounds) with the other
+// parameters held, the best grid point replaces the current one if it is better, and a short Nelder–Mead run
+// over every free parameter follows. The needle, once found in a short window, is tracked as it narrows.
+//
+// It costs a few thousand evaluations of (28), most of them on short windows; the fitter runs it only when the
+// lateral-motion check flags the kept point, and keeps its result only when (28) on the full window is lower.
+#pragma once
+
+#include <cstdint>
+
+#include "rockfit/fitting/objective.hpp"
+
+namespace rockfit::fitting {
+
+struct NelderMeadOptions;
+
+struct LateralRescanOptions {
+  bool enabled = true;
+  // The first window ends this long after the model's first impact at the kept point [s]: the first lateral
+  // half-cycle after the facet impact.
+  double first_window_s = 0.1;
+  // Each following window is this much longer [s]: short enough that the needle found in one window still
+  // overlaps the basin of the next (measured on the coverage study: 0.1 s tracks it, doubling does not).
+  double window_step_s = 0.1;
+  // λ_lat is scanned over [−half_range, half_range] ∩ its bounds in steps of lambda_lat_step: weak lateral
+  // motion is |λ_lat| ≲ 0.5; the step resolves the needle on windows up to a few lateral half-cycles.
+  double lambda_lat_half_range = 1.0;
+  double lambda_lat_step = 0.005;
+  // After the λ_lat scan, λ is scanned over its bounds at this many values (0: not): the plateau's λ can lie far
+  // from the truth's, farther than a short local search moves it.
+  int lambda_scan_points = 48;
+  // Nelder–Mead evaluations per window; its initial simplex is this fraction of nelder_mead.initial_step.
+  int evaluations_per_window = 150;
+  double step_fraction = 0.25;
+  void Validate() const;  // throws InvalidArgument
+};
+
+struct LateralRescanResult {
+  bool ran = false;          // false: λ_lat not free, the model fails at the start, or no window to grow
+  ParameterSet at;           // the point reached on the full window
+  double epsilon_rad_s = 0.0;  // (28) there on the full window (feasible only)
+  bool feasible = false;
+  bool converged = false;    // the last local search converged
+  int windows = 0;
+  std::int64_t evaluations = 0;
+  double wall_time_s = 0.0;
+};
+
+// The rescan from `from` (values of every parameter). Grid evaluations run on num_threads threads (0 = all
+// cores); the result does not depend on their number. Never throws for numerical trouble.
+LateralRescanResult RunLateralRescan(const Objective& objective, const ParameterSet& from,
+                                     const LateralRescanOptions& options, const NelderMeadOptions& nelder_mead,
+                                     int num_threads);
+
+}  // namespace rockfit::fitting
