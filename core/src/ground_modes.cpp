@@ -136,18 +136,22 @@ double GroundEdgeMode::LiftAcceleration(int end, double t, const State& y) const
   return up_B.dot(dydt.tail<3>().cross(r_B) + w_B.cross(w_B.cross(r_B)));
 }
 
+double GroundEdgeMode::EndHold(int end, double t, const State& y) const {
+  const double g = gravity_m_s2_;
+  return std::max(-LiftAcceleration(end, t, y) / g, EndForces(t, y)[static_cast<std::size_t>(end)] / (mass_kg_ * g));
+}
+
 GuardValue GroundEdgeMode::Guard(int index, double t, const State& y) const {
   if (index < EdgeMode::kNumGuards) return free_.Guard(index, y);
   const int end = index - kLoadFirst;
-  const double scale = -1.0 / gravity_m_s2_;
   // The rate by a central difference along the motion (y ± δ·ẏ at t ± δ): it only decides whether a load that
   // starts at zero rises or falls and whether a step holds an interior minimum; the root itself is polished on
   // the values.
   State dydt;
   (*this)(t, y, dydt);
-  const double ahead = LiftAcceleration(end, t + kLoadRateStep_s, y + kLoadRateStep_s * dydt);
-  const double behind = LiftAcceleration(end, t - kLoadRateStep_s, y - kLoadRateStep_s * dydt);
-  return {scale * LiftAcceleration(end, t, y), scale * (ahead - behind) / (2.0 * kLoadRateStep_s)};
+  const double ahead = EndHold(end, t + kLoadRateStep_s, y + kLoadRateStep_s * dydt);
+  const double behind = EndHold(end, t - kLoadRateStep_s, y - kLoadRateStep_s * dydt);
+  return {EndHold(end, t, y), (ahead - behind) / (2.0 * kLoadRateStep_s)};
 }
 
 }  // namespace rockfit::core::detail

@@ -7,12 +7,16 @@
 //   Edge(i,j): J_e ψ̈ = m [f_z (d cos ψ − h sin ψ) − f_n (d sin ψ + h cos ψ)],  f_n = f_W·n_W, f_z = f_W·e_z,
 // (n_W the horizontal unit vector from the edge towards the base centre). With a_g = 0 they are the free
 // equations. The guards are the free modes' geometric guards; Edge mode adds one per end vertex V_i of the
-// edge: minus the vertical acceleration (over g) that V_i would have if the block rocked about the other end
-// V_j alone (Vertex(j) mode at the same state). When it turns negative the lateral part of the inertial force
-// lifts V_i and the block rocks on about V_j. (The edge mode's normal force on V_i, EndForces(), vanishes
-// slightly earlier: with both ends pinned, V_i also carries a horizontal force that a vertex pivot cannot,
-// so between the two instants neither mode is consistent under no slip; rockfit keeps the edge until the
-// vertex motion lifts V_i, which never chatters. See core/README.md, "Ground motion".)
+// edge, which turns negative when V_i leaves the ground and the block rocks on about V_j. V_i leaves only when
+// both contact modes agree: the edge's normal force on V_i (EndForces(), both ends pinned, no slip) is no
+// longer positive, and the vertex motion about V_j alone lifts V_i (its vertical acceleration, minus, over g).
+// The guard is the larger of the two, each made dimensionless (N_i/(m g), −a_i/g). Usually the force vanishes
+// first: with both ends pinned V_i also carries a horizontal force that a vertex pivot cannot, so between the
+// two instants neither mode is consistent under no slip, and the edge is kept until the vertex motion lifts
+// V_i. On a slender block with a short edge the order can turn round: the horizontal inertial force yaws the
+// block about a lone vertex (its yaw inertia is tiny), the vertex motion "lifts" V_i while the edge still
+// loads it with about half the weight, and the vertex motion lands it again at once. Requiring both keeps the
+// edge there. See core/README.md, "Ground motion".
 // Integrator steps end at the record's sample times.
 #pragma once
 
@@ -83,8 +87,8 @@ class GroundEdgeMode {
                  const GroundMotion& ground);
 
   void operator()(double t, const State& y, State& dydt) const;
-  // kLoadFirst/kLoadSecond: −(vertical acceleration of V_i / V_j when rocking about the other end)/g, with its
-  // rate by a central difference over kLoadRateStep_s along the motion (no closed form).
+  // kLoadFirst/kLoadSecond: EndHold of V_i / V_j (positive while the edge holds it), with its rate by a
+  // central difference over kLoadRateStep_s along the motion (no closed form).
   GuardValue Guard(int index, double t, const State& y) const;
   double StepLimit(double t, double t_limit) const { return std::min(t_limit, ground_->NextBreak(t)); }
   static double StepBound(const State& /*y*/) { return kGroundStepBound_s; }
@@ -98,6 +102,8 @@ class GroundEdgeMode {
   std::array<double, 2> EndForces(double t, const State& y) const;
   // Vertical acceleration [m/s²] of end vertex `end` (0: V_i, 1: V_j) in Vertex mode about the other end.
   double LiftAcceleration(int end, double t, const State& y) const;
+  // The end-load guard's value: max(N_end/(m g), −LiftAcceleration/g) (see the header).
+  double EndHold(int end, double t, const State& y) const;
   static void Project(State* /*y*/) {}
   Mode mode() const { return free_.mode(); }
   int first() const { return free_.first(); }
