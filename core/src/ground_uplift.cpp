@@ -45,8 +45,11 @@ std::optional<Uplift> NextUplift(const Block& block, const GroundMotion& ground,
     return UpliftMargins(block, q_yaw, gravity_m_s2, ground.Acceleration_W(t));
   };
   std::array<double, 4> m0 = margins_at(t_from_s);
+  // A margin that is positive at t_from uplifts at once; one within round-off of zero only if it then grows
+  // (the search below): a block that has just landed where a margin touches zero would otherwise uplift with
+  // no acceleration to lift it and land again at the same instant.
   for (int e = 0; e < 4; ++e) {
-    if (m0[e] > 0.0) {
+    if (m0[e] > zero) {
       int best = e;
       for (int f = e + 1; f < 4; ++f) best = m0[f] > m0[best] ? f : best;
       return Uplift{t_from_s, ContactAt(m0, best, zero)};

@@ -98,6 +98,21 @@ TEST(FindFirstDescent, GuardLeavingTheSurfaceCountsOnlyAfterItHasBeenPositive) {
   EXPECT_FALSE(FindFirstDescent(neg, 0.0, neg(0.0), 0.4, neg(0.4), polisher, kTimeTol).has_value());
 }
 
+TEST(FindFirstDescent, GuardOnTheSurfaceAtRestThatRisesAndFallsBackCrossesAfterItsMaximum) {
+  // g = t² − 2t³: on the surface with no rate at t = 0, lifted by its acceleration, back below at t = 0.5
+  // (a block that uplifts where the table's acceleration barely passes the threshold).
+  RootPolisher polisher;
+  const auto g = [](double t) { return GuardValue{t * t - 2.0 * t * t * t, 2.0 * t - 6.0 * t * t}; };
+  const auto root = FindFirstDescent(g, 0.0, g(0.0), 0.8, g(0.8), polisher, kTimeTol);
+  ASSERT_TRUE(root.has_value());
+  EXPECT_NEAR(*root, 0.5, kTimeTol);
+  // At rest on the surface and pulled into it (g = −t²): an event at the start.
+  const auto down = [](double t) { return GuardValue{-t * t, -2.0 * t}; };
+  const auto at_once = FindFirstDescent(down, 0.0, down(0.0), 0.8, down(0.8), polisher, kTimeTol);
+  ASSERT_TRUE(at_once.has_value());
+  EXPECT_EQ(*at_once, 0.0);
+}
+
 TEST(FindFirstDescent, GuardOnTheSurfaceMovingDownIsAnEventAtTheStart) {
   RootPolisher polisher;
   const Quadratic g{0.0, 0.5, 0.0};  // g(0) = 0, ġ(0) = −0.5

@@ -91,7 +91,21 @@ std::optional<double> FindFirstDescent(const Eval& eval, double t0, const GuardV
   // The extremum needs only a coarse time: g is flat there.
   const double extremum_tol = std::max(time_tol, 1e-6 * (t1 - t0));
   if (g0.value <= 0.0) {
-    if (g0.rate < 0.0 || (g0.rate == 0.0 && g1.value < 0.0)) return t0;  // moving into the ground at once
+    if (g0.rate < 0.0) return t0;  // moving into the ground at once
+    if (g0.rate == 0.0 && g1.value < 0.0) {
+      // On the surface and at rest relative to it, below it at the step's end: into the ground at once, unless
+      // its acceleration first lifts it and it falls back within the step (a block that uplifts where the
+      // table's acceleration barely passes the threshold). A positive value early in the step tells; the
+      // crossing then follows the one maximum.
+      for (const double fraction : {0.0625, 0.125, 0.25, 0.5}) {
+        const double t_positive = t0 + fraction * (t1 - t0);
+        if (value(t_positive) > 0.0) {
+          const std::optional<double> root = polisher.Solve(value, t_positive, t1, time_tol);
+          return root ? root : std::optional<double>(t1);
+        }
+      }
+      return t0;
+    }
     if (g1.value >= 0.0) return std::nullopt;
     // It rose and fell back below within the step: the crossing follows the maximum. Any point where g > 0
     // brackets it with t1 (g rises to its one maximum and falls from there); the secant root of ġ is tried first,
