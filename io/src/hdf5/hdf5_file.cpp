@@ -315,6 +315,7 @@ struct OpenedDataset {
   Handle space;
   std::vector<hsize_t> dims;
   std::size_t count = 0;  // number of elements (checked against the file's size, see below)
+  double max_bytes = 0.0;  // the most bytes its values can take when read (kMaxExpansion × the file's size)
 };
 
 // A dataset's stored bytes can be compressed, but not by more than this factor: a larger logical size than
@@ -342,13 +343,15 @@ OpenedDataset OpenDataset(const Group& group, const std::string& name) {
   if (!file.valid() || H5Fget_filesize(file.id(), &file_bytes) < 0) {
     FailRead(group.file_name(), fmt::format("cannot read the size of the file holding {}", where));
   }
-  const double max_count = kMaxExpansion * static_cast<double>(file_bytes) / 8.0;
+  out.max_bytes = kMaxExpansion * static_cast<double>(file_bytes);
+  const double max_count = out.max_bytes / 8.0;
   double count = 1.0;
   for (hsize_t d : out.dims) count *= static_cast<double>(d);
   if (!(count <= max_count)) {
     std::string shape;
     for (hsize_t d : out.dims) shape += (shape.empty() ? "" : " × ") + std::to_string(d);
-    throw BadInput(fmt::format("{}: dataset {} claims a shape of {} values in a file of {} bytes: the file is damaged",
+    throw BadInput(fmt::format("{}: dataset {} claims a shape of {} values in a file of {} bytes: the file is damaged; "
+                               "write it again with rockfit or restore a copy",
                                group.file_name(), where, shape, file_bytes));
   }
   out.count = static_cast<std::size_t>(count);
@@ -425,6 +428,11 @@ std::vector<std::string> Group::ReadStrings(const std::string& name) const {
     H5Dvlen_reclaim(type.id(), d.space.id(), H5P_DEFAULT, pointers.data());
   } else {
     const std::size_t width = H5Tget_size(file_type.id());
+    if (!(static_cast<double>(n) * static_cast<double>(width) <= d.max_bytes)) {
+      throw BadInput(fmt::format("{}: dataset {} claims {} strings of {} bytes, more than its file can hold: the file is "
+                                 "damaged; write it again with rockfit or restore a copy",
+                                 file_name_, ChildPath(name), n, width));
+    }
     std::vector<char> buffer(n * width);
     if (H5Dread(d.dataset.id(), file_type.id(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()) < 0) {
       FailRead(file_name_, fmt::format("cannot read dataset {}", ChildPath(name)));
