@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include <gtest/gtest.h>
+#include <hdf5.h>
 
 #include "python_h5py.hpp"
 #include "rockfit/core/errors.hpp"
@@ -77,6 +78,37 @@ TEST(Hdf5File, ReadingMissingOrMisshapedDataIsBadInputNamingFileAndObject) {
     EXPECT_NE(std::string(e.what()).find("/time_s has shape (2), expected (N, 3)"), std::string::npos) << e.what();
   }
   EXPECT_THROW(file.Root().OpenGroup("trials"), BadInput);
+}
+
+TEST(Hdf5File, ADatasetClaimingMoreValuesThanItsFileCanHoldIsRefusedBeforeAnyAllocation) {
+  // A chunked dataset of 10¹² doubles that was never written: HDF5 stores no chunk, the file stays a few kB,
+  // and reading it would allocate 8 TB. rockfit reads at most 4096 × the file's size.
+  const ScratchDir dir("hdf5_file");
+  const auto path = dir / "huge.h5";
+  {
+    const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    const hsize_t dims[1] = {1000000000000ULL};
+    const hsize_t chunk[1] = {1024};
+    const hid_t space = H5Screate_simple(1, dims, nullptr);
+    const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_chunk(dcpl, 1, chunk);
+    const hid_t dataset = H5Dcreate2(file, "time_s", H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    ASSERT_GE(dataset, 0);
+    H5Dclose(dataset);
+    H5Pclose(dcpl);
+    H5Sclose(space);
+    H5Fclose(file);
+  }
+  const File file = File::Open(path);
+  try {
+    file.Root().ReadDoubles("time_s");
+    FAIL();
+  } catch (const BadInput& e) {
+    EXPECT_NE(std::string(e.what()).find("dataset /time_s claims a shape of 1000000000000 values in a file of"),
+              std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("write it again with rockfit or restore a copy"), std::string::npos);
+  }
+  EXPECT_THROW(file.Root().ReadStrings("time_s"), BadInput);
 }
 
 TEST(Hdf5File, OpeningSomethingElseIsBadInput) {
