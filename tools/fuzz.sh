@@ -61,7 +61,10 @@ for t in "${targets[@]}"; do
       replay=$(ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 timeout 120 \
         "$build_dir/tests/fuzz/fuzz_$t" -rss_limit_mb=2048 -malloc_limit_mb=2048 -timeout=10 "$artifact" 2>&1 || true)
       # The first frame that is neither the sanitizers', libFuzzer's, an allocator, a mem* interceptor nor libc.
-      first=$(grep -E '^ +#[0-9]+ ' <<<"$replay" | grep -v -E '__sanitizer|__asan|__ubsan|__lsan|fuzzer::|__interceptor|in (malloc|calloc|realloc|free|operator new|__mem|mem(cpy|move|set))|libc\.so|std::' | head -1 || true)
+      # An out-of-memory report by resident size lists the live heap by allocation site: judge by its top site.
+      frames=$replay
+      if grep -q 'Live Heap Allocations' <<<"$replay"; then frames=$(sed -n '/Live Heap Allocations/,$p' <<<"$replay"); fi
+      first=$(grep -E '^ +#[0-9]+ ' <<<"$frames" | grep -v -E '__sanitizer|__asan|__ubsan|__lsan|fuzzer::|__interceptor|in (malloc|calloc|realloc|free|operator new|__mem|mem(cpy|move|set))|__pthread_kill|in raise |in abort |libc\.so|std::' | head -1 || true)
       if ! grep -q -E 'ERROR: |runtime error:' <<<"$replay"; then
         alone_ok=$((alone_ok + 1))
       elif grep -q 'libhdf5' <<<"$first"; then

@@ -250,6 +250,16 @@ StoredTrial ReadTrialHdf5(const std::filesystem::path& path, const std::string& 
       throw BadInput(fmt::format("{}: {} has a non-finite angular velocity or Euler angle at row {}", path.string(),
                                  g.path(), i));
     }
+    if (rec.has_accel() && !rec.accel_B[i].allFinite()) {
+      throw BadInput(fmt::format("{}: {}/accel_B_m_s2 is not finite at row {}", path.string(), g.path(), i));
+    }
+  }
+  for (std::size_t i = 0; i < rec.gaps.size(); ++i) {
+    const Gap& gap = rec.gaps[i];
+    if (gap.index >= n || !(std::isfinite(gap.duration_s) && gap.duration_s > 0.0)) {
+      throw BadInput(fmt::format("{}: {}/gaps row {} is not a gap inside the recording (sample_index {} of {} "
+                                 "samples, duration_s {})", path.string(), g.path(), i, gap.index, n, gap.duration_s));
+    }
   }
   if (g.IsGroup("impacts")) stored.impact_times_s = g.OpenGroup("impacts").ReadDoubles("time_s");
   if (g.IsGroup("phi_x_anchors")) stored.phi_x_anchor_times_s = g.OpenGroup("phi_x_anchors").ReadDoubles("time_s");
