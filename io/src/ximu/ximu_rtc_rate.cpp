@@ -1,6 +1,9 @@
 #include "ximu/ximu_rtc_rate.hpp"
 
 #include <algorithm>
+#include <string>
+
+#include <fmt/format.h>
 
 #include "text/column_lookup.hpp"
 
@@ -17,10 +20,20 @@ std::optional<RtcRateEstimate> EstimateRateFromDateTime(const CsvTable& date_tim
   std::vector<double> change_packet;
   std::vector<std::int64_t> change_second;
   std::int64_t previous = 0;
+  // A field outside its clock range is a damaged file (and would overflow the count of seconds below).
+  const auto field = [&](std::size_t row, std::size_t column, std::int64_t lo, std::int64_t hi, const char* what) {
+    const std::int64_t v = date_time.Integer(row, column);
+    if (v < lo || v > hi) {
+      date_time.FailAt(row, column, std::to_string(v), fmt::format("{} from {} to {}", what, lo, hi),
+                       "The date-time file is damaged: remove it to use the register rate alone.");
+    }
+    return v;
+  };
   for (std::size_t row = 0; row < date_time.row_count(); ++row) {
-    const std::int64_t second = ((date_time.Integer(row, *columns[1]) * 24 + date_time.Integer(row, *columns[2])) * 60 +
-                                 date_time.Integer(row, *columns[3])) * 60 +
-                                date_time.Integer(row, *columns[4]);
+    const std::int64_t second = ((field(row, *columns[1], 0, 31, "a day of the month") * 24 +
+                                  field(row, *columns[2], 0, 23, "an hour")) * 60 +
+                                 field(row, *columns[3], 0, 59, "a minute")) * 60 +
+                                field(row, *columns[4], 0, 60, "a second");
     if (row > 0 && second != previous) {
       change_packet.push_back(static_cast<double>(date_time.Integer(row, *columns[0])));
       change_second.push_back(second);

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "rockfit/core/errors.hpp"
+
 #include "imu_test_files.hpp"
 
 namespace rockfit::io {
@@ -33,6 +35,26 @@ TEST(EstimateRateFromDateTime, NeedsTwoWholeSeconds) {
   std::vector<std::string> warnings;
   const CsvTable date_time = CsvTable::FromText(spin.date_time, "D.csv", warnings);
   EXPECT_FALSE(EstimateRateFromDateTime(date_time, Packets(spin.inertial)));
+}
+
+TEST(EstimateRateFromDateTime, AClockFieldOutOfRangeIsABadCellNamingLineAndColumn) {
+  // A day of 4·10¹⁷ once overflowed the count of seconds (signed overflow, found by fuzzing).
+  std::vector<std::string> warnings;
+  const CsvTable date_time = CsvTable::FromText(
+      "Packet number,Year,Month,Day,Hours,Minutes,Seconds\n0,2000,1,1,3,21,50\n111,2000,1,426666666666666651,3,21,50\n",
+      "D.csv", warnings);
+  try {
+    EstimateRateFromDateTime(date_time, {0.0, 50.0, 111.0});
+    FAIL();
+  } catch (const BadInput& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("D.csv:3:"), std::string::npos) << what;
+    EXPECT_NE(what.find("column 4 'Day'"), std::string::npos) << what;
+    EXPECT_NE(what.find("a day of the month from 0 to 31"), std::string::npos) << what;
+  }
+  const CsvTable minutes = CsvTable::FromText(
+      "Packet number,Year,Month,Day,Hours,Minutes,Seconds\n0,2000,1,1,3,60,50\n", "D.csv", warnings);
+  EXPECT_THROW(EstimateRateFromDateTime(minutes, {0.0}), BadInput);
 }
 
 }  // namespace
