@@ -120,9 +120,29 @@ def width(interval):
     return None if lo is None or hi is None else hi - lo
 
 
-def coverage_failures(rows, min_coverage_95, min_epsilon_fraction):
+def pooled_coverage_68(rows, method):
+    """(held, total): the 68 % intervals over every determined parameter value of every trial of `method`."""
+    held = total = 0
+    for r in rows:
+        if r.get("method") != method or "fit" not in r:
+            continue
+        for name in PARAMETERS:
+            p = r["fit"]["parameters"][name]
+            if p.get("determined") == "yes":
+                total += 1
+                held += contains(p["interval_68"], r["trial"][name])
+    return held, total
+
+
+def coverage_failures(rows, min_coverage_95, min_epsilon_fraction, band_68=None):
     """Reasons why the study misses the given thresholds (for the CTest version); empty when it passes."""
     failures = []
+    if band_68 is not None:
+        for method in sorted({r["method"] for r in rows if "method" in r}):
+            held, total = pooled_coverage_68(rows, method)
+            if total and not band_68[0] * total <= held <= band_68[1] * total:
+                failures.append(f"{method}: the 68 % intervals hold the truth in {held}/{total} parameter values, "
+                                f"outside [{band_68[0]:g}, {band_68[1]:g}]")
     for method in sorted({r["method"] for r in rows if "method" in r}):
         mine = [r for r in rows if r.get("method") == method and "fit" in r]
         if len(mine) < len([r for r in rows if r.get("method") == method]):
@@ -175,6 +195,9 @@ def report(rows, ringing_scale):
                 x is not None for x in w) else "—"
             lines.append(f"| {name} | {len(yes)} | {pct(in68, len(yes))} | {pct(in95, len(yes))} | {med(w68)} | "
                          f"{med(w95)} | {len(sign)} ({sign_right}) | {len(no)} ({no_holds}) |")
+        held, total = pooled_coverage_68(rows, method)
+        if total:
+            lines.append(f"| all (68 % pooled) | {total} | {held}/{total} ({100.0 * held / total:.0f} %) | | | | | |")
         ratios = [(r["fit"]["epsilon"] / r["epsilon_truth"], r) for r in mine if r.get("epsilon_truth")]
         ok = sum(q <= EPSILON_RATIO_TARGET for q, _ in ratios)
         lines.append("")
@@ -211,6 +234,9 @@ def main():
     parser.add_argument("--check-coverage-95", type=float, default=None,
                         help="exit 1 unless every parameter's 95 %% interval holds the truth in at least this "
                              "fraction of the trials where it is determined (and every 'sign only' sign is right)")
+    parser.add_argument("--check-coverage-68", default=None, metavar="LO,HI",
+                        help="with --check-coverage-95: also require the 68 %% intervals, pooled over every "
+                             "determined parameter value, to hold the truth in a fraction within [LO, HI]")
     parser.add_argument("--check-epsilon-fraction", type=float, default=0.0,
                         help="with --check-coverage-95: also require ε ≤ 1.02 ε(truth) in this fraction")
     args = parser.parse_args()
@@ -232,7 +258,8 @@ def main():
         f.write(text + "\n")
     print(text)
     if args.check_coverage_95 is not None:
-        failures = coverage_failures(rows, args.check_coverage_95, args.check_epsilon_fraction)
+        band_68 = [float(x) for x in args.check_coverage_68.split(",")] if args.check_coverage_68 else None
+        failures = coverage_failures(rows, args.check_coverage_95, args.check_epsilon_fraction, band_68)
         for f in failures:
             print("FAILED: " + f)
         return 1 if failures else 0

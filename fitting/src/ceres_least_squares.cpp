@@ -26,6 +26,7 @@
 #include <glog/logging.h>
 
 #include "rockfit/fitting/local_optimizer.hpp"
+#include "rockfit/fitting/uncertainty.hpp"
 
 namespace rockfit::fitting {
 namespace {
@@ -291,24 +292,6 @@ class CeresLeastSquares final : public LocalOptimizer {
   CeresOptions options_;
 };
 
-// Residuals of neighbouring samples are correlated (gyro ringing after impacts, model error that varies
-// slowly), so they carry less information than independent ones. With the lag-1 autocorrelation ρ of the
-// residual series (each component in time order), an AR(1) process has an effective sample size
-// N·(1 − ρ)/(1 + ρ); the variances grow by the inverse factor (never shrink).
-double CorrelationInflation(const double* r, std::size_t slots) {
-  double lag0 = 0.0, lag1 = 0.0;
-  for (std::size_t c = 0; c < 3; ++c) {
-    for (std::size_t k = 0; k < slots; ++k) {
-      const double v = r[3 * k + c];
-      lag0 += v * v;
-      if (k > 0) lag1 += v * r[3 * (k - 1) + c];
-    }
-  }
-  if (lag0 <= 0.0) return 1.0;
-  const double rho = std::clamp(lag1 / lag0, 0.0, 0.99);
-  return (1.0 + rho) / (1.0 - rho);
-}
-
 }  // namespace
 
 std::unique_ptr<LocalOptimizer> MakeCeres(const CeresOptions& options) {
@@ -331,7 +314,11 @@ StandardErrors ComputeStandardErrors(const Objective& objective, const Eigen::Ve
   result.residuals = Eigen::Map<const Eigen::VectorXd>(r, static_cast<Eigen::Index>(3 * evaluator.num_slots()));
   double sum_sq = 0.0;
   for (std::size_t i = 0; i < 3 * evaluator.num_slots(); ++i) sum_sq += r[i] * r[i];
-  const double inflation = CorrelationInflation(r, evaluator.num_slots());
+  // Residuals of neighbouring samples are correlated (gyro ringing after impacts, model error that varies
+  // slowly), so they carry less information than independent ones. With the lag-1 autocorrelation ρ of the
+  // residual series (each component in time order), an AR(1) process has an effective sample size
+  // N·(1 − ρ)/(1 + ρ); the variances grow by the inverse factor (never shrink).
+  const double inflation = Lag1InflationFactor(r, evaluator.num_slots(), 3);
   const std::size_t nodes = evaluator.num_nodes_at(x.data());
   const double dof = 3.0 * static_cast<double>(nodes) - static_cast<double>(n);
   if (dof <= 0.0) {

@@ -107,6 +107,8 @@ std::string FitSummary::ToJson(const std::string& trial) const {
   j["uncertainty"] = {{"description", uncertainty.description},
                       {"correlation_factor", uncertainty.correlation_factor},
       {"noise_inflation", nlohmann::json::parse(NoiseInflationJson(uncertainty, parameters))},
+                      {"noise_inflation_68", std::isnan(uncertainty.bulk_inflation) ? nlohmann::json()
+                                                                                    : nlohmann::json(uncertainty.bulk_inflation)},
                       {"noise_rms_rad_s", uncertainty.noise_rms_rad_s},
                       {"statements", uncertainty.statements},
                       {"simulations", uncertainty.evaluations},

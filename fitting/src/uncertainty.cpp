@@ -6,6 +6,7 @@
 #include <exception>
 #include <limits>
 #include <numeric>
+#include <tuple>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -193,6 +194,21 @@ double ProfileCrossing(double centre_value, double centre_rho, const std::vector
   return kNaN;
 }
 
+// `inner` cut to `outer` where `outer` is closed: an end of `inner` beyond it (or open) becomes `outer`'s.
+Interval NestedIn(Interval inner, const Interval& outer) {
+  if (!std::isnan(outer[0])) inner[0] = std::isnan(inner[0]) ? outer[0] : std::max(inner[0], outer[0]);
+  if (!std::isnan(outer[1])) inner[1] = std::isnan(inner[1]) ? outer[1] : std::min(inner[1], outer[1]);
+  return inner;
+}
+
+// The part of the description that says how the 68 % intervals were made.
+std::string Describe68(double bulk_inflation, const char* how) {
+  if (std::isnan(bulk_inflation)) return fmt::format("; 68 % intervals {} at the same level", how);
+  return fmt::format("; 68 % intervals {} at the bulk level of the standard errors (variance inflated by {:.2f} for "
+                     "the lag-1 correlation)",
+                     how, bulk_inflation);
+}
+
 }  // namespace
 
 const char* ToString(Determination d) {
@@ -216,6 +232,21 @@ bool WeightedResiduals(const Objective& objective, const ParameterSet& at, std::
     (*residuals)[k] = std::sqrt(nodes.weight_s[k]) * (nodes.w_m_B[k] - output.w_B[k]);
   }
   return true;
+}
+
+double Lag1InflationFactor(const double* values, std::size_t samples, std::size_t stride) {
+  double lag0 = 0.0, lag1 = 0.0;
+  for (std::size_t c = 0; c < stride; ++c) {
+    for (std::size_t k = 0; k < samples; ++k) {
+      const double v = values[stride * k + c];
+      lag0 += v * v;
+      if (k > 0) lag1 += v * values[stride * (k - 1) + c];
+    }
+  }
+  if (!(lag0 > 0.0)) return 1.0;
+  // Negative correlation never shrinks the noise level; 0.99 keeps the factor finite (199).
+  const double rho = std::clamp(lag1 / lag0, 0.0, 0.99);
+  return (1.0 + rho) / (1.0 - rho);
 }
 
 double LongRunVarianceFactor(const std::vector<Eigen::Vector3d>& r, int max_lag) {
@@ -417,6 +448,13 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
     for (std::size_t a = 0; a < lin.ids.size(); ++a) kappa[static_cast<std::size_t>(lin.ids[a])] = k[static_cast<Eigen::Index>(a)];
   }
   for (double& k : kappa) k *= options.model_error_allowance;
+  // The bulk level of the 68 % intervals (never above the 95 % level's, so that the intervals nest).
+  const double bulk = Lag1InflationFactor(r.front().data(), r.size(), 3);
+  PerParameter kappa_68 = kappa;
+  if (options.bulk_noise_for_68) {
+    for (double& k : kappa_68) k = std::min(k, bulk);
+  }
+  u.bulk_inflation = options.bulk_noise_for_68 ? bulk : kNaN;
   u.correlation_factor = 1.0;
   for (ParameterId id : profiled) {
     u.noise_inflation[static_cast<std::size_t>(id)] = kappa[static_cast<std::size_t>(id)];
@@ -449,14 +487,15 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
       const double c = fitted.value(id);
       if (std::isfinite(sigma[k])) {
         auto clip = [&](double v) { return v < p.lower || v > p.upper ? kNaN : v; };
-        u.interval_68[k] = {clip(c - kZ68 * sigma[k]), clip(c + kZ68 * sigma[k])};
+        const double sigma_68 = sigma[k] * std::sqrt(kappa_68[k] / kappa[k]);
+        u.interval_68[k] = {clip(c - kZ68 * sigma_68), clip(c + kZ68 * sigma_68)};
         u.interval_95[k] = {clip(c - kZ95 * sigma[k]), clip(c + kZ95 * sigma[k])};
       }
       u.determined[k] = Determine(u.interval_95[k], p.lower, p.upper, options.undetermined_range_fraction);
     }
     u.description = fmt::format("fast: linearised, value ± z·σ with the residual noise level {:.3g} rad/s, variances "
-                                "inflated by up to κ = {:.2f} for its correlation in time and model error",
-                                u.noise_rms_rad_s, u.correlation_factor);
+                                "inflated by up to κ = {:.2f} for its correlation in time and model error{}",
+                                u.noise_rms_rad_s, u.correlation_factor, Describe68(u.bulk_inflation, "linearised"));
   } else {
     // The least-squares optimum the profiles start from (close to the optimum of (28)).
     PerParameter refit_step = kFallbackStep;
@@ -500,11 +539,11 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
     for (std::size_t j = 0; j < profiled.size(); ++j) {
       const ParameterId id = profiled[j];
       const std::size_t k = static_cast<std::size_t>(id);
-      const double s2_eff = kappa[k] * sum_sq_min / dof;
-      const double centre_rho = std::sqrt(std::max(0.0, sum_sq_centre - sum_sq_min) / s2_eff);
       const Parameter& p = objective.parameters()[id];
       const double c = centre.value(id), v = fitted.value(id);
-      auto ends = [&](double z) {
+      auto ends = [&](double z, double inflation) {
+        const double s2_eff = inflation * sum_sq_min / dof;
+        const double centre_rho = std::sqrt(std::max(0.0, sum_sq_centre - sum_sq_min) / s2_eff);
         Interval i = {ProfileCrossing(c, centre_rho, points[2 * j], sum_sq_min, s2_eff, z),
                       ProfileCrossing(c, centre_rho, points[2 * j + 1], sum_sq_min, s2_eff, z)};
         // The reported value (the optimum of (28)) always lies inside its intervals.
@@ -512,8 +551,7 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
         if (!std::isnan(i[1])) i[1] = std::max(i[1], v);
         return i;
       };
-      u.interval_68[k] = ends(kZ68);
-      u.interval_95[k] = ends(kZ95);
+      u.interval_95[k] = ends(kZ95, kappa[k]);
       // The 95 % interval is the hull of the profile's and the linearised one (value ± 1.96·σ_j, clipped to
       // the bounds): where the two disagree, neither is trusted alone. Measured on the coverage study
       // (fitting/README.md, "Intervals"), it holds the truth more often at 95 % in the heavy tail of the
@@ -523,13 +561,23 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
         if (!std::isnan(i[0])) i[0] = std::max(p.lower, std::min(i[0], v - kZ95 * linear_sigma[k]));
         if (!std::isnan(i[1])) i[1] = std::min(p.upper, std::max(i[1], v + kZ95 * linear_sigma[k]));
       }
+      // The 68 % interval: linearised at the bulk level (IntervalOptions::profile_68 false, measured on the
+      // coverage study), or the profile's crossing; inside the 95 % one.
+      if (options.profile_68 || !std::isfinite(linear_sigma[k])) {
+        u.interval_68[k] = ends(kZ68, kappa_68[k]);
+      } else {
+        const double sigma_68 = linear_sigma[k] * std::sqrt(kappa_68[k] / kappa[k]);
+        u.interval_68[k] = {v - kZ68 * sigma_68, v + kZ68 * sigma_68};
+      }
+      u.interval_68[k] = NestedIn(u.interval_68[k], u.interval_95[k]);
       u.determined[k] = Determine(u.interval_95[k], p.lower, p.upper, options.undetermined_range_fraction);
     }
-    u.description = fmt::format("thorough: profile of the sum of squares of (28)'s residuals, the others re-fitted; "
-                                "residual noise level {:.3g} rad/s, inflated by up to κ = {:.2f} for its correlation in time and "
-                                "model error{}",
+    u.description = fmt::format("thorough: 95 % intervals from the profile of the sum of squares of (28)'s residuals, the "
+                                "others re-fitted, at the residual noise level {:.3g} rad/s inflated by up to κ = {:.2f} for its "
+                                "correlation in time and model error{}{}",
                                 u.noise_rms_rad_s, u.correlation_factor,
-                                options.hull_with_linearised ? "; 95 % intervals at least as wide as the linearised ones" : "");
+                                options.hull_with_linearised ? ", at least as wide as the linearised ones" : "",
+                                Describe68(u.bulk_inflation, options.profile_68 ? "from the profile" : "linearised"));
     if (best_epsilon.at && best_epsilon.epsilon_rad_s < (1.0 - kBetterPointFraction) * fitted_epsilon_rad_s) {
       u.better_point = best_epsilon.at;
       u.better_epsilon_rad_s = best_epsilon.epsilon_rad_s;
@@ -553,10 +601,12 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
       bool within_all = true;
       for (ParameterId id : profiled) {
         const std::size_t k = static_cast<std::size_t>(id);
-        const double rho = std::sqrt(std::max(0.0, v.sum_sq - sum_sq_ref) / (kappa[k] * sum_sq_ref / dof));
+        auto rise = [&](double inflation) { return std::sqrt(std::max(0.0, v.sum_sq - sum_sq_ref) / (inflation * sum_sq_ref / dof)); };
+        const double rho = rise(kappa[k]);
         const double x = set.value(id);
-        for (auto [z, interval] : {std::pair{kZ68, &u.interval_68[k]}, std::pair{kZ95, &u.interval_95[k]}}) {
-          if (rho > z) continue;
+        for (auto [z, level_rho, interval] :
+             {std::tuple{kZ68, rise(kappa_68[k]), &u.interval_68[k]}, std::tuple{kZ95, rho, &u.interval_95[k]}}) {
+          if (level_rho > z) continue;
           if (!std::isnan((*interval)[0])) (*interval)[0] = std::min((*interval)[0], x);
           if (!std::isnan((*interval)[1])) (*interval)[1] = std::max((*interval)[1], x);
         }

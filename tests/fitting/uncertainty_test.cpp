@@ -58,6 +58,23 @@ TEST(LongRunVarianceFactor, NeverShrinksTheNoiseLevel) {
   EXPECT_EQ(LongRunVarianceFactor(r, 10), 1.0);
 }
 
+TEST(Lag1InflationFactor, MatchesTheAr1ClosedForm) {
+  // An AR(1) series with lag-1 correlation ρ has a long-run variance (1 + ρ)/(1 − ρ) times its variance.
+  for (double rho : {0.0, 0.5, 0.8}) {
+    const std::vector<Eigen::Vector3d> r = Ar1Series(rho, 40000, 3);
+    const double expected = (1.0 + rho) / (1.0 - rho);
+    EXPECT_NEAR(Lag1InflationFactor(r.front().data(), r.size(), 3), expected, 0.05 * expected) << rho;
+  }
+}
+
+TEST(Lag1InflationFactor, NeverShrinksTheNoiseLevel) {
+  std::vector<Eigen::Vector3d> r(1000);
+  for (std::size_t k = 0; k < r.size(); ++k) r[k] = Eigen::Vector3d::Constant(k % 2 == 0 ? 1.0 : -1.0);
+  EXPECT_EQ(Lag1InflationFactor(r.front().data(), r.size(), 3), 1.0);
+  const std::vector<double> zeros(30, 0.0);
+  EXPECT_EQ(Lag1InflationFactor(zeros.data(), 10, 3), 1.0);
+}
+
 TEST(Determine, ClosedNarrowIntervalsDetermineTheParameter) {
   EXPECT_EQ(Determine({0.9, 1.1}, -0.5, 4.0, 0.5), Determination::kYes);
   EXPECT_EQ(Determine({-0.1, 0.1}, -6.0, 6.0, 0.5), Determination::kYes);  // "near zero" is an answer too
@@ -205,6 +222,43 @@ TEST(Intervals, ThoroughNinetyFivePercentIntervalIsTheHullOfProfileAndLinearised
     EXPECT_GE(v - h[0], (1.0 - kNoiseLevelTol) * (v - f[0])) << Name(id);
     EXPECT_GE(h[1] - v, (1.0 - kNoiseLevelTol) * (f[1] - v)) << Name(id);
     EXPECT_EQ(hull.uncertainty.interval_68[k], profile.uncertainty.interval_68[k]) << Name(id);
+  }
+}
+
+// The 68 % intervals use the bulk noise level of the standard errors (IntervalOptions::bulk_noise_for_68): the
+// fast one is value ± std_error, and the model-error allowance widens only the 95 % ones.
+TEST(Intervals, SixtyEightPercentIntervalsUseTheStandardErrorsNoiseLevel) {
+  const auto trial = MakeAnalyticTrial(0.2, 0.8, -2.0, 0.6, RealisticDisturbances(24));
+  const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
+  FitOptions options;
+  options.global.enabled = false;
+  options.method = FitMethod::kNelderMead;
+  options.intervals.method = IntervalMethod::kFast;
+  // The bulk level is capped by the 95 % one (the intervals nest); an allowance of 4 keeps it below here.
+  options.intervals.model_error_allowance = 4.0;
+  const FitSummary fast = Fit(objective, trial.truth, options);
+  ASSERT_TRUE(fast.feasible);
+  ASSERT_TRUE(std::isfinite(fast.uncertainty.bulk_inflation));
+  // Both from the same residuals and (JᵀJ)⁻¹; the Ceres residual array also holds the empty rows before t0,
+  // which shift the lag-1 sums by a term or two (measured: 1e-4 relative at most).
+  constexpr double kRelTol = 1e-3;
+  for (ParameterId id : fast.parameters.FreeIds()) {
+    const std::size_t k = static_cast<std::size_t>(id);
+    const double v = fast.parameters.value(id), se = fast.std_error[k];
+    ASSERT_TRUE(std::isfinite(se)) << Name(id);
+    ASSERT_LE(fast.uncertainty.bulk_inflation, fast.uncertainty.noise_inflation[k]) << Name(id);
+    EXPECT_NEAR(fast.uncertainty.interval_68[k][1] - v, se, kRelTol * se) << Name(id);
+    EXPECT_NEAR(v - fast.uncertainty.interval_68[k][0], se, kRelTol * se) << Name(id);
+  }
+  // The allowance widens the 95 % intervals only.
+  options.intervals.model_error_allowance = 8.0;
+  const FitSummary wider = Fit(objective, trial.truth, options);
+  ASSERT_TRUE(wider.feasible);
+  for (ParameterId id : fast.parameters.FreeIds()) {
+    const std::size_t k = static_cast<std::size_t>(id);
+    EXPECT_EQ(wider.uncertainty.interval_68[k], fast.uncertainty.interval_68[k]) << Name(id);
+    EXPECT_GT(wider.uncertainty.interval_95[k][1], fast.uncertainty.interval_95[k][1]) << Name(id);
+    EXPECT_LT(wider.uncertainty.interval_95[k][0], fast.uncertainty.interval_95[k][0]) << Name(id);
   }
 }
 

@@ -72,8 +72,9 @@ void AddFitOptions(CLI::App& app, FitArgs& args) {
   app.add_flag("--keep-bias", args.keep_bias, "Do not subtract the gyro bias measured at rest before the release");
   app.add_option("--threads", args.threads, "Threads of the global stage and the intervals (0: all cores)");
   app.add_option("--intervals", args.intervals,
-                 "68 % and 95 % intervals: thorough (profiles of (28)'s sum of squares, the others re-fitted; the fit "
-                 "costs about 1.5 times as much), fast (linearised, nearly free) or none (standard errors only)")
+                 "68 % and 95 % intervals: thorough (95 %: profiles of (28)'s sum of squares, the others re-fitted, "
+                 "the fit costs about 1.5 times as much; 68 %: linearised), fast (both linearised, nearly free) or none "
+                 "(standard errors only)")
       ->capture_default_str();
 }
 
@@ -152,7 +153,8 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   // v3: the window-end detector follows the integrated attitude and recognises landings with a small jump; the
   // values of fixed parameters are part of the settings.
   // v4: 68 % / 95 % intervals (--intervals); their profiles can move the fit to a lower (28).
-  std::string settings = fmt::format("rockfit-fit v4; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
+  // v5: the 68 % intervals at the bulk noise level of the standard errors.
+  std::string settings = fmt::format("rockfit-fit v5; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
                                      "global={}; keep_bias={}; block=({:.17g},{:.17g},{:.17g},{:.17g})",
                                      fitting::ToString(fitting::ParseFitMethod(args.method)),
                                      fitting::ToString(fitting::ParseIntervalMethod(args.intervals)), args.bounds,

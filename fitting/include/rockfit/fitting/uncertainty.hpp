@@ -8,14 +8,19 @@
 // autocorrelation-consistent (Newey–West, Bartlett window up to IntervalOptions::noise_correlation_window_s)
 // sandwich variance M·B·M of parameter j to the white-noise one s²·M (M = (JᵀJ)⁻¹, B the long-run covariance
 // of the score contributions J_kᵀr_k); κ_j ≥ 1. Without a Jacobian, κ is the long-run variance factor of the
-// residual series itself. Both are multiplied by IntervalOptions::model_error_allowance.
+// residual series itself. Both are multiplied by IntervalOptions::model_error_allowance. That level sets the
+// 95 % intervals; the 68 % intervals use the bulk level of the standard errors, s² inflated only for the
+// lag-1 correlation of the residuals (IntervalOptions::bulk_noise_for_68), because the errors are
+// heavy-tailed: the bulk is as large as the standard error says, the tail much larger.
 //
-//  fast      value ± z·σ_j, σ_j² = κ_j·s²·M_jj (linearised, the Jacobian of the Ceres back end);
-//  thorough  profile intervals of S = Σ w_k‖ω_m − ω_s‖² (the least-squares form of (28)): parameter j is
-//            stepped outwards from the least-squares optimum, the others re-fitted by Nelder–Mead at every
-//            step (warm-started), and the interval ends where S_profile − S_min = z²·s²_eff (z = 1 for 68 %,
-//            1.96 for 95 %: the χ²₁ quantiles). Curved valleys (t0 + T(α) near θ_c, λ–λ_lat with weak lateral
-//            motion) are followed by the re-fits instead of linearised.
+//  fast      value ± z·σ_j, σ_j² = κ_j·s²·M_jj (linearised, the Jacobian of the Ceres back end; z = 1.96),
+//            and value ± σ_j at the bulk level for 68 %;
+//  thorough  95 %: profile intervals of S = Σ w_k‖ω_m − ω_s‖² (the least-squares form of (28)): parameter j
+//            is stepped outwards from the least-squares optimum, the others re-fitted by Nelder–Mead at every
+//            step (warm-started), and the interval ends where S_profile − S_min = z²·s²_eff (z = 1.96, the
+//            χ²₁ quantile), widened to the linearised one. Curved valleys (t0 + T(α) near θ_c, λ–λ_lat with weak
+//            lateral motion) are followed by the re-fits instead of linearised. 68 %: linearised at the bulk
+//            level, as in fast (or the profile's crossing at z = 1, IntervalOptions::profile_68).
 //
 // An end is open (NaN) where the profile reaches a bound still below the threshold, or for a parameter that
 // does not act on (28). A parameter is "determined" when its 95 % interval is closed and narrower than a
@@ -23,7 +28,9 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -54,6 +61,7 @@ struct UncertaintySummary {
   double noise_rms_rad_s = 0.0;    // √(s²/Δt): the residual level per component, white-noise equivalent
   double correlation_factor = 1.0; // the largest κ_j (the model-error allowance for white residuals)
   PerParameter noise_inflation{};  // κ_j per parameter (NaN where not computed)
+  double bulk_inflation = std::numeric_limits<double>::quiet_NaN();  // the 68 % level's factor (NaN: κ_j as at 95 %)
   // Sentences: what the data fix ("t0 and alpha: only t0 + T(α) is fixed (correlation −0.998)", …).
   std::vector<std::string> statements;
   std::int64_t evaluations = 0;
@@ -89,6 +97,11 @@ struct Linearisation {
     return n > 0 && inverse_normal_matrix.rows() == n && jacobian.cols() == n && jacobian.rows() == residuals.size();
   }
 };
+
+// (1 + ρ₁)/(1 − ρ₁), ρ₁ the lag-1 autocorrelation of the residual series (all components pooled, clamped to
+// [0, 0.99]): the factor on the white-noise variance of an AR(1) series; the standard errors and the bulk
+// noise level of the 68 % intervals use it. `values` holds the series interleaved with `stride` components.
+double Lag1InflationFactor(const double* values, std::size_t samples, std::size_t stride);
 
 // κ_j of the header comment for every column of `lin` (Bartlett window of max_lag samples).
 Eigen::VectorXd SandwichInflation(const Linearisation& lin, int max_lag);
