@@ -4,6 +4,11 @@
 #include <limits>
 
 namespace rockfit::core::detail {
+namespace {
+
+constexpr double kPi_rad = 3.14159265358979323846;
+
+}  // namespace
 
 VertexMode::VertexMode(const Block& block, int vertex, double gravity_m_s2)
     : vertex_(Block::WrapVertex(vertex)), dynamics_(block, vertex_, gravity_m_s2) {
@@ -49,7 +54,29 @@ Mode VertexMode::mode() const {
 }
 
 EdgeMode::EdgeMode(const Block& block, int i, int j, const Eigen::Quaterniond& q_yaw, double gravity_m_s2)
-    : first_(Block::WrapVertex(i)), second_(Block::WrapVertex(j)), q_yaw_(q_yaw), dynamics_(block, i, j, gravity_m_s2) {}
+    : first_(Block::WrapVertex(i)), second_(Block::WrapVertex(j)), q_yaw_(q_yaw), dynamics_(block, i, j, gravity_m_s2) {
+  // The analytic Euler angles need a pure yaw and an edge axis along a body axis (the base edges of a
+  // rectangular block are; the axis is built from the edge midpoint without round-off).
+  const Eigen::Vector3d& a = dynamics_.axis_B();
+  const bool pure_yaw = q_yaw_.x() == 0.0 && q_yaw_.y() == 0.0 && q_yaw_.w() >= 0.0;
+  if (pure_yaw && a.x() == 0.0 && a.z() == 0.0 && std::abs(a.y()) == 1.0) {
+    tilt_euler_index_ = 1;
+    tilt_euler_sign_ = a.y();
+  } else if (pure_yaw && a.y() == 0.0 && a.z() == 0.0 && std::abs(a.x()) == 1.0) {
+    tilt_euler_index_ = 2;
+    tilt_euler_sign_ = a.x();
+  }
+  // q_yaw = (cos(φz/2), 0, 0, sin(φz/2)) with cos ≥ 0: φz in [−π, π].
+  yaw_rad_ = 2.0 * std::atan2(q_yaw_.z(), q_yaw_.w());
+}
+
+Eigen::Vector3d EdgeMode::EulerZyx(const Eigen::Quaterniond& q_WB, const State& y) const {
+  // At a yaw of ±π the general conversion's convention (φz = +π) is kept.
+  if (tilt_euler_index_ < 0 || std::abs(yaw_rad_) >= kPi_rad) return EulerZyxFromQuaternion(q_WB);
+  Eigen::Vector3d euler(yaw_rad_, 0.0, 0.0);
+  euler[tilt_euler_index_] = tilt_euler_sign_ * y[0];
+  return euler;
+}
 
 GuardValue EdgeMode::Guard(int index, const State& y) const {
   if (index == kFlat) return {y[0], y[1]};

@@ -94,5 +94,29 @@ TEST(EdgeMode, GuardsAreTheTiltAndTheOverturnMarginWithTheirRates) {
               0.0, 1e-15);
 }
 
+// The Edge mode's Euler angles are (yaw, ±ψ, 0) or (yaw, 0, ±ψ) without conversion; they agree with the general
+// conversion of its attitude for every base edge, yaws of both signs and tilts on both sides of zero.
+TEST(EdgeMode, EulerAnglesWithoutConversionMatchTheGeneralConversion) {
+  const Block block = TestBlock();
+  constexpr double kTol_rad = 1e-14;  // the round-off of the conversion's atan2/asin
+  for (int i = 1; i <= 4; ++i) {
+    for (int order = 0; order < 2; ++order) {
+      const int a = order == 0 ? i : Block::WrapVertex(i + 1), b = order == 0 ? Block::WrapVertex(i + 1) : i;
+      for (double yaw : {0.0, 0.7, -2.9, 3.1}) {
+        const EdgeMode mode(block, a, b, YawQuaternion(yaw), kG);
+        for (double psi : {0.0, 0.05, 0.12, -0.03}) {
+          const EdgeMode::State y(psi, 0.4);
+          const Eigen::Quaterniond q_WB = CanonicalQuaternion(mode.Attitude(y));
+          const Eigen::Vector3d expected = EulerZyxFromQuaternion(q_WB);
+          const Eigen::Vector3d euler = mode.EulerZyx(q_WB, y);
+          EXPECT_LT((euler - expected).cwiseAbs().maxCoeff(), kTol_rad)
+              << "V" << a << "V" << b << " yaw " << yaw << " psi " << psi << ": " << euler.transpose() << " vs "
+              << expected.transpose();
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace rockfit::core::detail

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "rockfit/core/attitude.hpp"
 #include "rockfit/core/block.hpp"
 #include "rockfit/core/edge_dynamics.hpp"
 #include "rockfit/core/event_location.hpp"
@@ -53,6 +54,8 @@ class VertexMode {
   int GuardVertex(int guard) const;
 
   Eigen::Quaterniond Attitude(const State& y) const { return VertexDynamics::Attitude(y); }
+  // Euler angles (φz, φy, φx) of the sample attitude q_WB (canonical, from Attitude(y)).
+  Eigen::Vector3d EulerZyx(const Eigen::Quaterniond& q_WB, const State& /*y*/) const { return EulerZyxFromQuaternion(q_WB); }
   Eigen::Vector3d AngularVelocity_B(const State& y) const { return VertexDynamics::AngularVelocity(y); }
   double Energy(const State& y) const { return dynamics_.Energy(y); }
   double KineticEnergy(const State& y) const { return dynamics_.KineticEnergy(y); }
@@ -95,6 +98,10 @@ class EdgeMode {
   static bool IsTouchdown(int guard) { return guard == kFlat; }
 
   Eigen::Quaterniond Attitude(const State& y) const { return q_yaw_ * dynamics_.Tilt(y[0]); }
+  // Euler angles (φz, φy, φx) of the sample attitude: R_WB = Rz(yaw)·Rot(±e_y or ±e_x, ψ) is already in ZYX
+  // form, (yaw, ±ψ, 0) or (yaw, 0, ±ψ), so no conversion is needed (a tenth of a planar run's time); the
+  // general conversion of q_WB where the yaw or the edge axis is not of that form.
+  Eigen::Vector3d EulerZyx(const Eigen::Quaterniond& q_WB, const State& y) const;
   Eigen::Vector3d AngularVelocity_B(const State& y) const { return dynamics_.AngularVelocity_B(y); }
   double Energy(const State& y) const { return dynamics_.Energy(y); }
   double KineticEnergy(const State& y) const { return dynamics_.KineticEnergy(y); }
@@ -112,6 +119,9 @@ class EdgeMode {
   int second_;
   Eigen::Quaterniond q_yaw_;
   EdgeDynamics dynamics_;
+  double yaw_rad_ = 0.0;  // the angle of q_yaw_ in (−π, π]
+  int tilt_euler_index_ = -1;  // 1: the edge axis is ±e_y (ψ is ±φy), 2: ±e_x (±φx); −1: neither
+  double tilt_euler_sign_ = 1.0;
 };
 
 }  // namespace rockfit::core::detail

@@ -51,6 +51,7 @@ class GroundVertexMode {
   static bool IsTouchdown(int guard) { return VertexMode::IsTouchdown(guard); }
   int GuardVertex(int guard) const { return free_.GuardVertex(guard); }
   Eigen::Quaterniond Attitude(const State& y) const { return free_.Attitude(y); }
+  Eigen::Vector3d EulerZyx(const Eigen::Quaterniond& q_WB, const State& y) const { return free_.EulerZyx(q_WB, y); }
   Eigen::Vector3d AngularVelocity_B(const State& y) const { return free_.AngularVelocity_B(y); }
   double Energy(const State& y) const { return free_.Energy(y); }
   double KineticEnergy(const State& y) const { return free_.KineticEnergy(y); }
@@ -94,6 +95,7 @@ class GroundEdgeMode {
   static double StepBound(const State& /*y*/) { return kGroundStepBound_s; }
   static bool IsTouchdown(int guard) { return guard == kFlat; }
   Eigen::Quaterniond Attitude(const State& y) const { return free_.Attitude(y); }
+  Eigen::Vector3d EulerZyx(const Eigen::Quaterniond& q_WB, const State& y) const { return free_.EulerZyx(q_WB, y); }
   Eigen::Vector3d AngularVelocity_B(const State& y) const { return free_.AngularVelocity_B(y); }
   double Energy(const State& y) const { return free_.Energy(y); }
   double KineticEnergy(const State& y) const { return free_.KineticEnergy(y); }

@@ -83,7 +83,8 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
     return outcome;
   };
   const auto emit = [&](const State& y) {
-    sampler.Emit(mode_label, mode.AngularVelocity_B(y), [&] { return mode.Attitude(y); });
+    sampler.Emit(mode_label, mode.AngularVelocity_B(y), [&] { return mode.Attitude(y); },
+                 [&](const Eigen::Quaterniond& q_WB) { return mode.EulerZyx(q_WB, y); });
   };
 
   // Guards at the start; a guard already past zero (or on zero and moving down) fires at once.
