@@ -78,12 +78,26 @@ class Dop853 {
   // *out = base + h·Σ_{j<count} weights[j]·k_j.
   template <std::size_t M>
   void Combine(const std::array<double, M>& weights, int count, double h, const Vector& base, Vector* out) const {
-    for (int i = 0; i < N; ++i) {
-      double sum = 0.0;
-      for (int j = 0; j < count; ++j) sum += weights[j] * k_[j][i];
-      (*out)[i] = base[i] + h * sum;
+    if constexpr (N >= kStageOuterMinStates) {
+      // Stage-outer loops: the same sums in the same order per component, but the components side by side,
+      // which the compiler vectorises (the stage-inner form strides through k_ and does not).
+      std::array<double, N> sum{};
+      for (int j = 0; j < count; ++j) {
+        const double w = weights[j];
+        for (int i = 0; i < N; ++i) sum[i] += w * k_[j][i];
+      }
+      for (int i = 0; i < N; ++i) (*out)[i] = base[i] + h * sum[i];
+    } else {
+      for (int i = 0; i < N; ++i) {
+        double sum = 0.0;
+        for (int j = 0; j < count; ++j) sum += weights[j] * k_[j][i];
+        (*out)[i] = base[i] + h * sum;
+      }
     }
   }
+  // From this many states on, the stage-outer loops are faster (7 states: 6 % a Fig. 14 run); with 2 they are
+  // 15 % slower (loop overhead).
+  static constexpr int kStageOuterMinStates = 4;
 
   static constexpr double kSafety = 0.9;        // step-size controller safety factor
   static constexpr double kMinFactor = 0.333;   // smallest step change per step
@@ -179,17 +193,27 @@ StepStatus Dop853<N>::Step(const Rhs& rhs, double t_limit) {
     }
     Vector y_new;
     Combine(tab::kB, tab::kStages, h, y_, &y_new);
-    Vector err5;
-    Vector err3;
-    for (int i = 0; i < N; ++i) {
-      double sum5 = 0.0;
-      double sum3 = 0.0;
+    Vector err5 = Vector::Zero();
+    Vector err3 = Vector::Zero();
+    if constexpr (N >= kStageOuterMinStates) {
       for (int j = 0; j < tab::kStages; ++j) {
-        sum5 += tab::kE5[j] * k_[j][i];
-        sum3 += (tab::kB[j] - tab::kBhh[j]) * k_[j][i];
+        const double w5 = tab::kE5[j], w3 = tab::kB[j] - tab::kBhh[j];
+        for (int i = 0; i < N; ++i) {
+          err5[i] += w5 * k_[j][i];
+          err3[i] += w3 * k_[j][i];
+        }
       }
-      err5[i] = sum5;
-      err3[i] = sum3;
+    } else {
+      for (int i = 0; i < N; ++i) {
+        double sum5 = 0.0;
+        double sum3 = 0.0;
+        for (int j = 0; j < tab::kStages; ++j) {
+          sum5 += tab::kE5[j] * k_[j][i];
+          sum3 += (tab::kB[j] - tab::kBhh[j]) * k_[j][i];
+        }
+        err5[i] = sum5;
+        err3[i] = sum3;
+      }
     }
     // Combined error estimate of DOP853: h·|err5|² / sqrt(|err5|² + 0.01·|err3|²), RMS-scaled.
     const double e5 = ScaledRms(err5, y_, y_new);
@@ -246,10 +270,22 @@ void Dop853<N>::PrepareDense(const Rhs& rhs) {
     dense_[1][i] = r2;
     dense_[2][i] = r3;
     dense_[3][i] = r2 - h * k_[12][i] - r3;
+    if constexpr (N < kStageOuterMinStates) {
+      for (int d = 0; d < 4; ++d) {
+        double sum = 0.0;
+        for (int j = 0; j < tab::kDenseStages; ++j) sum += tab::kD[d][j] * k_[j][i];
+        dense_[4 + d][i] = h * sum;
+      }
+    }
+  }
+  if constexpr (N >= kStageOuterMinStates) {
     for (int d = 0; d < 4; ++d) {
-      double sum = 0.0;
-      for (int j = 0; j < tab::kDenseStages; ++j) sum += tab::kD[d][j] * k_[j][i];
-      dense_[4 + d][i] = h * sum;
+      std::array<double, N> sum{};  // stage-outer, as in Combine
+      for (int j = 0; j < tab::kDenseStages; ++j) {
+        const double w = tab::kD[d][j];
+        for (int i = 0; i < N; ++i) sum[i] += w * k_[j][i];
+      }
+      for (int i = 0; i < N; ++i) dense_[4 + d][i] = h * sum[i];
     }
   }
   dense_ready_ = true;
