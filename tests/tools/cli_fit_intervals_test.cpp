@@ -124,8 +124,8 @@ TEST(CliFitIntervals, SmallCoverageStudyHoldsTheTruth) {
 
 // The 68 % intervals, pooled over every determined parameter value of 16 random trials (about 80 values), hold
 // the truth in about two thirds of them: between 50 and 85 % (about ±3.5 binomial standard deviations around
-// 68 %; this seed gives 58 %). With the 95 % level's noise for both levels they held it in 82 % of the 500
-// values of the full study (fitting/README.md, "Coverage study").
+// 68 %; this seed gives 58 %). With the 95 % level's noise for both levels they held it in 82 and 86 % of the
+// about 500 values of the seed-1 and seed-2 studies (fitting/README.md, "Coverage study").
 TEST(CliFitIntervals, SixtyEightPercentIntervalsHoldTheTruthInAboutTwoThirds) {
   ROCKFIT_REQUIRE_OPTIMISED_BUILD();
   const ScratchDir dir("cli_fit_coverage_68");
