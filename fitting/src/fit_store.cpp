@@ -85,6 +85,7 @@ void WriteFitAttributes(const io::hdf5::Group& g, const std::string& settings, c
   g.SetString("uncertainty_method", ToString(s.uncertainty.method));
   g.SetString("uncertainty", s.uncertainty.description);
   g.SetDouble("noise_correlation_factor", s.uncertainty.correlation_factor);
+  g.SetDouble("noise_inflation_68", s.uncertainty.bulk_inflation);
   g.SetInt("feasible", s.feasible ? 1 : 0);
   g.SetString("settings", settings);
   g.SetString("settings_hash", SettingsHash(settings));

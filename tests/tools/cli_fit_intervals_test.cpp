@@ -72,6 +72,7 @@ TEST(CliFitIntervals, JsonTextAndHdf5CarryIntervalsThatHoldTheTruth) {
   EXPECT_DOUBLE_EQ(j["correlation"]["matrix"][0][0].get<double>(), 1.0);
   EXPECT_DOUBLE_EQ(j["correlation"]["matrix"][0][1].get<double>(), j["correlation"]["matrix"][1][0].get<double>());
   EXPECT_GE(j["uncertainty"]["correlation_factor"].get<double>(), 1.0);
+  EXPECT_GE(j["uncertainty"]["noise_inflation_68"].get<double>(), 1.0);  // the lag-1 factor (1 + ρ₁)/(1 − ρ₁)
   EXPECT_GT(j["uncertainty"]["simulations"].get<int>(), 0);
 
   if (HaveH5py()) {
@@ -85,6 +86,7 @@ assert p['correlation'].shape == (6, 6)
 assert [d.decode() for d in p['determined'][()]] == ['yes'] * 5 + ['fixed'], p['determined'][()]
 assert math.isnan(p['interval_95_lower'][5])
 assert f['fits/block2-A-1'].attrs['uncertainty_method'] == 'thorough'
+assert f['fits/block2-A-1'].attrs['noise_inflation_68'] >= 1.0
 print('ok')
 )",
                                               out);
