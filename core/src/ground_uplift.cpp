@@ -22,27 +22,43 @@ Contact ContactAt(const std::array<double, 4>& margins, int first_edge, double z
   return EdgeOfIndex(first_edge);
 }
 
+// Per base edge: the distance d of its midpoint from the base centre and the inward unit vector n_B.
+struct EdgeLevers {
+  std::array<double, 4> d_m{};
+  std::array<Eigen::Vector3d, 4> inward_B{};
+  explicit EdgeLevers(const Block& block) {
+    for (int e = 0; e < 4; ++e) {
+      const Eigen::Vector3d mid_B = 0.5 * (block.p_BV_B(e + 1) + block.p_BV_B(e + 2));
+      d_m[e] = mid_B.norm();
+      inward_B[e] = -mid_B / d_m[e];
+    }
+  }
+};
+
+std::array<double, 4> Margins(const EdgeLevers& levers, double h_m, const Eigen::Quaterniond& q_yaw,
+                              double gravity_m_s2, const Eigen::Vector3d& a_W) {
+  std::array<double, 4> margins{};
+  const Eigen::Vector3d a_B = q_yaw.conjugate() * a_W;  // yaw only: a_B·n_B = a_W·n_W, a_B.z = a_W.z
+  for (int e = 0; e < 4; ++e) {
+    margins[e] = h_m * a_B.dot(levers.inward_B[e]) - levers.d_m[e] * (gravity_m_s2 + a_B.z());
+  }
+  return margins;
+}
+
 }  // namespace
 
 std::array<double, 4> UpliftMargins(const Block& block, const Eigen::Quaterniond& q_yaw, double gravity_m_s2,
                                     const Eigen::Vector3d& a_W) {
-  std::array<double, 4> margins{};
-  const Eigen::Vector3d a_B = q_yaw.conjugate() * a_W;  // yaw only: a_B·n_B = a_W·n_W, a_B.z = a_W.z
-  for (int e = 0; e < 4; ++e) {
-    const Eigen::Vector3d mid_B = 0.5 * (block.p_BV_B(e + 1) + block.p_BV_B(e + 2));
-    const double d = mid_B.norm();
-    const Eigen::Vector3d inward_B = -mid_B / d;
-    margins[e] = block.h() * a_B.dot(inward_B) - d * (gravity_m_s2 + a_B.z());
-  }
-  return margins;
+  return Margins(EdgeLevers(block), block.h(), q_yaw, gravity_m_s2, a_W);
 }
 
 std::optional<Uplift> NextUplift(const Block& block, const GroundMotion& ground, const Eigen::Quaterniond& q_yaw,
                                  double gravity_m_s2, double t_from_s, double t_until_s) {
   if (!(t_until_s >= t_from_s)) return std::nullopt;
   const double zero = kSimultaneousRelTol * gravity_m_s2 * (block.b1() + block.b2());
+  const EdgeLevers levers(block);  // once per search: the search visits every record sample
   const auto margins_at = [&](double t) {
-    return UpliftMargins(block, q_yaw, gravity_m_s2, ground.Acceleration_W(t));
+    return Margins(levers, block.h(), q_yaw, gravity_m_s2, ground.Acceleration_W(t));
   };
   std::array<double, 4> m0 = margins_at(t_from_s);
   // A margin that is positive at t_from uplifts at once; one within round-off of zero only if it then grows
