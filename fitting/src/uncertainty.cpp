@@ -566,8 +566,10 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
       if (options.profile_68 || !std::isfinite(linear_sigma[k])) {
         u.interval_68[k] = ends(kZ68, kappa_68[k]);
       } else {
+        // An end beyond a bound is open, as in fast; NestedIn below closes it where the 95 % interval is closed.
         const double sigma_68 = linear_sigma[k] * std::sqrt(kappa_68[k] / kappa[k]);
-        u.interval_68[k] = {v - kZ68 * sigma_68, v + kZ68 * sigma_68};
+        auto clip = [&](double x) { return x < p.lower || x > p.upper ? kNaN : x; };
+        u.interval_68[k] = {clip(v - kZ68 * sigma_68), clip(v + kZ68 * sigma_68)};
       }
       u.interval_68[k] = NestedIn(u.interval_68[k], u.interval_95[k]);
       u.determined[k] = Determine(u.interval_95[k], p.lower, p.upper, options.undetermined_range_fraction);

@@ -262,6 +262,47 @@ TEST(Intervals, SixtyEightPercentIntervalsUseTheStandardErrorsNoiseLevel) {
   }
 }
 
+// A bound of λ just beyond the fitted value (0.3 standard errors; the "at bound" distance made small):
+// no 68 % end lies outside the bounds (an end beyond one is open, or the 95 % interval's end), and the 68 %
+// interval stays inside the 95 % one, for both methods.
+TEST(Intervals, SixtyEightPercentEndsRespectTheBoundsAndNest) {
+  const auto trial = MakeAnalyticTrial(0.2, 0.8, -2.0, 0.6, RealisticDisturbances(25));
+  for (IntervalMethod method : {IntervalMethod::kFast, IntervalMethod::kThorough}) {
+    FitOptions options;
+    options.global.enabled = false;
+    options.method = FitMethod::kNelderMead;
+    options.intervals.method = method;
+    options.at_bound_fraction = 1e-7;
+    ParameterSet parameters = trial.Bounded(BoundsSet::kEmpirical);
+    const FitSummary free = Fit(trial.MakeObjective(parameters), trial.truth, options);
+    ASSERT_TRUE(free.feasible);
+    const std::size_t lambda = static_cast<std::size_t>(ParameterId::kLambda);
+    const double value = free.parameters.value(ParameterId::kLambda);
+    ASSERT_TRUE(std::isfinite(free.std_error[lambda]));
+    parameters[ParameterId::kLambda].value = value;
+    parameters[ParameterId::kLambda].upper = value + 0.3 * free.std_error[lambda];
+    const FitSummary s = Fit(trial.MakeObjective(parameters), free.parameters, options);
+    ASSERT_TRUE(s.feasible);
+    for (ParameterId id : s.parameters.FreeIds()) {
+      const std::size_t k = static_cast<std::size_t>(id);
+      const Parameter& p = parameters[id];
+      const Interval& i68 = s.uncertainty.interval_68[k];
+      const Interval& i95 = s.uncertainty.interval_95[k];
+      for (double end : i68) {
+        if (!std::isnan(end)) {
+          EXPECT_TRUE(p.lower <= end && end <= p.upper) << Name(id) << " " << end << " in [" << p.lower << ", " << p.upper << "]";
+        }
+      }
+      if (!std::isnan(i95[0])) {
+        EXPECT_TRUE(!std::isnan(i68[0]) && i68[0] >= i95[0]) << Name(id);
+      }
+      if (!std::isnan(i95[1])) {
+        EXPECT_TRUE(!std::isnan(i68[1]) && i68[1] <= i95[1]) << Name(id);
+      }
+    }
+  }
+}
+
 // Over independent noise realisations (white noise and ringing, as synth makes them) the 95 % profile
 // intervals hold the truth for nearly every parameter value: 5 parameters × kRealisations.
 TEST(Intervals, ProfileIntervalsHoldTheTruthOverNoiseRealisations) {
