@@ -72,9 +72,7 @@ ParameterSet ContinueToFullWindow(const Objective& objective, ParameterSet at, d
 // parallel. Returns the best grid point; nullopt when λ or λ_lat is not free, λ_lat is 0 or no point is feasible.
 std::optional<ParameterSet> JointLambdaScan(const Objective& objective, const ParameterSet& at,
                                             const GlobalStageOptions& g, int num_threads) {
-  const auto& ids = objective.free_ids();
-  const bool both_free = std::find(ids.begin(), ids.end(), ParameterId::kLambda) != ids.end() &&
-                         std::find(ids.begin(), ids.end(), ParameterId::kLambdaLat) != ids.end();
+  const bool both_free = objective.IsFree(ParameterId::kLambda) && objective.IsFree(ParameterId::kLambdaLat);
   const double lat0 = at.value(ParameterId::kLambdaLat);
   if (!both_free || g.joint_scan_lat_points < 1 || lat0 == 0.0) return std::nullopt;
   const Parameter& lambda = objective.parameters()[ParameterId::kLambda];
@@ -109,9 +107,9 @@ std::optional<ParameterSet> JointLambdaScan(const Objective& objective, const Pa
 // point, walking outwards from `at`. Returns the best point (nullopt when t0 or α is not free or the model has
 // no impact).
 std::optional<ParameterSet> RidgeScan(const Objective& objective, const ParameterSet& at, const GlobalStageOptions& g) {
-  const auto& ids = objective.free_ids();
-  auto is_free = [&](ParameterId id) { return std::find(ids.begin(), ids.end(), id) != ids.end(); };
-  if (!is_free(ParameterId::kT0) || !is_free(ParameterId::kAlpha) || g.ridge_points < 1) return std::nullopt;
+  if (!objective.IsFree(ParameterId::kT0) || !objective.IsFree(ParameterId::kAlpha) || g.ridge_points < 1) {
+    return std::nullopt;
+  }
   const Parameter& t0 = objective.parameters()[ParameterId::kT0];
   const Parameter& alpha = objective.parameters()[ParameterId::kAlpha];
   const Parameter& lon = objective.parameters()[ParameterId::kLambdaLon];
@@ -145,7 +143,7 @@ std::optional<ParameterSet> RidgeScan(const Objective& objective, const Paramete
     ParameterSet q = at;
     q[ParameterId::kT0].value = std::clamp(at.value(ParameterId::kT0) + dt0, t0.lower, t0.upper);
     q[ParameterId::kAlpha].value = std::clamp(alpha0 - dt0 / dfall_dalpha, alpha.lower, alpha.upper);
-    if (!is_free(ParameterId::kLambdaLon)) {
+    if (!objective.IsFree(ParameterId::kLambdaLon)) {
       evaluate(q);
       return lon_center;
     }

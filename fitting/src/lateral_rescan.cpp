@@ -17,11 +17,6 @@
 namespace rockfit::fitting {
 namespace {
 
-bool IsFree(const Objective& objective, ParameterId id) {
-  const auto& ids = objective.free_ids();
-  return std::find(ids.begin(), ids.end(), id) != ids.end();
-}
-
 // The grid of λ_lat values: [−half_range, half_range] ∩ bounds in steps of `step`, 0 included.
 std::vector<double> LambdaLatGrid(const Parameter& lat, const LateralRescanOptions& options) {
   std::vector<double> grid;
@@ -84,7 +79,7 @@ LateralRescanResult RunLateralRescan(const Objective& objective, const Parameter
   LateralRescanResult result;
   result.at = from;
   const std::optional<double> t1 = FirstImpactTime(objective, from);
-  if (!IsFree(objective, ParameterId::kLambdaLat) || !t1) return result;
+  if (!objective.IsFree(ParameterId::kLambdaLat) || !t1) return result;
   const std::vector<double> grid = LambdaLatGrid(objective.parameters()[ParameterId::kLambdaLat], options);
   NelderMeadOptions step_options = nelder_mead;
   step_options.max_evaluations = options.evaluations_per_window;
@@ -95,7 +90,7 @@ LateralRescanResult RunLateralRescan(const Objective& objective, const Parameter
   for (;;) {
     const Objective window = objective.WithWindowEnd(window_end);
     at = ScanLambdaLat(window, at, grid, num_threads);
-    if (options.lambda_scan_points > 0 && IsFree(window, ParameterId::kLambda)) {
+    if (options.lambda_scan_points > 0 && window.IsFree(ParameterId::kLambda)) {
       at = ScanParameter(window, at, ParameterId::kLambda, options.lambda_scan_points);
     }
     const LocalResult r = MakeNelderMead(step_options)->Minimize(window, window.FreeValues(at));

@@ -68,6 +68,7 @@ class Objective {
   const ParameterSet& parameters() const { return parameters_; }
   const std::vector<ParameterId>& free_ids() const { return free_ids_; }
   std::size_t num_free() const { return free_ids_.size(); }
+  bool IsFree(ParameterId id) const { return !parameters_[id].fixed; }  // one of free_ids()
   const ObjectiveOptions& options() const { return options_; }
   EvaluationCounters& counters() const { return *counters_; }
 
