@@ -127,13 +127,18 @@ TEST(PoolTrials, NoDeterminedTrialGivesNoPooledValue) {
   EXPECT_TRUE(std::isnan(p.spread));
 }
 
-FitSummary FitAnalytic(const testing::AnalyticTrial& trial, IntervalMethod method) {
-  const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
+// Nelder–Mead from the truth without the global stage: the intervals, not the search, are under test.
+FitOptions AnalyticFitOptions(IntervalMethod method) {
   FitOptions options;
-  options.global.enabled = false;  // from the truth: the intervals, not the search, are under test
+  options.global.enabled = false;
   options.method = FitMethod::kNelderMead;
   options.intervals.method = method;
-  return Fit(objective, trial.truth, options);
+  return options;
+}
+
+FitSummary FitAnalytic(const testing::AnalyticTrial& trial, IntervalMethod method) {
+  const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
+  return Fit(objective, trial.truth, AnalyticFitOptions(method));
 }
 
 TEST(Intervals, HoldTheFittedValueAndNest) {
@@ -177,11 +182,7 @@ TEST(Intervals, ANonIdentifiableParameterIsOpenAndNotDetermined) {
   const auto trial = MakeAnalyticTrial(0.2, 0.8, 0.0, 0.6, RealisticDisturbances(7));
   ParameterSet parameters = trial.Bounded(BoundsSet::kEmpirical);
   parameters[ParameterId::kLambdaLat] = {0.0, -6.0, 6.0, true};
-  FitOptions options;
-  options.global.enabled = false;
-  options.method = FitMethod::kNelderMead;
-  options.intervals.method = IntervalMethod::kThorough;
-  const FitSummary s = Fit(trial.MakeObjective(parameters), trial.truth, options);
+  const FitSummary s = Fit(trial.MakeObjective(parameters), trial.truth, AnalyticFitOptions(IntervalMethod::kThorough));
   const std::size_t k = static_cast<std::size_t>(ParameterId::kLambda);
   ASSERT_FALSE(s.identifiable[k]) << s.FullReport();
   EXPECT_TRUE(std::isnan(s.uncertainty.interval_95[k][0]) && std::isnan(s.uncertainty.interval_95[k][1]));
@@ -193,10 +194,7 @@ TEST(Intervals, ANonIdentifiableParameterIsOpenAndNotDetermined) {
 TEST(Intervals, ThoroughNinetyFivePercentIntervalIsTheHullOfProfileAndLinearised) {
   const auto trial = MakeAnalyticTrial(0.2, 0.8, -2.0, 0.6, RealisticDisturbances(23));
   const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
-  FitOptions options;
-  options.global.enabled = false;
-  options.method = FitMethod::kNelderMead;
-  options.intervals.method = IntervalMethod::kFast;
+  FitOptions options = AnalyticFitOptions(IntervalMethod::kFast);
   const FitSummary fast = Fit(objective, trial.truth, options);
   options.intervals.method = IntervalMethod::kThorough;
   const FitSummary hull = Fit(objective, trial.truth, options);
@@ -230,10 +228,7 @@ TEST(Intervals, ThoroughNinetyFivePercentIntervalIsTheHullOfProfileAndLinearised
 TEST(Intervals, SixtyEightPercentIntervalsUseTheStandardErrorsNoiseLevel) {
   const auto trial = MakeAnalyticTrial(0.2, 0.8, -2.0, 0.6, RealisticDisturbances(24));
   const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
-  FitOptions options;
-  options.global.enabled = false;
-  options.method = FitMethod::kNelderMead;
-  options.intervals.method = IntervalMethod::kFast;
+  FitOptions options = AnalyticFitOptions(IntervalMethod::kFast);
   // The bulk level is capped by the 95 % one (the intervals nest); an allowance of 4 keeps it below here.
   options.intervals.model_error_allowance = 4.0;
   const FitSummary fast = Fit(objective, trial.truth, options);
@@ -268,10 +263,7 @@ TEST(Intervals, SixtyEightPercentIntervalsUseTheStandardErrorsNoiseLevel) {
 TEST(Intervals, SixtyEightPercentEndsRespectTheBoundsAndNest) {
   const auto trial = MakeAnalyticTrial(0.2, 0.8, -2.0, 0.6, RealisticDisturbances(25));
   for (IntervalMethod method : {IntervalMethod::kFast, IntervalMethod::kThorough}) {
-    FitOptions options;
-    options.global.enabled = false;
-    options.method = FitMethod::kNelderMead;
-    options.intervals.method = method;
+    FitOptions options = AnalyticFitOptions(method);
     options.at_bound_fraction = 1e-7;
     ParameterSet parameters = trial.Bounded(BoundsSet::kEmpirical);
     const FitSummary free = Fit(trial.MakeObjective(parameters), trial.truth, options);

@@ -109,35 +109,34 @@ TEST(CliFitIntervals, NearTheCriticalTiltTheT0IntervalFollowsTheRidge) {
   EXPECT_GT(hi - lo, 10.0 * 2.0 * 1.96 * t0["std_error"].get<double>()) << j.dump(1);
 }
 
-// The coverage study in small: four random trials (one seed), profile intervals; every 95 % interval of a
-// determined parameter holds the truth in at least 3 of 4 trials, every "sign only" sign is right, and ε is
-// within 1.02 × ε(truth) in at least 3 of 4 (the full study: tools/coverage_study.py, fitting/README.md).
-TEST(CliFitIntervals, SmallCoverageStudyHoldsTheTruth) {
-  ROCKFIT_REQUIRE_OPTIMISED_BUILD();
-  const ScratchDir dir("cli_fit_coverage");
+// Runs tools/coverage_study.py (profile intervals) with `arguments` (trials, seed, checks) into a scratch
+// directory and expects its exit status 0 (every check passed); the study's output on failure.
+void ExpectCoverageStudyPasses(const std::string& tag, const std::string& arguments) {
+  const ScratchDir dir(tag);
   const std::string command = std::string(kPython) + " " + ShellQuote((SourceDir() / "tools" / "coverage_study.py").string()) +
-                              " --rockfit " + ShellQuote(RockfitBinary().string()) +
-                              " --trials 4 --seed 5 --methods thorough --out " + ShellQuote(dir.path().string()) +
-                              " --check-coverage-95 0.75 --check-epsilon-fraction 0.75 >" +
+                              " --rockfit " + ShellQuote(RockfitBinary().string()) + " --methods thorough --out " +
+                              ShellQuote(dir.path().string()) + " " + arguments + " >" +
                               ShellQuote((dir / "log").string()) + " 2>&1";
   const int status = std::system(command.c_str());
   EXPECT_EQ(status, 0) << ReadWholeFile(dir / "log");
 }
 
+// The coverage study in small: four random trials (one seed), profile intervals; every 95 % interval of a
+// determined parameter holds the truth in at least 3 of 4 trials, every "sign only" sign is right, and ε is
+// within 1.02 × ε(truth) in at least 3 of 4 (the full study: tools/coverage_study.py, fitting/README.md).
+TEST(CliFitIntervals, SmallCoverageStudyHoldsTheTruth) {
+  ROCKFIT_REQUIRE_OPTIMISED_BUILD();
+  ExpectCoverageStudyPasses("cli_fit_coverage", "--trials 4 --seed 5 --check-coverage-95 0.75 --check-epsilon-fraction 0.75");
+}
+
 // The 68 % intervals, pooled over every determined parameter value of 16 random trials (about 80 values), hold
 // the truth in about two thirds of them: between 50 and 85 % (about ±3.5 binomial standard deviations around
-// 68 %; this seed gives 58 %). With the 95 % level's noise for both levels they held it in 82 and 86 % of the
-// about 500 values of the seed-1 and seed-2 studies (fitting/README.md, "Coverage study").
+// 68 %; this seed gives 58 %). A bound against gross errors (intervals of zero width, or as wide as the 95 %
+// ones), not a calibration: 16 trials cannot tell the bulk level from the old one (61 % on this seed), which
+// only the 100-trial studies separate (fitting/README.md, "Coverage study").
 TEST(CliFitIntervals, SixtyEightPercentIntervalsHoldTheTruthInAboutTwoThirds) {
   ROCKFIT_REQUIRE_OPTIMISED_BUILD();
-  const ScratchDir dir("cli_fit_coverage_68");
-  const std::string command = std::string(kPython) + " " + ShellQuote((SourceDir() / "tools" / "coverage_study.py").string()) +
-                              " --rockfit " + ShellQuote(RockfitBinary().string()) +
-                              " --trials 16 --seed 7 --methods thorough --out " + ShellQuote(dir.path().string()) +
-                              " --check-coverage-95 0.75 --check-coverage-68 0.5,0.85 >" +
-                              ShellQuote((dir / "log").string()) + " 2>&1";
-  const int status = std::system(command.c_str());
-  EXPECT_EQ(status, 0) << ReadWholeFile(dir / "log");
+  ExpectCoverageStudyPasses("cli_fit_coverage_68", "--trials 16 --seed 7 --check-coverage-95 0.75 --check-coverage-68 0.5,0.85");
 }
 
 }  // namespace
