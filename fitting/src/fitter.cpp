@@ -134,15 +134,18 @@ std::vector<std::pair<Eigen::VectorXd, double>> RunStages(const Objective& objec
   return global_candidates;
 }
 
-// A kept point that leaves the recorded out-of-plane motion unexplained may lie on the plateau next to the
-// needle-shaped basin of λ_lat: λ_lat is rescanned over growing windows (lateral_rescan.hpp) and polished by
+// A kept point that leaves the recorded out-of-plane motion unexplained, or has weak lateral motion, may lie on
+// the plateau next to the needle-shaped basin of λ_lat: λ_lat is rescanned over growing windows (lateral_rescan.hpp) and polished by
 // Nelder–Mead on the full window; the fit moves there when (28) is lower. The point it leaves stays among the
 // candidates (the intervals and the second-solution check see it).
 void RescanUnexplainedLateralMotion(const Objective& objective, const FitOptions& options, FitSummary* summary,
                                     std::vector<std::pair<Eigen::VectorXd, double>>* candidates) {
   // A search of its own: not with --no-global (a local search from the estimate only was asked for).
   if (!options.lateral_rescan.enabled || !options.global.enabled || !summary->feasible) return;
-  if (!CheckLateralMotion(objective, summary->parameters, options.lateral_motion).unexplained) return;
+  const bool unexplained = CheckLateralMotion(objective, summary->parameters, options.lateral_motion).unexplained;
+  const double lambda_lat = summary->parameters.value(ParameterId::kLambdaLat);
+  const bool weak = std::abs(lambda_lat) < options.lateral_rescan.below_abs_lambda_lat;
+  if (!unexplained && !weak) return;
   const LateralRescanResult rescan =
       RunLateralRescan(objective, summary->parameters, options.lateral_rescan, options.nelder_mead, options.num_threads);
   if (!rescan.ran || !rescan.feasible) return;
@@ -163,9 +166,12 @@ void RescanUnexplainedLateralMotion(const Objective& objective, const FitOptions
   candidates->emplace_back(objective.FreeValues(summary->parameters), summary->epsilon_rad_s);
   summary->warnings.push_back(
       {WarningKind::kMovedByLateralRescan, "",
-       fmt::format("the search's result left the recorded out-of-plane motion unexplained; a rescan of λ_lat over "
-                   "growing windows found a lower (28): ε {:.6g} → {:.6g} rad/s, λ_lat {:.5g} → {:.5g}; the fit moved "
-                   "there", summary->epsilon_rad_s, polish.epsilon_rad_s, summary->parameters.value(ParameterId::kLambdaLat),
+       fmt::format("{}; a rescan of λ_lat over growing windows found a lower (28): ε {:.6g} → {:.6g} rad/s, λ_lat "
+                   "{:.5g} → {:.5g}; the fit moved there",
+                   unexplained ? "the search's result left the recorded out-of-plane motion unexplained"
+                               : fmt::format("the search's result had weak lateral motion (|λ_lat| < {:g})",
+                                             options.lateral_rescan.below_abs_lambda_lat),
+                   summary->epsilon_rad_s, polish.epsilon_rad_s, summary->parameters.value(ParameterId::kLambdaLat),
                    moved.value(ParameterId::kLambdaLat))});
   summary->parameters = moved;
   summary->epsilon_rad_s = polish.epsilon_rad_s;

@@ -154,7 +154,7 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   // values of fixed parameters are part of the settings.
   // v4: 68 % / 95 % intervals (--intervals); their profiles can move the fit to a lower (28).
   // v5: the 68 % intervals at the bulk noise level of the standard errors.
-  std::string settings = fmt::format("rockfit-fit v5; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
+  std::string settings = fmt::format("rockfit-fit v6; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
                                      "global={}; keep_bias={}; block=({:.17g},{:.17g},{:.17g},{:.17g})",
                                      fitting::ToString(fitting::ParseFitMethod(args.method)),
                                      fitting::ToString(fitting::ParseIntervalMethod(args.intervals)), args.bounds,

@@ -24,6 +24,11 @@ struct NelderMeadOptions;
 
 struct LateralRescanOptions {
   bool enabled = true;
+  // The fitter rescans a fit that the lateral-motion check flags, and also one whose |λ_lat| is below this: with
+  // weak lateral motion the out-of-plane signal may be too close to the noise for the check, while the truth's
+  // basin is still a needle that the global stage can miss (coverage study: misses at |λ_lat| 0.11–0.39 that the
+  // check did not flag).
+  double below_abs_lambda_lat = 0.5;
   // The first window ends this long after the model's first impact at the kept point [s]: the first lateral
   // half-cycle after the facet impact.
   double first_window_s = 0.1;
@@ -37,6 +42,13 @@ struct LateralRescanOptions {
   // After the λ_lat scan, λ is scanned over its bounds at this many values (0: not): the plateau's λ can lie far
   // from the truth's, farther than a short local search moves it.
   int lambda_scan_points = 48;
+  // On the first window λ_lat is scanned jointly with λ, at this many values of λ over its bounds and at the
+  // kept point's λ: the needle is tilted (its λ_lat drifts by a few 0.01 per unit of λ), so a scan at a held λ far
+  // from the truth's misses it. The best points of the λ rows with distinct λ_lat (more than min_separation
+  // apart: another needle) are tracked through the growing windows, at most tracked_starts of them.
+  int first_window_lambda_points = 12;
+  int tracked_starts = 3;
+  double min_separation = 0.02;
   // Nelder–Mead evaluations per window; its initial simplex is this fraction of nelder_mead.initial_step.
   int evaluations_per_window = 150;
   double step_fraction = 0.25;
