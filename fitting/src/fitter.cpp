@@ -134,18 +134,20 @@ std::vector<std::pair<Eigen::VectorXd, double>> RunStages(const Objective& objec
   return global_candidates;
 }
 
-// A kept point that leaves the recorded out-of-plane motion unexplained, or has weak lateral motion, may lie on
-// the plateau next to the needle-shaped basin of λ_lat: λ_lat is rescanned over growing windows (lateral_rescan.hpp) and polished by
+// A kept point that leaves the recorded out-of-plane motion unexplained, or has weak lateral motion whose
+// out-of-plane signal the check cannot judge, may lie on the plateau next to the needle-shaped basin of λ_lat: λ_lat is rescanned over growing windows (lateral_rescan.hpp) and polished by
 // Nelder–Mead on the full window; the fit moves there when (28) is lower. The point it leaves stays among the
 // candidates (the intervals and the second-solution check see it).
 void RescanUnexplainedLateralMotion(const Objective& objective, const FitOptions& options, FitSummary* summary,
                                     std::vector<std::pair<Eigen::VectorXd, double>>* candidates) {
   // A search of its own: not with --no-global (a local search from the estimate only was asked for).
   if (!options.lateral_rescan.enabled || !options.global.enabled || !summary->feasible) return;
-  const bool unexplained = CheckLateralMotion(objective, summary->parameters, options.lateral_motion).unexplained;
+  const LateralMotionCheck check = CheckLateralMotion(objective, summary->parameters, options.lateral_motion);
+  const bool unexplained = check.unexplained;
+  // Weak lateral motion whose out-of-plane signal is too close to the noise for the check to judge.
   const double lambda_lat = summary->parameters.value(ParameterId::kLambdaLat);
-  const bool weak = std::abs(lambda_lat) < options.lateral_rescan.below_abs_lambda_lat;
-  if (!unexplained && !weak) return;
+  const bool weak_unjudged = std::abs(lambda_lat) < options.lateral_rescan.below_abs_lambda_lat && !check.judged;
+  if (!unexplained && !weak_unjudged) return;
   const LateralRescanResult rescan =
       RunLateralRescan(objective, summary->parameters, options.lateral_rescan, options.nelder_mead, options.num_threads);
   if (!rescan.ran || !rescan.feasible) return;
@@ -169,7 +171,8 @@ void RescanUnexplainedLateralMotion(const Objective& objective, const FitOptions
        fmt::format("{}; a rescan of λ_lat over growing windows found a lower (28): ε {:.6g} → {:.6g} rad/s, λ_lat "
                    "{:.5g} → {:.5g}; the fit moved there",
                    unexplained ? "the search's result left the recorded out-of-plane motion unexplained"
-                               : fmt::format("the search's result had weak lateral motion (|λ_lat| < {:g})",
+                               : fmt::format("the search's result had weak lateral motion (|λ_lat| < {:g}) with an "
+                                             "out-of-plane signal too close to the noise for the lateral-motion check",
                                              options.lateral_rescan.below_abs_lambda_lat),
                    summary->epsilon_rad_s, polish.epsilon_rad_s, summary->parameters.value(ParameterId::kLambdaLat),
                    moved.value(ParameterId::kLambdaLat))});

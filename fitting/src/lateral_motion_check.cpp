@@ -60,6 +60,7 @@ LateralMotionCheck CheckLateralMotion(const Objective& objective, const Paramete
   check.measured_rms_rad_s = std::sqrt(measured_var);
   check.residual_rms_rad_s = std::sqrt(residual_var);
   const bool signal_present = measured_var >= options.min_signal_to_noise_variance * noise_var && measured_var > noise_var;
+  check.judged = signal_present;
   if (signal_present) {
     check.unexplained_fraction = std::max(0.0, (residual_var - noise_var) / (measured_var - noise_var));
     check.unexplained = check.unexplained_fraction >= options.max_unexplained_fraction;

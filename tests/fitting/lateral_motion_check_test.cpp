@@ -65,6 +65,7 @@ TEST(LateralMotionCheck, TheTruthExplainsTheLateralMotionAndAPlanarModelExplains
   ASSERT_TRUE(at_truth.available);
   EXPECT_GT(at_truth.measured_rms_rad_s, 5.0 * at_truth.rest_noise_rad_s);  // there is lateral motion
   EXPECT_LT(at_truth.unexplained_fraction, 0.05);                          // the truth leaves noise (and ringing)
+  EXPECT_TRUE(at_truth.judged);
   EXPECT_FALSE(at_truth.unexplained);
 
   // λ_lat = 0: the model stays in its plane (ω_x = ω_z = 0), so the residual is the measurement itself and the
@@ -87,6 +88,7 @@ TEST(LateralMotionCheck, APlanarRecordingHasNothingToExplain) {
   ASSERT_TRUE(c.available);
   EXPECT_LT(c.measured_rms_rad_s * c.measured_rms_rad_s, 2.0 * c.rest_noise_rad_s * c.rest_noise_rad_s);
   EXPECT_EQ(c.unexplained_fraction, 0.0);
+  EXPECT_FALSE(c.judged);  // nothing to judge: the signal is below twice the noise variance
   EXPECT_FALSE(c.unexplained);
   EXPECT_FALSE(CheckLateralMotion(p.objective, wrong).unexplained);
 }
@@ -97,6 +99,7 @@ TEST(LateralMotionCheck, WithoutARestBeforeTheReleaseTheCheckIsNotAvailable) {
   ParameterSet early = truth;
   early[ParameterId::kT0].value = p.objective.signal().t_s.front() + 0.1;  // 0.05 s of rest: too short
   EXPECT_FALSE(CheckLateralMotion(p.objective, early).available);
+  EXPECT_FALSE(CheckLateralMotion(p.objective, early).judged);
   LateralMotionCheckOptions off;
   off.enabled = false;
   EXPECT_FALSE(CheckLateralMotion(p.objective, truth, off).available);

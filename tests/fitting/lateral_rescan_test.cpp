@@ -3,7 +3,7 @@
 // sign and λ half the truth's (a case of the coverage study, fitting/README.md "Lateral rescan"): from there the
 // rescan finds the needle of the truth. A second trial has a tilted needle (its λ_lat drifts with λ) that a scan
 // of λ_lat at the plateau's λ misses and the joint first-window scan finds, and a third has lateral motion too weak
-// for the lateral-motion check, so that only the rescan of weak lateral motion finds it. Also: its options, its
+// for the lateral-motion check to judge, so that only the rescan of weak lateral motion finds it. Also: its options, its
 // result in any thread count, and nothing to do when λ_lat is fixed.
 #include "rockfit/fitting/lateral_rescan.hpp"
 
@@ -118,6 +118,9 @@ TEST(LateralRescan, TheJointFirstWindowScanFindsATiltedNeedleThatAScanAtTheHeldL
   EXPECT_GT(old.epsilon_rad_s, 1.1 * truth.epsilon_rad_s);
 
   const LateralRescanResult r = RunLateralRescan(objective, n.plateau, LateralRescanOptions{}, NelderMeadOptions{}, 0);
+  std::printf("tilted needle: ε %.6g rad/s (truth %.6g) in %lld runs, %.2f s; at the held λ %.6g in %lld runs, %.2f s\n",
+              r.epsilon_rad_s, truth.epsilon_rad_s, static_cast<long long>(r.evaluations), r.wall_time_s,
+              old.epsilon_rad_s, static_cast<long long>(old.evaluations), old.wall_time_s);
   ASSERT_TRUE(r.ran && r.feasible);
   EXPECT_LE(r.epsilon_rad_s, 1.02 * truth.epsilon_rad_s);
   EXPECT_NEAR(r.at.value(ParameterId::kLambdaLat), n.truth.value(ParameterId::kLambdaLat), 0.01);
@@ -125,8 +128,8 @@ TEST(LateralRescan, TheJointFirstWindowScanFindsATiltedNeedleThatAScanAtTheHeldL
 }
 
 // A trial of the coverage study (seed 7, trial 37): λ_lat = −0.359, λ = 2.40 on a squat block, lateral motion so
-// weak that the lateral-motion check does not flag the search's result (λ 3.78 with 1.03 × the truth's ε).
-TEST(LateralRescan, TheFitRescansWeakLateralMotionThatTheCheckDoesNotFlag) {
+// weak that the lateral-motion check cannot judge the search's result (λ 3.78 with 1.03 × the truth's ε).
+TEST(LateralRescan, TheFitRescansWeakLateralMotionThatTheCheckCannotJudge) {
   ROCKFIT_REQUIRE_OPTIMISED_BUILD();
   const core::Block block = core::Block::FromDensity(0.05, 0.05058157747665191, 0.2312905392085594, 2692.0);
   const double t0_s = 1.4383737498094424;
@@ -145,9 +148,11 @@ TEST(LateralRescan, TheFitRescansWeakLateralMotionThatTheCheckDoesNotFlag) {
   EXPECT_NEAR(fit.parameters.value(ParameterId::kLambda), trial.truth.value(ParameterId::kLambda), 0.3);
   EXPECT_FALSE(CheckLateralMotion(problem.objective, fit.parameters).unexplained);
 
-  // The premise: without the rescan of weak lateral motion the fit ends in the other basin.
+  // The premise: without the rescan of weak lateral motion the fit ends in the other basin, where the check
+  // cannot judge the out-of-plane signal.
   options.lateral_rescan.below_abs_lambda_lat = 0.0;
   const FitSummary unflagged = Fit(problem.objective, problem.start, options);
+  EXPECT_FALSE(CheckLateralMotion(problem.objective, unflagged.parameters).judged);
   std::printf("weak lateral trial: ε %.6g rad/s with the rescan, %.6g without (truth %.6g)\n", fit.epsilon_rad_s,
               unflagged.epsilon_rad_s, truth_epsilon);
   EXPECT_GT(unflagged.epsilon_rad_s, 1.02 * truth_epsilon);

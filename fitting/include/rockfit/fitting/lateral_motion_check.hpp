@@ -45,6 +45,7 @@ struct LateralMotionCheck {
   double measured_rms_rad_s = 0.0;         // RMS of the measured ω_x, ω_z in the window
   double residual_rms_rad_s = 0.0;         // RMS of the residual ω_x, ω_z in the window
   double unexplained_fraction = 0.0;       // see the header (0 when there is no signal to explain)
+  bool judged = false;                     // there was out-of-plane signal to explain (available too)
   bool unexplained = false;                // the fit is flagged
 };
 
