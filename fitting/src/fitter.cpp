@@ -135,9 +135,10 @@ std::vector<std::pair<Eigen::VectorXd, double>> RunStages(const Objective& objec
 }
 
 // A kept point that leaves the recorded out-of-plane motion unexplained, or has weak lateral motion whose
-// out-of-plane signal the check cannot judge, may lie on the plateau next to the needle-shaped basin of λ_lat: λ_lat is rescanned over growing windows (lateral_rescan.hpp) and polished by
-// Nelder–Mead on the full window; the fit moves there when (28) is lower. The point it leaves stays among the
-// candidates (the intervals and the second-solution check see it).
+// out-of-plane signal the check cannot judge, may lie on the plateau next to the needle-shaped basin of λ_lat:
+// λ_lat is rescanned over growing windows (lateral_rescan.hpp) and polished by Nelder–Mead on the full window;
+// the fit moves there when (28) is lower. The point it leaves stays among the candidates (the intervals and the
+// second-solution check see it).
 void RescanUnexplainedLateralMotion(const Objective& objective, const FitOptions& options, FitSummary* summary,
                                     std::vector<std::pair<Eigen::VectorXd, double>>* candidates) {
   // A search of its own: not with --no-global (a local search from the estimate only was asked for).

@@ -51,9 +51,10 @@ ParameterSet ScanLambdaLat(const Objective& window, const ParameterSet& at, cons
 
 // The joint scan of the first window: λ_lat over `grid` at first_window_lambda_points values of λ over its bounds
 // and at λ of `at`, every other parameter held. Returns up to tracked_starts points, best first, from the best
-// point of each λ row and `at` itself, each kept only when its λ_lat is more than `min_separation` from every point kept before (another needle, not
-// the same one seen from a neighbouring λ). A tilted needle (its λ_lat drifts with λ) is found from the nearest
-// row; a scan of λ_lat at a held λ misses it when λ is far from the truth's. Deterministic in any thread count.
+// point of each λ row and `at` itself, each kept only when its λ_lat is more than min_separation from every point
+// kept before (another needle, not the same one seen from a neighbouring λ). A tilted needle (its λ_lat drifts
+// with λ) is found from the nearest row; a scan of λ_lat at a held λ misses it when λ is far from the truth's.
+// Deterministic in any thread count.
 std::vector<ParameterSet> JointFirstWindowStarts(const Objective& window, const ParameterSet& at,
                                                  const std::vector<double>& grid, const LateralRescanOptions& options,
                                                  int num_threads) {

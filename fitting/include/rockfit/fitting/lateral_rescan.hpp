@@ -1,17 +1,19 @@
 // A second search for the narrow basin of λ_lat, for fits that leave the recorded out-of-plane motion unexplained
-// (fitting/README.md, "Lateral rescan").
+// or have weak lateral motion that the lateral-motion check cannot judge (fitting/README.md, "Lateral rescan").
 //
 // With weak lateral motion on a narrow block the basin of the truth in λ_lat is a needle over the full window
 // (about 10⁻³ wide), next to a broad plateau of nearly planar model motion where the global stage can end
 // (lateral_motion_check.hpp). Over a shorter window the needle is wider: the lateral half-cycles that a wrong
-// λ_lat puts out of phase are fewer. The rescan therefore starts from the kept point on a window that ends
-// first_window_s after the model's first impact, and grows it by window_step_s up to the full window. In every
-// window λ_lat is scanned over a fine grid on [−half_range, half_range] (clipped to its bounds) with the other
-// parameters held, the best grid point replaces the current one if it is better, and a short Nelder–Mead run
-// over every free parameter follows. The needle, once found in a short window, is tracked as it narrows.
+// λ_lat puts out of phase are fewer. The needle is also tilted: its λ_lat drifts with λ. The rescan therefore
+// scans λ_lat over a fine grid on [−half_range, half_range] (clipped to its bounds) jointly with λ on a window
+// that ends first_window_s after the model's first impact, the other parameters held, and tracks up to
+// tracked_starts of the best distinct points through windows growing by window_step_s up to the full window.
+// In every later window λ_lat is scanned again (the best grid point replaces the current one if it is better),
+// then λ, and a short Nelder–Mead run over every free parameter follows: the needle, once found in a short
+// window, is followed as it narrows. The best track on the full window is the result.
 //
-// It costs a few thousand evaluations of (28), most of them on short windows; the fitter runs it only when the
-// lateral-motion check flags the kept point, and keeps its result only when (28) on the full window is lower.
+// It costs about ten thousand evaluations of (28), most of them on short windows; the fitter keeps its result
+// only when (28) on the full window is lower.
 #pragma once
 
 #include <cstdint>
@@ -60,7 +62,7 @@ struct LateralRescanResult {
   double epsilon_rad_s = 0.0;  // (28) there on the full window (feasible only)
   bool feasible = false;
   bool converged = false;    // the last local search converged
-  int windows = 0;
+  int windows = 0;          // summed over the tracked starts
   std::int64_t evaluations = 0;
   double wall_time_s = 0.0;
 };
