@@ -79,6 +79,7 @@ std::string LateralMotionJson(const LateralMotionCheck& c) {
                         {"measured_rms_rad_s", number(c.measured_rms_rad_s)},
                         {"residual_rms_rad_s", number(c.residual_rms_rad_s)},
                         {"unexplained_fraction", number(c.unexplained_fraction)},
+                        {"judged", c.judged},
                         {"unexplained", c.unexplained}}
       .dump();
 }

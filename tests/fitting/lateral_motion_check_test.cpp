@@ -136,6 +136,7 @@ TEST(LateralMotionCheck, AFitThatLeavesTheLateralMotionUnexplainedWarnsAndDeterm
   EXPECT_EQ(s.uncertainty.determined[static_cast<std::size_t>(ParameterId::kLambda)], Determination::kNo);
   const auto json = nlohmann::json::parse(s.ToJson());
   EXPECT_EQ(json["lateral_motion"]["unexplained"], true);
+  EXPECT_EQ(json["lateral_motion"]["judged"], true);
   EXPECT_EQ(json["parameters"]["lambda"]["determined"], "no");
   // Without the check, the same fit calls λ determined: the "no" above is the check's.
   options.lateral_motion.enabled = false;

@@ -49,7 +49,7 @@ struct LateralMotionCheck {
   bool unexplained = false;                // the fit is flagged
 };
 
-// {"available", "rest_noise_rad_s", "measured_rms_rad_s", "residual_rms_rad_s", "unexplained_fraction",
+// {"available", "rest_noise_rad_s", "measured_rms_rad_s", "residual_rms_rad_s", "unexplained_fraction", "judged",
 // "unexplained"} (numbers null when not available), for the fit JSON of the library and the command line.
 std::string LateralMotionJson(const LateralMotionCheck& check);
 
