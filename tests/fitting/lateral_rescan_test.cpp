@@ -155,7 +155,7 @@ TEST(LateralRescan, TheFitRescansWeakLateralMotionThatTheCheckCannotJudge) {
   EXPECT_FALSE(CheckLateralMotion(problem.objective, unflagged.parameters).judged);
   std::printf("weak lateral trial: ε %.6g rad/s with the rescan, %.6g without (truth %.6g)\n", fit.epsilon_rad_s,
               unflagged.epsilon_rad_s, truth_epsilon);
-  EXPECT_GT(unflagged.epsilon_rad_s, 1.02 * truth_epsilon);
+  EXPECT_GT(unflagged.epsilon_rad_s, 1.01 * fit.epsilon_rad_s);  // 1.03 × measured: the rescan is what lowers ε
 }
 
 TEST(LateralRescan, ResultDoesNotDependOnTheNumberOfThreads) {
