@@ -201,6 +201,12 @@ Interval NestedIn(Interval inner, const Interval& outer) {
   return inner;
 }
 
+// centre ± half_width, an end beyond a bound of `p` open (NaN): the linearised interval.
+Interval LinearisedInterval(double centre, double half_width, const Parameter& p) {
+  auto clip = [&](double x) { return x < p.lower || x > p.upper ? kNaN : x; };
+  return {clip(centre - half_width), clip(centre + half_width)};
+}
+
 // The part of the description that says how the 68 % intervals were made.
 std::string Describe68(double bulk_inflation, const char* how) {
   if (std::isnan(bulk_inflation)) return fmt::format("; 68 % intervals {} at the same level", how);
@@ -486,10 +492,9 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
       const Parameter& p = objective.parameters()[id];
       const double c = fitted.value(id);
       if (std::isfinite(sigma[k])) {
-        auto clip = [&](double v) { return v < p.lower || v > p.upper ? kNaN : v; };
         const double sigma_68 = sigma[k] * std::sqrt(kappa_68[k] / kappa[k]);
-        u.interval_68[k] = {clip(c - kZ68 * sigma_68), clip(c + kZ68 * sigma_68)};
-        u.interval_95[k] = {clip(c - kZ95 * sigma[k]), clip(c + kZ95 * sigma[k])};
+        u.interval_68[k] = LinearisedInterval(c, kZ68 * sigma_68, p);
+        u.interval_95[k] = LinearisedInterval(c, kZ95 * sigma[k], p);
       }
       u.determined[k] = Determine(u.interval_95[k], p.lower, p.upper, options.undetermined_range_fraction);
     }
@@ -568,8 +573,7 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
       } else {
         // An end beyond a bound is open, as in fast; NestedIn below closes it where the 95 % interval is closed.
         const double sigma_68 = linear_sigma[k] * std::sqrt(kappa_68[k] / kappa[k]);
-        auto clip = [&](double x) { return x < p.lower || x > p.upper ? kNaN : x; };
-        u.interval_68[k] = {clip(v - kZ68 * sigma_68), clip(v + kZ68 * sigma_68)};
+        u.interval_68[k] = LinearisedInterval(v, kZ68 * sigma_68, p);
       }
       u.interval_68[k] = NestedIn(u.interval_68[k], u.interval_95[k]);
       u.determined[k] = Determine(u.interval_95[k], p.lower, p.upper, options.undetermined_range_fraction);
