@@ -7,6 +7,8 @@
 // result in any thread count, and nothing to do when λ_lat is fixed.
 #include "rockfit/fitting/lateral_rescan.hpp"
 
+#include <array>
+
 #include <gtest/gtest.h>
 
 #include "build_type.hpp"
@@ -26,20 +28,22 @@ struct NeedleTrial {
   ParameterSet plateau;  // where the search had ended
 };
 
+// The problem of `trial` with its truth and the plateau where the search had ended (t0, α, λ, λ_lat, λ_lon).
+NeedleTrial WithPlateau(const testing::SynthTrial& trial, const std::array<double, 5>& plateau) {
+  NeedleTrial n{PrepareTrialProblem(trial.signal, trial.block, ParameterSet::Defaults()), trial.truth, trial.truth};
+  const ParameterId ids[] = {ParameterId::kT0, ParameterId::kAlpha, ParameterId::kLambda, ParameterId::kLambdaLat,
+                             ParameterId::kLambdaLon};
+  for (std::size_t i = 0; i < plateau.size(); ++i) n.plateau[ids[i]].value = plateau[i];
+  return n;
+}
+
 NeedleTrial MakeNeedleTrial() {
   const core::Block block = core::Block::FromDensity(0.05, 0.02702412972219614, 0.23094777956419704, 2692.0);
   const double t0_s = 1.3466395022554005;
-  const testing::SynthTrial trial =
+  return WithPlateau(
       testing::MakeSynthTrial(0.15615324225483226, 1.4627796709001304, 0.38859182743319126, 0.5451761153474652,
-                              204506704, t0_s, t0_s + 2.5, Eigen::Vector3d(0.2027, -0.2292, 0.1156), block);
-  NeedleTrial n{PrepareTrialProblem(trial.signal, trial.block, ParameterSet::Defaults()), trial.truth, trial.truth};
-  const std::pair<ParameterId, double> plateau[] = {{ParameterId::kT0, 1.3469684721706037},
-                                                    {ParameterId::kAlpha, 0.15603740486112044},
-                                                    {ParameterId::kLambda, 0.7427532653974394},
-                                                    {ParameterId::kLambdaLat, -0.11451666500588317},
-                                                    {ParameterId::kLambdaLon, 0.543030821209235}};
-  for (const auto& [id, value] : plateau) n.plateau[id].value = value;
-  return n;
+                              204506704, t0_s, t0_s + 2.5, Eigen::Vector3d(0.2027, -0.2292, 0.1156), block),
+      {1.3469684721706037, 0.15603740486112044, 0.7427532653974394, -0.11451666500588317, 0.543030821209235});
 }
 
 // A trial of the coverage study (seed 7, trial 14): λ_lat = 0.283 with λ = 0.361; the search ended on the
@@ -48,17 +52,11 @@ NeedleTrial MakeNeedleTrial() {
 NeedleTrial MakeTiltedNeedleTrial() {
   const core::Block block = core::Block::FromDensity(0.05, 0.061824982449641804, 0.2239873020375714, 2692.0);
   const double t0_s = 1.0844500346839667;
-  const testing::SynthTrial trial = testing::MakeSynthTrial(
-      0.1128045452495944, 0.36146156592854184, 0.2829374259095775, 0.7139120812485118, 1736381712, t0_s, t0_s + 2.5,
-      Eigen::Vector3d(-0.1838130323923144, 0.06308341900936548, -0.09343144544708279), block);
-  NeedleTrial n{PrepareTrialProblem(trial.signal, trial.block, ParameterSet::Defaults()), trial.truth, trial.truth};
-  const std::pair<ParameterId, double> plateau[] = {{ParameterId::kT0, 1.0847294031106722},
-                                                    {ParameterId::kAlpha, 0.1125455704045139},
-                                                    {ParameterId::kLambda, 0.0802601886911894},
-                                                    {ParameterId::kLambdaLat, -0.06507127023348565},
-                                                    {ParameterId::kLambdaLon, 0.6981353499742831}};
-  for (const auto& [id, value] : plateau) n.plateau[id].value = value;
-  return n;
+  return WithPlateau(
+      testing::MakeSynthTrial(0.1128045452495944, 0.36146156592854184, 0.2829374259095775, 0.7139120812485118,
+                              1736381712, t0_s, t0_s + 2.5,
+                              Eigen::Vector3d(-0.1838130323923144, 0.06308341900936548, -0.09343144544708279), block),
+      {1.0847294031106722, 0.1125455704045139, 0.0802601886911894, -0.06507127023348565, 0.6981353499742831});
 }
 
 TEST(LateralRescan, FindsTheNeedleOfTheTruthFromThePlateauOfPlanarMotion) {
