@@ -36,21 +36,6 @@ GroundMotion GroundMotion::Uniform(double dt_s, std::vector<Eigen::Vector3d> a_W
   return g;
 }
 
-Eigen::Vector3d GroundMotion::Acceleration_W(double t_s) const {
-  if (a_W_.empty() || t_s < t_start_s_) return Eigen::Vector3d::Zero();
-  const double x = (t_s - t_start_s_) / dt_s_;
-  const double last = static_cast<double>(a_W_.size() - 1);
-  if (x > last) return t_s <= t_end_s() ? a_W_.back() : Eigen::Vector3d::Zero();
-  // At a sample time (to the round-off of t/dt) the sample itself, so that breaks are exact.
-  const double nearest = std::round(x);
-  if (std::abs(x - nearest) <= 4.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, x)) {
-    return a_W_[static_cast<std::size_t>(nearest)];
-  }
-  const std::size_t k = std::min(static_cast<std::size_t>(x), a_W_.size() - 2);
-  const double u = (t_s - SampleTime(k)) / dt_s_;
-  return (1.0 - u) * a_W_[k] + u * a_W_[k + 1];
-}
-
 double GroundMotion::NextBreak(double t_s) const {
   if (a_W_.empty()) return std::numeric_limits<double>::infinity();
   const double floor_s = TimeFloor(t_s);

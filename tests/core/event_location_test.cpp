@@ -3,6 +3,8 @@
 #include "rockfit/core/event_location.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -31,6 +33,64 @@ TEST(RootPolisher, FindsASimpleRootToTheTolerance) {
 TEST(RootPolisher, RefusesABracketWithoutASignChange) {
   RootPolisher polisher;
   EXPECT_FALSE(polisher.Solve([](double x) { return x * x + 1.0; }, -1.0, 2.0, kTimeTol).has_value());
+}
+
+// A guard with the value and rate of f, counting its evaluations.
+template <class F, class DF>
+struct Counted {
+  F f;
+  DF df;
+  mutable int evaluations = 0;
+  GuardValue operator()(double t) const {
+    ++evaluations;
+    return {f(t), df(t)};
+  }
+};
+template <class F, class DF>
+Counted<F, DF> Count(F f, DF df) {
+  return {f, df};
+}
+
+TEST(PolishCrossing, ReachesRoundOffOfARotatingHeightInFewEvaluations) {
+  // A height under a steady rotation, cos t − 1/2, crosses zero at π/3; a 1 ms bracket around it, as an
+  // integrator step would give.
+  const auto g = Count([](double t) { return std::cos(t) - 0.5; }, [](double t) { return -std::sin(t); });
+  const double a = M_PI / 3.0 - 4e-4;
+  const double b = M_PI / 3.0 + 6e-4;
+  const auto root = PolishCrossing(g, a, g(a), b, g(b));
+  ASSERT_TRUE(root.has_value());
+  EXPECT_NEAR(*root, M_PI / 3.0, 4.0 * std::numeric_limits<double>::epsilon());
+  EXPECT_LE(g.evaluations - 2, 5);  // (the two ends are the caller's)
+  // Brent's method on the value alone, to the simulator's former tolerance of 1e-12 s, for comparison.
+  int brent_evaluations = 0;
+  RootPolisher polisher;
+  ASSERT_TRUE(polisher.Solve([&](double t) { ++brent_evaluations; return std::cos(t) - 0.5; }, a, b, kTimeTol));
+  std::printf("evaluations inside the bracket: Newton %d (to round-off), Brent %d (to 1e-12 s)\n",
+              g.evaluations - 2, brent_evaluations - 2);
+}
+
+TEST(PolishCrossing, FallsBackToBisectionWhereNewtonCycles) {
+  // Newton's method on x³ − 2x + 2 cycles between 0 and 1; the real root is near −1.7693.
+  const auto g = Count([](double x) { return x * x * x - 2.0 * x + 2.0; }, [](double x) { return 3.0 * x * x - 2.0; });
+  const auto root = PolishCrossing(g, -3.0, g(-3.0), 1.0, g(1.0));
+  ASSERT_TRUE(root.has_value());
+  EXPECT_NEAR(g.f(*root), 0.0, 1e-13);
+  EXPECT_LT(g.evaluations, 80);
+}
+
+TEST(PolishCrossing, AWrongRateStillConvergesByBisection) {
+  // A rate of zero (an undefined Newton step) everywhere: every step is a bisection.
+  const auto g = Count([](double t) { return 0.3 - t; }, [](double) { return 0.0; });
+  const auto root = PolishCrossing(g, 0.0, g(0.0), 1.0, g(1.0));
+  ASSERT_TRUE(root.has_value());
+  EXPECT_NEAR(*root, 0.3, 4.0 * std::numeric_limits<double>::epsilon());
+}
+
+TEST(PolishCrossing, RefusesABracketWithoutASignChangeAndANonFiniteGuard) {
+  const auto positive = Count([](double t) { return 1.0 + t * t; }, [](double t) { return 2.0 * t; });
+  EXPECT_FALSE(PolishCrossing(positive, -1.0, positive(-1.0), 1.0, positive(1.0)).has_value());
+  const auto broken = Count([](double t) { return t < 0.5 ? 1.0 - t : std::nan(""); }, [](double) { return -1.0; });
+  EXPECT_FALSE(PolishCrossing(broken, 0.0, GuardValue{1.0, -1.0}, 2.0, GuardValue{-1.0, -1.0}).has_value());
 }
 
 TEST(FindFirstDescent, LocatesASignChange) {

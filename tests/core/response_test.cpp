@@ -274,24 +274,44 @@ GroundMotion Mapped(const GroundMotion& g, const Eigen::Matrix3d& M) {
   return GroundMotion::Uniform(g.dt_s(), a);
 }
 
-// Round-off differs between the two runs (other vertex numbers, mirrored signs) and grows over hundreds of
-// impacts of 3D rocking: after ~370 impacts it reaches 3e-9 s. Far below any physical difference.
+// Once the block wobbles along a base edge its motion is sensitive to its initial state: a difference of
+// round-off between two runs (other vertex numbers, mirrored signs, another order of a sum) grows by two orders
+// of magnitude within a few tens of impacts. Two runs that must agree are compared over the impacts before that
+// sensitivity has grown round-off to kRoundOffGrown_s, as two runs of the original record perturbed at round-off
+// (scaled by 1 ± 1e-15) measure; there they must agree to kSymmetryTimeTol_s, a hundred times more. A broken
+// symmetry shows at once by far more: a wrong sign of λ_lat at the first facet impact moves the next impact by
+// milliseconds.
+constexpr double kRoundOffGrown_s = 1e-10;
 constexpr double kSymmetryTimeTol_s = 1e-8;
-constexpr double kSymmetryTiltTol_rad = 1e-8;
+// The compared impacts must reach into the 3D wobble, not only the first landings.
+constexpr std::size_t kMinComparedImpacts = 100;
 
-void ExpectSameResponse(const Response& a, const Response& b) {
-  ASSERT_EQ(a.summary.end_reason, b.summary.end_reason);
-  EXPECT_NEAR(a.summary.t_end_s, b.summary.t_end_s, kSymmetryTimeTol_s);
-  EXPECT_NEAR(a.summary.peak_tilt_rad, b.summary.peak_tilt_rad, kSymmetryTiltTol_rad);
+// How many of the original's impacts precede the growth of round-off to kRoundOffGrown_s.
+std::size_t RoundOffHorizon(const Block& block, const ModelParameters& params, const GroundMotion& g,
+                            const ResponseOptions& options, const std::vector<double>& t_original) {
+  std::size_t horizon = t_original.size();
+  for (const double factor : {1.0 + 1e-15, 1.0 - 1e-15}) {
+    const std::vector<double> t = ImpactTimes(Respond(block, params, g.Scaled(factor), options).trajectory);
+    std::size_t k = 0;
+    while (k < std::min(t.size(), t_original.size()) && std::abs(t[k] - t_original[k]) <= kRoundOffGrown_s) ++k;
+    horizon = std::min(horizon, k);
+  }
+  return horizon;
+}
+
+void ExpectSameImpactTimes(const Response& a, const Response& b, std::size_t horizon) {
+  EXPECT_EQ(a.summary.end_reason, b.summary.end_reason);
+  ASSERT_GE(horizon, kMinComparedImpacts);
   const std::vector<double> ta = ImpactTimes(a.trajectory);
   const std::vector<double> tb = ImpactTimes(b.trajectory);
-  ASSERT_EQ(ta.size(), tb.size());
+  ASSERT_GE(tb.size(), horizon);
   double worst = 0.0;
-  for (std::size_t k = 0; k < ta.size(); ++k) {
+  for (std::size_t k = 0; k < horizon; ++k) {
     EXPECT_NEAR(ta[k], tb[k], kSymmetryTimeTol_s) << "impact " << k;
     worst = std::max(worst, std::abs(ta[k] - tb[k]));
   }
-  std::printf("%zu impacts, largest difference of impact times %.2e s\n", ta.size(), worst);
+  std::printf("%zu of %zu impacts before round-off grows to %.0e s; largest difference of their times %.2e s\n",
+              horizon, ta.size(), kRoundOffGrown_s, worst);
 }
 
 ModelParameters ThreeD() {
@@ -314,7 +334,8 @@ TEST(Respond, MirroredRecordGivesTheMirroredResponse) {
   ModelParameters mirrored_params = ThreeD();
   mirrored_params.lambda_lat = -mirrored_params.lambda_lat;
   const Response mirrored = Respond(block, mirrored_params, Mapped(g, Eigen::Vector3d(1, -1, 1).asDiagonal()), options);
-  ExpectSameResponse(original, mirrored);
+  ExpectSameImpactTimes(original, mirrored,
+                        RoundOffHorizon(block, ThreeD(), g, options, ImpactTimes(original.trajectory)));
 }
 
 TEST(Respond, RotatedBlockAndRecordGiveTheSameResponse) {
@@ -326,7 +347,8 @@ TEST(Respond, RotatedBlockAndRecordGiveTheSameResponse) {
   const Response original = Respond(block, ThreeD(), g, options);
   ASSERT_NE(original.summary.end_reason, EndReason::kFailed) << original.summary.message;
   const Response rotated = Respond(turned, ThreeD(), g.Rotated(M_PI / 2), options);
-  ExpectSameResponse(original, rotated);
+  ExpectSameImpactTimes(original, rotated,
+                        RoundOffHorizon(block, ThreeD(), g, options, ImpactTimes(original.trajectory)));
 }
 
 // Kinetic plus potential energy of a sample, about its contact, and the velocity of the COM relative to the table.

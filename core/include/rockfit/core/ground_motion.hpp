@@ -8,7 +8,10 @@
 //   const Eigen::Vector3d a = quake.Acceleration_W(2.345);
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -20,6 +23,9 @@ inline constexpr double kRecordGravity = 9.80665;
 
 class GroundMotion {
  public:
+  // Relative round-off of t/dt within which t is a sample time.
+  static constexpr double kSampleTimeRoundOff = 4.0 * std::numeric_limits<double>::epsilon();
+
   GroundMotion() = default;
   // Samples a_W[k] [m/s²] at t = t_start_s + k·dt_s. Throws InvalidArgument for dt ≤ 0, fewer than two
   // samples or a non-finite value.
@@ -34,8 +40,22 @@ class GroundMotion {
   const Eigen::Vector3d& Sample(std::size_t k) const { return a_W_[k]; }
   const std::vector<Eigen::Vector3d>& samples_W() const { return a_W_; }
 
-  // a_g(t): linear between samples, exactly the sample at a sample time, zero outside the record.
-  Eigen::Vector3d Acceleration_W(double t_s) const;
+  // a_g(t): linear between samples, exactly the sample at a sample time, zero outside the record. Inline: the
+  // right-hand side of every mode under ground motion calls it at each integrator stage.
+  Eigen::Vector3d Acceleration_W(double t_s) const {
+    if (a_W_.empty() || t_s < t_start_s_) return Eigen::Vector3d::Zero();
+    const double x = (t_s - t_start_s_) / dt_s_;  // ≥ 0
+    const double last = static_cast<double>(a_W_.size() - 1);
+    if (x > last) return t_s <= t_end_s() ? a_W_.back() : Eigen::Vector3d::Zero();
+    // At a sample time (to the round-off of t/dt) the sample itself, so that breaks are exact. (The nearest
+    // integer by truncation of x + 1/2, x ≥ 0: it differs from rounding only next to a half, where x is far from
+    // any integer anyway.)
+    const auto nearest = static_cast<std::size_t>(x + 0.5);
+    if (std::abs(x - static_cast<double>(nearest)) <= kSampleTimeRoundOff * std::max(1.0, x)) return a_W_[nearest];
+    const std::size_t k = std::min(static_cast<std::size_t>(x), a_W_.size() - 2);
+    const double u = (t_s - SampleTime(k)) / dt_s_;
+    return (1.0 - u) * a_W_[k] + u * a_W_[k + 1];
+  }
   // The first sample time after t_s by more than the round-off of t (+∞ after the last sample): where the
   // slope of a_g changes.
   double NextBreak(double t_s) const;
