@@ -13,9 +13,11 @@ Eigen::Vector3d BodyFromWorld(const VertexMode::State& y, const Eigen::Vector3d&
 
 }  // namespace
 
-GroundVertexMode::GroundVertexMode(const Block& block, int vertex, double gravity_m_s2, const GroundMotion& ground)
+GroundVertexMode::GroundVertexMode(const Block& block, int vertex, double gravity_m_s2, const GroundMotion& ground,
+                                   bool falls_on_side)
     : free_(block, vertex, gravity_m_s2),
       ground_(&ground),
+      falls_on_side_(falls_on_side),
       mass_kg_(block.mass()),
       gravity_m_s2_(gravity_m_s2),
       p_PC_B_(free_.dynamics().p_PC_B()),
@@ -37,6 +39,13 @@ void GroundVertexMode::operator()(double t, const State& y, State& dydt) const {
   dydt.tail<3>() = w_dot_B;
 }
 
+GuardValue GroundVertexMode::SideLanding(int index, const State& y) const {
+  if (index != VertexMode::kOverNext) return {1.0, 0.0};
+  const Eigen::Vector3d up_B = VertexDynamics::UpInBody(y);
+  // d/dt up_B = up_B × w_B (a world-fixed vector seen from the rotating body).
+  return {up_B.z(), up_B.cross(VertexDynamics::AngularVelocity(y)).z()};
+}
+
 ContactForce GroundVertexMode::Force(double t, const State& y, const State& dydt) const {
   const Eigen::Vector3d a_W = ground_->Acceleration_W(t);
   const Eigen::Vector3d f_W(-a_W.x(), -a_W.y(), -gravity_m_s2_ - a_W.z());
@@ -54,9 +63,10 @@ ContactForce GroundVertexMode::Force(double t, const State& y, const State& dydt
 }
 
 GroundEdgeMode::GroundEdgeMode(const Block& block, int i, int j, const Eigen::Quaterniond& q_yaw, double gravity_m_s2,
-                               const GroundMotion& ground)
+                               const GroundMotion& ground, bool falls_on_side)
     : free_(block, i, j, q_yaw, gravity_m_s2),
       ground_(&ground),
+      falls_on_side_(falls_on_side),
       mass_kg_(block.mass()),
       gravity_m_s2_(gravity_m_s2),
       d_m_(free_.dynamics().offset_m()),
@@ -142,11 +152,13 @@ double GroundEdgeMode::EndHold(int end, double t, const State& y) const {
 }
 
 GuardValue GroundEdgeMode::Guard(int index, double t, const State& y) const {
+  // Under OverturnRule::kFallsOnSide the block lies on a side at ψ = π/2: the guard is cos ψ.
+  if (index == kOver && falls_on_side_) return {std::cos(y[0]), -std::sin(y[0]) * y[1]};
   if (index < EdgeMode::kNumGuards) return free_.Guard(index, y);
   const int end = index - kLoadFirst;
-  // The rate by a central difference along the motion (y ± δ·ẏ at t ± δ): it only decides whether a load that
-  // starts at zero rises or falls and whether a step holds an interior minimum; the root itself is polished on
-  // the values.
+  // The rate by a central difference along the motion (y ± δ·ẏ at t ± δ): it decides whether a load that starts
+  // at zero rises or falls and whether a step holds an interior minimum, and it is the slope of the Newton steps
+  // that polish a crossing (its O(δ²) error only slows their convergence).
   State dydt;
   (*this)(t, y, dydt);
   const double ahead = EndHold(end, t + kLoadRateStep_s, y + kLoadRateStep_s * dydt);

@@ -25,17 +25,24 @@ ResponseSummary SummariseResponse(const Block& block, const GroundMotion& ground
   s.overturned = trajectory.end_reason == EndReason::kOverturned;
   if (s.overturned) s.t_overturn_s = trajectory.t_end_s;
   s.critical_tilt_rad = std::atan(std::min(block.b1(), block.b2()) / block.h());
-  for (std::size_t k = 0; k < trajectory.t_s.size(); ++k) {
-    s.peak_rate_rad_s = std::max(s.peak_rate_rad_s, trajectory.w_B[k].norm());
-    if (k >= trajectory.q_WB.size()) continue;
-    const Eigen::Quaterniond& q = trajectory.q_WB[k];
+  const auto add_state = [&s](double t, const Eigen::Quaterniond& q, const Eigen::Vector3d& w_B) {
+    s.peak_rate_rad_s = std::max(s.peak_rate_rad_s, w_B.norm());
     const double tilt = std::acos(std::clamp(q.toRotationMatrix()(2, 2), -1.0, 1.0));
     if (tilt > s.peak_tilt_rad) {
       s.peak_tilt_rad = tilt;
-      s.t_peak_tilt_s = trajectory.t_s[k];
+      s.t_peak_tilt_s = t;
     }
     s.peak_rotation_rad = std::max(s.peak_rotation_rad, 2.0 * std::atan2(q.vec().norm(), std::abs(q.w())));
+  };
+  for (std::size_t k = 0; k < trajectory.t_s.size(); ++k) {
+    if (k < trajectory.q_WB.size()) {
+      add_state(trajectory.t_s[k], trajectory.q_WB[k], trajectory.w_B[k]);
+    } else {
+      s.peak_rate_rad_s = std::max(s.peak_rate_rad_s, trajectory.w_B[k].norm());
+    }
   }
+  // The end state, between samples: where an overturning block was when the run stopped.
+  if (!trajectory.q_WB.empty()) add_state(trajectory.t_end_s, trajectory.end_q_WB, trajectory.end_w_B);
   for (const ImpactRecord& impact : trajectory.impacts) {
     if (impact.kind == ImpactKind::kEdge || impact.kind == ImpactKind::kFacet) ++s.num_impacts;
     if (impact.kind == ImpactKind::kUplift && impact.contact_before.first == 0) s.uplift_times_s.push_back(impact.t_s);
@@ -64,6 +71,7 @@ Response Respond(const Block& block, const ModelParameters& params, const Ground
   Response response;
   response.trajectory = Simulate(block, params, simulation, ground, options.start);
   response.summary = SummariseResponse(block, ground, response.trajectory);
+  response.summary.overturn_rule = simulation.overturn;
   return response;
 }
 

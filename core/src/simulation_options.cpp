@@ -46,6 +46,24 @@ bool FromString(std::string_view text, StopCondition* stop) {
   return false;
 }
 
+const char* ToString(OverturnRule rule) {
+  switch (rule) {
+    case OverturnRule::kComOverSupport: return "support";
+    case OverturnRule::kFallsOnSide: return "side";
+  }
+  return "support";
+}
+
+bool FromString(std::string_view text, OverturnRule* rule) {
+  for (OverturnRule r : {OverturnRule::kComOverSupport, OverturnRule::kFallsOnSide}) {
+    if (text == ToString(r)) {
+      *rule = r;
+      return true;
+    }
+  }
+  return false;
+}
+
 const char* ToString(EndReason reason) {
   switch (reason) {
     case EndReason::kPhase4: return "phase4";

@@ -308,7 +308,10 @@ std::optional<HybridRun::Next> HybridRun::StopUnlessEvent(const ModeT& mode, con
 }
 
 HybridRun::Next HybridRun::RunVertex() {
-  if (ground_ != nullptr) return RunVertexIn(GroundVertexMode(block_, vertex_start_.vertex, gravity_, *ground_));
+  if (ground_ != nullptr) {
+    return RunVertexIn(GroundVertexMode(block_, vertex_start_.vertex, gravity_, *ground_,
+                                        options_.overturn == OverturnRule::kFallsOnSide));
+  }
   return RunVertexIn(VertexMode(block_, vertex_start_.vertex, gravity_));
 }
 
@@ -329,7 +332,8 @@ HybridRun::Next HybridRun::RunVertexIn(const ModeT& mode) {
 HybridRun::Next HybridRun::RunEdge() {
   const Contact& e = edge_start_.edge;
   if (ground_ != nullptr) {
-    return RunEdgeIn(GroundEdgeMode(block_, e.first, e.second, edge_start_.q_yaw, gravity_, *ground_));
+    return RunEdgeIn(GroundEdgeMode(block_, e.first, e.second, edge_start_.q_yaw, gravity_, *ground_,
+                                    options_.overturn == OverturnRule::kFallsOnSide));
   }
   return RunEdgeIn(EdgeMode(block_, e.first, e.second, edge_start_.q_yaw, gravity_));
 }
@@ -651,6 +655,9 @@ HybridRun::Next HybridRun::Stop(EndReason reason, double t, const EndState& stat
     sampler_.Emit(state.mode, state.w_B, [&state] { return state.q_WB; });
   }
   out_->t_end_s = t;
+  out_->end_mode = state.mode;
+  out_->end_q_WB = state.q_WB;
+  out_->end_w_B = state.w_B;
   out_->end_reason = reason;
   out_->message = std::move(message);
   return Next::kStopped;

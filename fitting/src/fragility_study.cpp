@@ -102,6 +102,8 @@ std::string FragilityStudyOptions::SettingsText() const {
                    response.start == core::GroundStart::kFlatAtRest ? "flat" : "options", response.tail_s,
                    response.end_at_rest, o.rate_hz, o.gravity_m_s2, o.rel_tol, o.abs_tol, o.event_time_tol_s,
                    o.max_step_s, o.zeno_dt_s, o.rest_energy_height_m, o.max_impacts);
+  // Only when not the default, so that journals of studies under the default rule still resume.
+  if (o.overturn != core::OverturnRule::kComOverSupport) s += fmt::format(" overturn={}", core::ToString(o.overturn));
   return s;
 }
 

@@ -254,6 +254,85 @@ TEST(Respond, OneSinePulseOverturningWithoutImpactMatchesTheLinearisedClosedForm
   }
 }
 
+// Under OverturnRule::kFallsOnSide the motion goes on past θ_c, where the second half of the pulse can pull the
+// block back: the boundary is where the block ends up outside the separatrix of the free motion after the pulse
+// without having landed, the closed form judged at the pulse's end (Zhang & Makris's criterion).
+TEST(Respond, OneSinePulseFallingOnASideWithoutImpactMatchesTheClosedFormJudgedAtThePulsesEnd) {
+  const Block block = Block::FromDensity(0.005, 0.005, 0.5, 2500);
+  const double alpha = std::atan(block.b1() / block.h());
+  const double p = std::sqrt(3.0 * kG / (4.0 * std::hypot(block.b1(), block.h())));
+  constexpr double kRelTol = 2e-3;        // as in the test above
+  constexpr double kBisectionTol = 1e-4;  // in units of g α
+  for (const double ratio : {1.0, 2.0, 3.0, 4.0}) {
+    const double period = 2.0 * M_PI / (ratio * p);
+    const double dt = period / 400.0;
+    const auto falls_before_landing = [&](double a, OverturnRule rule) {
+      ResponseOptions options;
+      options.simulation.rate_hz = 10.0;
+      options.simulation.overturn = rule;
+      options.tail_s = 25.0 / p;
+      const Response r =
+          Respond(block, Planar(1.0), AlongX(SinePulse(a * kG * alpha, 1.0 / period, 1.0, dt), dt), options);
+      const bool landed = std::any_of(r.trajectory.impacts.begin(), r.trajectory.impacts.end(),
+                                      [](const ImpactRecord& i) { return i.kind == ImpactKind::kFacet; });
+      EXPECT_NE(r.summary.end_reason, EndReason::kFailed) << "a = " << a << ": " << r.summary.message;
+      return r.summary.overturned && !landed;
+    };
+    const double on_side = MinimumOverturningAmplitude(
+        [&](double a) { return falls_before_landing(a, OverturnRule::kFallsOnSide); }, 1.0, 20.0, kBisectionTol);
+    const double over_support = MinimumOverturningAmplitude(
+        [&](double a) { return falls_before_landing(a, OverturnRule::kComOverSupport); }, 1.0, 20.0, kBisectionTol);
+    const double at_pulse_end = MinimumOverturningAmplitude(
+        [&](double a) { return testing::OverturnsAtPulseEndLinearised(ratio, a); }, 1.0, 20.0, kBisectionTol);
+    std::printf("one-sine pulse, no landing  ω_p/p = %.1f   a_p/(g α): falls on a side %.4f   closed form judged at "
+                "the pulse's end %.4f   (COM over the support: %.4f)\n", ratio, on_side, at_pulse_end, over_support);
+    EXPECT_NEAR(on_side, at_pulse_end, kRelTol * at_pulse_end) << "ω_p/p = " << ratio;
+    // The two rules differ by far more than the tolerance (4–19 %): the test tells them apart.
+    EXPECT_GT(on_side, over_support * (1.0 + 10.0 * kRelTol)) << "ω_p/p = " << ratio;
+  }
+}
+
+// The whole curve with impacts under the side rule, against the planar integration carried on to θ = π/2: the
+// formulation of Zhang & Makris (2001): Housner's restitution, the equation of motion through θ_c.
+TEST(Respond, OneSinePulseFallingOnASideMatchesIndependentPlanarIntegrationCarriedToNinetyDegrees) {
+  ROCKFIT_REQUIRE_OPTIMISED_BUILD();
+  const Block block = Block::FromDensity(0.05, 0.05, 0.5, 2500);  // θ_c = 0.0997 rad
+  const double theta_c = std::atan(block.b1() / block.h());
+  const double p = std::sqrt(3.0 * kG / (4.0 * std::hypot(block.b1(), block.h())));
+  const double tol = 1e-3;
+  for (const double ratio : {2.0, 3.0, 4.0, 6.0}) {
+    const double period = 2.0 * M_PI / (ratio * p);
+    const double dt = period / 400.0;
+    const auto pulse = [&](double amplitude_ratio) {
+      return SinePulse(amplitude_ratio * kG * std::tan(theta_c), 1.0 / period, 1.0, dt);
+    };
+    const double t_run = period + 8.0 / p;
+    const double rockfit = MinimumOverturningAmplitude(
+        [&](double a) {
+          ResponseOptions options;
+          options.simulation.rate_hz = 10.0;
+          options.simulation.overturn = OverturnRule::kFallsOnSide;
+          options.tail_s = t_run - period;
+          const Response r = Respond(block, Planar(1.0), AlongX(pulse(a), dt), options);
+          if (r.summary.overturned) {
+            EXPECT_NEAR(r.summary.peak_tilt_rad, M_PI / 2.0, 1e-9);  // it lies on a side
+          }
+          return r.summary.overturned;
+        },
+        1.0, 20.0, tol);
+    const double planar = MinimumOverturningAmplitude(
+        [&](double a) {
+          testing::PlanarBaseRocking m = PlanarModel(block, 1.0, pulse(a), dt);
+          m.overturn_tilt_rad = M_PI / 2.0;
+          return testing::SimulatePlanarBaseRocking(m, t_run, 0.1, 2e-3).overturned;
+        },
+        1.0, 20.0, tol);
+    std::printf("one-sine pulse, falls on a side  ω_p/p = %.1f   a_p/(g tan θ): rockfit %.4f   planar reference %.4f\n",
+                ratio, rockfit, planar);
+    EXPECT_NEAR(rockfit, planar, 2.0 * tol) << "ω_p/p = " << ratio;
+  }
+}
+
 // A two-component record: a band of sines along x and y.
 GroundMotion TwoComponentRecord(double scale) {
   const double dt = 0.005;
@@ -420,6 +499,26 @@ TEST(Respond, RandomRecordsUpToThreeGAlwaysEndWithAStatus) {
                 vertical ? " + vertical" : "", ToString(r.summary.end_reason), r.summary.t_end_s, r.summary.num_impacts,
                 1e3 * r.summary.wall_time_s);
   }
+}
+
+TEST(Respond, UnderTheSideRuleADiagonalPushRocksTheBlockOnAVertexAndLaysItOnASide) {
+  // A strong diagonal step of 0.4 s: the block rocks on a vertex and falls; it ends with its z axis horizontal.
+  const Block block = GraniteBlock();
+  std::vector<Eigen::Vector3d> a(81, Eigen::Vector3d::Zero());
+  for (std::size_t k = 0; k < a.size(); ++k) a[k] = 0.9 * kG * Eigen::Vector3d(1.0, 0.8, 0.0).normalized();
+  const GroundMotion step = GroundMotion::Uniform(0.005, a);
+  ResponseOptions support;
+  ResponseOptions side;
+  side.simulation.overturn = OverturnRule::kFallsOnSide;
+  const Response over_support = Respond(block, ThreeD(), step, support);
+  const Response on_side = Respond(block, ThreeD(), step, side);
+  ASSERT_TRUE(over_support.summary.overturned) << over_support.summary.message;
+  ASSERT_TRUE(on_side.summary.overturned) << on_side.summary.message;
+  EXPECT_TRUE(std::any_of(on_side.trajectory.mode.begin(), on_side.trajectory.mode.end(),
+                          [](const Mode& m) { return m.kind == ModeKind::kVertex; }));
+  EXPECT_NEAR(on_side.summary.peak_tilt_rad, M_PI / 2.0, 1e-9);
+  EXPECT_GT(*on_side.summary.t_overturn_s, *over_support.summary.t_overturn_s);
+  EXPECT_LT(over_support.summary.peak_tilt_rad, 1.0);  // the support rule stops near θ_c
 }
 
 }  // namespace

@@ -4,7 +4,8 @@
 //   J θ̈ = s m [ −g R sin(θ_c − |θ|) + s a_x(t) R cos(θ_c − |θ|) ],   s = sign θ,   J = Θ_yy + m R²,
 // θ > 0 rocking about the edge x = −b1 (lifted by a_x > 0), θ̇⁺ = r θ̇⁻ at θ = 0 with r of (6); the block
 // leaves rest when a_x h > g b1 (θ > 0) or −a_x h > g b1 (θ < 0), returns to rest when |θ̇| after an impact
-// is below a threshold, and overturns when |θ| reaches θ_c. Nothing here uses rockfit's simulator.
+// is below a threshold, and overturns when |θ| reaches θ_c (or, when asked, π/2: it lies on its side). Nothing
+// here uses rockfit's simulator.
 #pragma once
 
 #include <algorithm>
@@ -27,6 +28,9 @@ struct PlanarBaseRocking {
   double dt_record_s = 0.01;
   std::vector<double> a_x;  // record samples at k·dt, linear between, zero outside
   double rest_rate_rad_s = 1e-6;
+  // Overturned when |θ| reaches this; 0: θ_c (the COM over the edge). π/2: the block lies on its side, the
+  // equation going on past θ_c, where the table can still pull the block back.
+  double overturn_tilt_rad = 0.0;
 
   double R() const { return std::hypot(b_m, h_m); }
   double ThetaC() const { return std::atan2(b_m, h_m); }
@@ -101,7 +105,7 @@ inline PlanarResult SimulatePlanarBaseRocking(const PlanarBaseRocking& m, double
   double t = 0.0;
   double y[2] = {0.0, 0.0};
   bool resting = true;
-  const double theta_c = m.ThetaC();
+  const double theta_over = m.overturn_tilt_rad > 0.0 ? m.overturn_tilt_rad : m.ThetaC();
   while (t < t_end) {
     if (resting) {
       // Next uplift: the margins are linear between record samples.
@@ -139,7 +143,7 @@ inline PlanarResult SimulatePlanarBaseRocking(const PlanarBaseRocking& m, double
     detail::Advance(m, t, y, t1, y1);
     const double side = y[0] >= 0.0 ? 1.0 : -1.0;
     const bool crossed = side * y1[0] < 0.0;
-    const bool over = std::abs(y1[0]) >= theta_c;
+    const bool over = std::abs(y1[0]) >= theta_over;
     if (!crossed && !over) {
       if (t1 == output_time(next_output)) {
         out.output_theta.push_back(y1[0]);
@@ -157,7 +161,7 @@ inline PlanarResult SimulatePlanarBaseRocking(const PlanarBaseRocking& m, double
       const double mid = 0.5 * (lo + hi);
       double ym[2];
       detail::Advance(m, t, y, mid, ym);
-      const bool event = over ? std::abs(ym[0]) >= theta_c : side * ym[0] < 0.0;
+      const bool event = over ? std::abs(ym[0]) >= theta_over : side * ym[0] < 0.0;
       (event ? hi : lo) = mid;
     }
     double ye[2];

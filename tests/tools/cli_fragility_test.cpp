@@ -218,14 +218,16 @@ TEST(CliFragility, OneThreadTwoThreadsAndThreeMpiRanksGiveIdenticalDatasets) {
   ExpectSameDatasets(reference, FragilityDatasets(mpi), "mpirun -np 3");
 }
 
-TEST(CliFragility, DeterministicBlockIsZeroBelowAndOneAboveTheOverturningPgaFoundWithRespond) {
-  ROCKFIT_REQUIRE_OPTIMISED_BUILD();
+// The overturning PGA of a block without parameter spread under one record, by bisection with `rockfit respond`
+// under overturning rule `rule`; `fragility` under the same rule then gives 0 just below it and 1 just above.
+double ExpectFragilityStepAtTheOverturningPgaOfRespond(const std::string& rule) {
   // One record of the sample campaign at 30°, no parameter spread: bisection on --pga with `rockfit respond`.
   const std::string record = (SourceDir() / "data-samples" / "ground-motions" / "cp-seed2-0.45g.AT2").string();
   const std::vector<std::string> block{"--b1", "0.05000453", "--b2", "0.035", "--h", "0.2", "--density", "2692",
                                        "--lambda", "2.2", "--lambda-lat", "-1.9", "--lambda-lon", "0.22"};
   const auto overturns = [&](double pga_g) {
-    std::vector<std::string> args{"respond", "--record", record, "--angle", "30", "--pga", fmt::format("{:.17g}", pga_g)};
+    std::vector<std::string> args{"respond", "--record", record, "--angle", "30", "--pga", fmt::format("{:.17g}", pga_g),
+                                  "--overturn", rule};
     args.insert(args.end(), block.begin(), block.end());
     const CommandResult r = RunRockfit(args);  // the summary table (its JSON would carry every sample)
     EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -233,8 +235,8 @@ TEST(CliFragility, DeterministicBlockIsZeroBelowAndOneAboveTheOverturningPgaFoun
     return r.out.find("overturned      yes") != std::string::npos;
   };
   double low = 0.1, high = 1.5;
-  ASSERT_FALSE(overturns(low));
-  ASSERT_TRUE(overturns(high));
+  EXPECT_FALSE(overturns(low));
+  EXPECT_TRUE(overturns(high));
   constexpr double kRelativeBracket = 1e-4;  // the bracket's width relative to the PGA
   while (high - low > kRelativeBracket * high) {
     const double mid = 0.5 * (low + high);
@@ -243,15 +245,26 @@ TEST(CliFragility, DeterministicBlockIsZeroBelowAndOneAboveTheOverturningPgaFoun
   const ScratchDir dir("cli_fragility_extremes");
   std::vector<std::string> args{"fragility", "--record", record, "--angle", "30", "--pga",
                                 fmt::format("{:.17g},{:.17g}", low, high), "--samples", "3", "--json",
-                                "-o", (dir / "f.h5").string()};
+                                "--overturn", rule, "-o", (dir / "f.h5").string()};
   args.insert(args.end(), block.begin(), block.end());
   const CommandResult r = RunRockfit(args);
-  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  if (r.exit_code != 0) return high;
   const nlohmann::json levels = nlohmann::json::parse(r.out)["blocks"][0]["levels"];
   EXPECT_EQ(levels[0]["counted"].get<int>(), 3);
   EXPECT_EQ(levels[0]["overturning"]["probability"].get<double>(), 0.0) << "PGA " << low;
   EXPECT_EQ(levels[1]["overturning"]["probability"].get<double>(), 1.0) << "PGA " << high;
-  std::printf("overturning PGA of cp-seed2-0.45g.AT2 at 30°: between %.6f and %.6f g\n", low, high);
+  std::printf("overturning PGA of cp-seed2-0.45g.AT2 at 30°, rule %s: between %.6f and %.6f g\n", rule.c_str(), low,
+              high);
+  return high;
+}
+
+TEST(CliFragility, DeterministicBlockIsZeroBelowAndOneAboveTheOverturningPgaFoundWithRespond) {
+  ROCKFIT_REQUIRE_OPTIMISED_BUILD();
+  const double support = ExpectFragilityStepAtTheOverturningPgaOfRespond("support");
+  // Under the side rule the table may pull a block back from beyond the support: never a lower PGA.
+  const double side = ExpectFragilityStepAtTheOverturningPgaOfRespond("side");
+  EXPECT_GE(side, support * (1.0 - 2e-4));
 }
 
 TEST(CliFragility, KilledAtRandomInstantsAndResumedGivesTheUninterruptedResult) {

@@ -1,5 +1,6 @@
 // `rockfit respond`, `rockfit ground-motion` and `rockfit plot response` run as the real binary: summary, JSON keys,
 // HDF5 round trip through the plot, exit codes for bad records and missing fits.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -44,6 +45,27 @@ TEST(CliRespond, SyntheticRecordGivesASummaryAndJsonWithDocumentedKeys) {
   }
   EXPECT_NEAR(j["ground_motion"]["pga_horizontal_m_s2"].get<double>(), 0.4 * 9.80665, 1e-9);
   EXPECT_EQ(j["samples"]["t"].size(), j["samples"]["a_g_W"].size());
+}
+
+TEST(CliRespond, OverturnSideCarriesTheMotionPastTheSupportUntilTheBlockLiesOnASide) {
+  // A strong record overturns the block under both rules; under `side` later, with the block's z axis horizontal.
+  const auto run = [](const char* rule) {
+    const CommandResult r = RunRockfit(Respond({"--synthetic", "4", "--pga", "0.8", "--overturn", rule, "--json"}));
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return nlohmann::json::parse(r.out)["summary"];
+  };
+  const nlohmann::json support = run("support");
+  const nlohmann::json side = run("side");
+  ASSERT_TRUE(support["overturned"].get<bool>());
+  ASSERT_TRUE(side["overturned"].get<bool>());
+  EXPECT_EQ(support["overturn_rule"], "support");
+  EXPECT_EQ(side["overturn_rule"], "side");
+  EXPECT_GT(side["t_overturn"].get<double>(), support["t_overturn"].get<double>());
+  EXPECT_NEAR(side["peak_tilt_rad"].get<double>(), M_PI / 2.0, 1e-9);
+  EXPECT_LT(support["peak_tilt_rad"].get<double>(), 0.3);  // near the critical tilt
+  const CommandResult bad = RunRockfit(Respond({"--synthetic", "4", "--overturn", "sideways"}));
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--overturn"), std::string::npos) << bad.err;
 }
 
 TEST(CliRespond, Hdf5OutputFeedsPlotResponse) {

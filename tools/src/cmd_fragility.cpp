@@ -59,6 +59,7 @@ struct FragilityCommand {
   std::uint64_t seed = 1;
   double tail_s = 5.0;
   double rate_hz = 200.0;
+  std::string overturn = "support";
   int threads = 0;
   int round = 0;
   bool mpi = false;
@@ -176,6 +177,7 @@ fitting::FragilityStudyOptions MakeStudy(const FragilityCommand& cmd) {
   study.seed = cmd.seed;
   study.response.tail_s = cmd.tail_s;
   study.response.simulation.rate_hz = cmd.rate_hz;
+  core::FromString(cmd.overturn, &study.response.simulation.overturn);  // (checked by the option)
   study.Validate();
   return study;
 }
@@ -366,8 +368,12 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   app->add_option("--samples", cmd->samples, "Samples per level and block (records used in turn)")->capture_default_str()->group(levels);
   app->add_option("--seed", cmd->seed, "Study seed: sample i draws from its own stream (seed, i)")->capture_default_str()->group(levels);
   app->add_option("--tail", cmd->tail_s, "Simulate this long after the end of each record [s]")->capture_default_str()->group(levels);
-  app->add_option("--rate", cmd->rate_hz, "Sample rate of each run [Hz] (peak tilts are taken over the samples)")
+  app->add_option("--rate", cmd->rate_hz, "Sample rate of each run [Hz] (peak tilts are taken over the samples and the end)")
       ->capture_default_str()->group(levels);
+  app->add_option("--overturn", cmd->overturn,
+                  "When a block has overturned: support (its COM passes over the support) or side (it comes to lie on a\n"
+                  "side; the table may pull it back before), as in `rockfit respond`")
+      ->check(CLI::IsMember({"support", "side"}))->capture_default_str()->group(levels);
   const char* run = "Running";
   app->add_option("-j,--jobs", cmd->threads, "Threads per process (0: all cores)")->capture_default_str()->group(run);
   app->add_option("--round", cmd->round, "Samples per rank between journal appends (0: 8 per thread)")

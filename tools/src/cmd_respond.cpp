@@ -29,6 +29,7 @@ struct RespondCommand {
   core::ResponseOptions options;
   std::string start = "flat";
   std::string until = "rest";
+  std::string overturn = "support";
   std::string facet_tau = "no-spin";
   std::string format;
   bool json = false;
@@ -44,6 +45,7 @@ nlohmann::json SummaryJson(const core::ResponseSummary& s) {
           {"t_end", s.t_end_s},
           {"overturned", s.overturned},
           {"t_overturn", OrNull(s.t_overturn_s)},
+          {"overturn_rule", core::ToString(s.overturn_rule)},
           {"peak_tilt_rad", s.peak_tilt_rad},
           {"t_peak_tilt", s.t_peak_tilt_s},
           {"critical_tilt_rad", s.critical_tilt_rad},
@@ -130,7 +132,9 @@ void PrintSummary(const core::Block& block, const core::ModelParameters& p, cons
                            g.PeakVertical() / core::kRecordGravity);
   std::cout << fmt::format("status          {} at {:.4f} s{}\n", core::ToString(s.end_reason), s.t_end_s,
                            s.message.empty() ? "" : " (" + s.message + ")");
-  std::cout << fmt::format("overturned      {}\n", s.overturned ? fmt::format("yes, at {:.4f} s", *s.t_overturn_s) : "no");
+  const char* how = s.overturn_rule == core::OverturnRule::kFallsOnSide ? "lies on a side" : "COM over the support";
+  std::cout << fmt::format("overturned      {}\n",
+                           s.overturned ? fmt::format("yes, at {:.4f} s ({})", *s.t_overturn_s, how) : "no");
   std::cout << fmt::format("peak tilt       {:.5f} rad at {:.3f} s ({:.1f} % of the critical {:.5f} rad)\n",
                            s.peak_tilt_rad, s.t_peak_tilt_s, 100.0 * s.peak_tilt_rad / s.critical_tilt_rad,
                            s.critical_tilt_rad);
@@ -184,6 +188,7 @@ int RunRespond(RespondCommand& cmd) {
   cmd.params.facet_tau_rule = cmd.facet_tau == "zero" ? core::FacetTauRule::kFixed : core::FacetTauRule::kNoSpin;
   cmd.options.start = cmd.start == "flat" ? core::GroundStart::kFlatAtRest : core::GroundStart::kAsOptions;
   cmd.options.end_at_rest = cmd.until == "rest";
+  core::FromString(cmd.overturn, &cmd.options.simulation.overturn);  // (checked by the option)
   if (cmd.json && cmd.format.empty()) cmd.format = "json";
   if (cmd.format == "hdf5" && cmd.output.empty()) throw InvalidArgument("--format hdf5 writes a file: give it with -o FILE");
   if (!cmd.output.empty() && cmd.format.empty()) cmd.format = "json";
@@ -252,7 +257,12 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   app->add_option("--until", cmd->until,
                   "rest: end when the block rests and cannot uplift again before the end; t_max: run to record end + tail")
       ->check(CLI::IsMember({"rest", "t_max"}))->capture_default_str()->group("Simulation");
-  app->add_option("--rate", o.simulation.rate_hz, "Output sample rate [Hz] (peaks are taken over the samples)")
+  app->add_option("--overturn", cmd->overturn,
+                  "When the block has overturned. support: its COM passes over the support edge or vertex; side: the\n"
+                  "motion goes on past it (the table may pull the block back) until the block lies on a side — the\n"
+                  "criterion of rocking spectra in the literature (core/README.md, \"Overturning under ground motion\")")
+      ->check(CLI::IsMember({"support", "side"}))->capture_default_str()->group("Simulation");
+  app->add_option("--rate", o.simulation.rate_hz, "Output sample rate [Hz] (peaks are taken over the samples, and the end)")
       ->capture_default_str()->group("Simulation");
   app->add_option("--gravity", o.simulation.gravity_m_s2, "Gravitational acceleration of the simulation [m/s²]")
       ->capture_default_str()->group("Simulation");

@@ -42,10 +42,20 @@ class GroundVertexMode {
   static constexpr bool kGuardsNeedStepBound = true;
   using State = VertexMode::State;
 
-  GroundVertexMode(const Block& block, int vertex, double gravity_m_s2, const GroundMotion& ground);
+  // falls_on_side: OverturnRule::kFallsOnSide (the over guards become SideLanding).
+  GroundVertexMode(const Block& block, int vertex, double gravity_m_s2, const GroundMotion& ground,
+                   bool falls_on_side = false);
 
   void operator()(double t, const State& y, State& dydt) const;
-  GuardValue Guard(int index, double /*t*/, const State& y) const { return free_.Guard(index, y); }
+  GuardValue Guard(int index, double /*t*/, const State& y) const {
+    if (falls_on_side_ && index >= VertexMode::kOverNext) return SideLanding(index, y);
+    return free_.Guard(index, y);
+  }
+  // Under OverturnRule::kFallsOnSide, the block lies on a side when its z axis is horizontal: the first point
+  // beyond the base to reach the ground is then the top vertex above the pivot, 2h·(up_B · e_z) above it (the
+  // other top vertices are higher by the heights of their base vertices, which the touch-down guards keep
+  // positive). kOverNext carries that height over 2h; kOverPrevious is held positive.
+  GuardValue SideLanding(int index, const State& y) const;
   double StepLimit(double t, double t_limit) const { return std::min(t_limit, ground_->NextBreak(t)); }
   static double StepBound(const State& y) { return std::min(kGroundStepBound_s, VertexMode::StepBound(y)); }
   static bool IsTouchdown(int guard) { return VertexMode::IsTouchdown(guard); }
@@ -65,6 +75,7 @@ class GroundVertexMode {
  private:
   VertexMode free_;
   const GroundMotion* ground_;
+  bool falls_on_side_;
   double mass_kg_;
   double gravity_m_s2_;
   Eigen::Vector3d p_PC_B_;
@@ -84,8 +95,9 @@ class GroundEdgeMode {
   using State = EdgeMode::State;
   enum GuardIndex { kFlat = EdgeMode::kFlat, kOver = EdgeMode::kOver, kLoadFirst = 2, kLoadSecond = 3 };
 
+  // falls_on_side: OverturnRule::kFallsOnSide (the over guard becomes cos ψ: the block lies on a side at ψ = π/2).
   GroundEdgeMode(const Block& block, int i, int j, const Eigen::Quaterniond& q_yaw, double gravity_m_s2,
-                 const GroundMotion& ground);
+                 const GroundMotion& ground, bool falls_on_side = false);
 
   void operator()(double t, const State& y, State& dydt) const;
   // kLoadFirst/kLoadSecond: EndHold of V_i / V_j (positive while the edge holds it), with its rate by a
@@ -117,6 +129,7 @@ class GroundEdgeMode {
 
   EdgeMode free_;
   const GroundMotion* ground_;
+  bool falls_on_side_;
   double mass_kg_;
   double gravity_m_s2_;
   double d_m_;

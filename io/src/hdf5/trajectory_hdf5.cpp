@@ -114,6 +114,7 @@ void WriteGroundMotionAndResponse(const hdf5::Group& root, const ResponseContent
   const hdf5::Group rg = root.CreateGroup("response");
   rg.SetInt("overturned", r.overturned ? 1 : 0);
   rg.SetDouble("t_overturn_s", r.t_overturn_s ? *r.t_overturn_s : std::nan(""));
+  rg.SetString("overturn_rule", core::ToString(r.overturn_rule));
   rg.SetDouble("peak_tilt_rad", r.peak_tilt_rad);
   rg.SetDouble("t_peak_tilt_s", r.t_peak_tilt_s);
   rg.SetDouble("peak_rotation_rad", r.peak_rotation_rad);

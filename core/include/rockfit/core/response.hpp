@@ -43,7 +43,9 @@ struct ResponseSummary {
   std::string message;  // why a failed or lifted-off run ended
   double t_end_s = 0.0;
   bool overturned = false;
+  // When it overturned: the COM passed over the support, or (OverturnRule::kFallsOnSide) it came to lie on a side.
   std::optional<double> t_overturn_s;
+  OverturnRule overturn_rule = OverturnRule::kComOverSupport;  // the rule of the run
   // Over the samples (and the end state): the tilt is the angle between the body's z axis and the vertical,
   // the rotation the angle of q_WB (tilt and twist about the vertical together).
   double peak_tilt_rad = 0.0;

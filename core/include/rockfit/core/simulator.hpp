@@ -44,6 +44,18 @@ const char* ToString(StopCondition stop);  // "phase4", "rest", "overturned", "t
 bool FromString(std::string_view text, StopCondition* stop);
 const char* ToString(EndReason reason);    // "phase4", "rest", "overturned", "t_max", "failed", "lift_off"
 
+// When a run under ground motion has overturned (core/README.md, "Overturning under ground motion").
+enum class OverturnRule {
+  // "support": the COM passes over the support edge or vertex, as in free runs (docs/design.md §4).
+  kComOverSupport,
+  // "side": the motion goes on past the support, where the table may still pull the block back; the block has
+  // overturned when it lies on a side (its z axis horizontal). This is the criterion of rocking spectra that
+  // integrate the equation of motion through θ_c and judge overturning by where the block ends up.
+  kFallsOnSide,
+};
+const char* ToString(OverturnRule rule);  // "support", "side"
+bool FromString(std::string_view text, OverturnRule* rule);
+
 // Initial conditions and impact parameters of one run (constant during the run).
 struct ModelParameters {
   double alpha_rad = 0.2;    // release tilt (> 0; beyond the critical angle the block overturns at t = 0)
@@ -88,6 +100,9 @@ struct SimulationOptions {
   // cannot dip and return).
   double max_step_s = 5e-2;
   std::size_t max_impacts = 100000;     // a run with more impacts ends as Failed
+  // Under ground motion only: when the block has overturned. Free runs stop when the COM passes over the
+  // support (past it a block on a still table only falls further).
+  OverturnRule overturn = OverturnRule::kComOverSupport;
   bool sample_attitude = true;          // false: fill only t, w_B and mode (faster, for fitting)
   std::optional<InitialState> initial_state;
   // Throws InvalidArgument naming the bad option.
@@ -156,6 +171,11 @@ struct Trajectory {
   std::vector<ImpactRecord> impacts;
   std::vector<SegmentDiagnostics> segments;
   double t_end_s = 0.0;
+  // The state at t_end_s, which usually falls between two samples (the attitude at which the block overturned,
+  // for instance). Not written to files: the last sample and the impact log describe the end there.
+  Mode end_mode;
+  Eigen::Quaterniond end_q_WB = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d end_w_B = Eigen::Vector3d::Zero();
   EndReason end_reason = EndReason::kFailed;
   FailureReason failure = FailureReason::kNone;  // why a Failed run failed
   std::string message;                           // the same in words, with times and contacts
