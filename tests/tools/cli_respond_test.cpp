@@ -1,6 +1,8 @@
 // `rockfit respond`, `rockfit ground-motion` and `rockfit plot response` run as the real binary: summary, JSON keys,
 // HDF5 round trip through the plot, exit codes for bad records and missing fits.
 #include <cmath>
+#include <cstdlib>
+#include <sstream>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -9,7 +11,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "build_type.hpp"
 #include "cli_runner.hpp"
+#include "rockfit/core/response.hpp"
 #include "rockfit/io/hdf5_file.hpp"
 #include "scratch_dir.hpp"
 #include "test_paths.hpp"
@@ -66,6 +70,60 @@ TEST(CliRespond, OverturnSideCarriesTheMotionPastTheSupportUntilTheBlockLiesOnAS
   const CommandResult bad = RunRockfit(Respond({"--synthetic", "4", "--overturn", "sideways"}));
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.err.find("--overturn"), std::string::npos) << bad.err;
+}
+
+// tools/overturning_spectrum.py drives `rockfit respond` with a one-sine pulse written as CSV. Its smallest
+// overturning amplitude must be what the same scan finds with rockfit::core::Respond in-process, whose curve the
+// core tests check against a planar integration and a closed form: the script's pulse, units and parameters are
+// the ones it states.
+TEST(OverturningSpectrumScript, AgreesWithTheSameScanRunOnRespond) {
+  ROCKFIT_REQUIRE_OPTIMISED_BUILD();
+  if (std::system("command -v python3 >/dev/null 2>&1") != 0) GTEST_SKIP() << "python3 is not available";
+  const ScratchDir dir("overturning_spectrum");
+  const std::string out = (dir.path() / "out.txt").string();
+  const std::string command = "python3 " + ShellQuote((SourceDir() / "tools" / "overturning_spectrum.py").string()) +
+                              " --rockfit " + ShellQuote(RockfitBinary().string()) +
+                              " --alpha 0.25 --ratios 3 --step 0.05 --overturn side >" + ShellQuote(out) + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << ReadWholeFile(out);
+  std::istringstream lines(ReadWholeFile(out));
+  double ratio = 0.0, script = 0.0;
+  for (std::string line; std::getline(lines, line);) {
+    if (!line.empty() && line[0] != '#') std::istringstream(line) >> ratio >> script;
+  }
+  ASSERT_EQ(ratio, 3.0) << ReadWholeFile(out);
+
+  // The same block, pulse and scan (from 1 in steps of 0.05, then bisection to 1e-3) on Respond.
+  constexpr double kG = 9.81, kAlpha = 0.25, kTol = 1e-3;
+  const core::Block block = core::Block::FromDensity(std::sin(kAlpha), std::sin(kAlpha), std::cos(kAlpha), 2500);
+  const double p = std::sqrt(3.0 * kG / 4.0);
+  const double omega = 3.0 * p;
+  const double dt = 2.0 * M_PI / omega / 400.0;
+  std::vector<double> pulse(401);
+  for (std::size_t k = 0; k < pulse.size(); ++k) pulse[k] = std::sin(omega * static_cast<double>(k) * dt);
+  core::ModelParameters params;
+  params.lambda = 1.0;
+  params.lambda_lat = 0.0;
+  params.lambda_lon = 1.0;
+  const auto overturns = [&](double amplitude_ratio) {
+    std::vector<Eigen::Vector3d> a(pulse.size(), Eigen::Vector3d::Zero());
+    for (std::size_t k = 0; k < pulse.size(); ++k) a[k].x() = amplitude_ratio * kG * std::tan(kAlpha) * pulse[k];
+    core::ResponseOptions options;
+    options.simulation.rate_hz = 10.0;
+    options.simulation.overturn = core::OverturnRule::kFallsOnSide;
+    options.tail_s = 8.0 / p;
+    return core::Respond(block, params, core::GroundMotion::Uniform(dt, a), options).summary.overturned;
+  };
+  double lo = 1.0, hi = 1.0;
+  while (!overturns(hi) && hi < 20.0) {
+    lo = hi;
+    hi += 0.05;
+  }
+  while (hi - lo > kTol) {
+    const double mid = 0.5 * (lo + hi);
+    (overturns(mid) ? hi : lo) = mid;
+  }
+  std::printf("one-sine pulse, θ_c = 0.25, ω_p/p = 3, falls on a side: script %.4f, Respond %.4f\n", script, hi);
+  EXPECT_NEAR(script, hi, 2.0 * kTol);
 }
 
 TEST(CliRespond, Hdf5OutputFeedsPlotResponse) {
