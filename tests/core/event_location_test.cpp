@@ -173,6 +173,49 @@ TEST(FindFirstDescent, GuardOnTheSurfaceAtRestThatRisesAndFallsBackCrossesAfterI
   EXPECT_EQ(*at_once, 0.0);
 }
 
+// A cubic guard (t − r1)(t − r2)(t − r3) with its derivative.
+struct Cubic {
+  double r1, r2, r3;
+  GuardValue operator()(double t) const {
+    return {(t - r1) * (t - r2) * (t - r3), (t - r2) * (t - r3) + (t - r1) * (t - r3) + (t - r1) * (t - r2)};
+  }
+};
+
+TEST(FindFirstDescent, FindsADipBetweenAMaximumAndAMinimumThatTheStepEndsDoNotShow) {
+  RootPolisher polisher;
+  // g = (t + 0.2)(t − 0.4)(t − 0.6) on [0, 1]: positive and rising at both ends, below zero on (0.4, 0.6).
+  const Cubic g{-0.2, 0.4, 0.6};
+  ASSERT_GT(g(0.0).value, 0.0);
+  ASSERT_GT(g(0.0).rate, 0.0);
+  ASSERT_GT(g(1.0).rate, 0.0);
+  const auto t = FindFirstDescent(g, 0.0, g(0.0), 1.0, g(1.0), polisher, kTimeTol);
+  ASSERT_TRUE(t.has_value());
+  EXPECT_NEAR(*t, 0.4, 1e-14);
+  // The same shape rising from the surface (a vertex that has just left the ground).
+  const Cubic from_surface{0.0, 0.4, 0.6};
+  const auto t_surface =
+      FindFirstDescent(from_surface, 0.0, GuardValue{0.0, from_surface(0.0).rate}, 1.0, from_surface(1.0), polisher,
+                       kTimeTol);
+  ASSERT_TRUE(t_surface.has_value());
+  EXPECT_NEAR(*t_surface, 0.4, 1e-14);
+}
+
+TEST(HermiteDipTime, IsEmptyForAGuardThatTurnsTwiceAboveZeroAndExactForACubic) {
+  // (t + 0.2)(t − 0.4)(t − 0.6) + 0.02 turns twice but stays above zero: no dip.
+  const auto above = [](double t) {
+    const GuardValue g = Cubic{-0.2, 0.4, 0.6}(t);
+    return GuardValue{g.value + 0.02, g.rate};
+  };
+  EXPECT_FALSE(HermiteDipTime(0.0, above(0.0), 1.0, above(1.0)).has_value());
+  // For a cubic guard the Hermite cubic is the guard: its minimum, where the rate vanishes.
+  const Cubic g{-0.2, 0.4, 0.6};
+  const auto dip = HermiteDipTime(0.0, g(0.0), 1.0, g(1.0));
+  ASSERT_TRUE(dip.has_value());
+  EXPECT_NEAR(g(*dip).rate, 0.0, 1e-12);
+  EXPECT_GT(*dip, 0.4);
+  EXPECT_LT(*dip, 0.6);
+}
+
 TEST(FindFirstDescent, GuardOnTheSurfaceMovingDownIsAnEventAtTheStart) {
   RootPolisher polisher;
   const Quadratic g{0.0, 0.5, 0.0};  // g(0) = 0, ġ(0) = −0.5

@@ -122,6 +122,47 @@ std::optional<double> TimeBelowZeroNearMinimum(const Eval& eval, double t0, cons
   return std::nullopt;
 }
 
+// Where the cubic through g and ġ at both ends of a step (Hermite) has a minimum below zero inside the step, the
+// time of that minimum; empty otherwise. A guard that turns twice within a step (a maximum, then a minimum: the
+// table's acceleration turning a height of micrometres around) can dip below zero and end above it with no sign
+// at the ends that the one-extremum tests read; the cubic shows it, and the dense output at its minimum confirms it.
+inline std::optional<double> HermiteDipTime(double t0, const GuardValue& g0, double t1, const GuardValue& g1) {
+  // Dips of the cubic shallower than this fraction of the guard's change over the step are not followed: the
+  // cubic differs from the dense output by more than that near a start at rest on the surface (a block lifted
+  // by the table: ψ grows as (t − t0)³ while the cubic's fit of the higher terms can dip by round-off), and a
+  // guard whose true dip is that shallow merely touches.
+  constexpr double kNegligibleDipFraction = 1e-6;
+  const double h = t1 - t0;
+  // p(s) = a s³ + b s² + c s + d on s ∈ [0, 1], t = t0 + s h.
+  const double d = g0.value;
+  const double c = h * g0.rate;
+  const double b = 3.0 * (g1.value - g0.value) - 2.0 * h * g0.rate - h * g1.rate;
+  const double a = 2.0 * (g0.value - g1.value) + h * g0.rate + h * g1.rate;
+  std::optional<double> dip;
+  const double change =
+      std::max({std::abs(g0.value), std::abs(g1.value), h * std::abs(g0.rate), h * std::abs(g1.rate)});
+  double lowest = -kNegligibleDipFraction * change;
+  const auto consider = [&](double s) {  // a root of p'(s) = 3a s² + 2b s + c
+    if (!(s > 0.0 && s < 1.0) || !(3.0 * a * s + b > 0.0)) return;  // inside, and a minimum (p'' > 0)
+    const double p = ((a * s + b) * s + c) * s + d;
+    if (p < lowest) {
+      lowest = p;
+      dip = t0 + s * h;
+    }
+  };
+  if (a == 0.0) {
+    if (b != 0.0) consider(-c / (2.0 * b));
+  } else {
+    const double discriminant = b * b - 3.0 * a * c;
+    if (discriminant >= 0.0) {
+      const double root = std::sqrt(discriminant);
+      consider((-b + root) / (3.0 * a));
+      consider((-b - root) / (3.0 * a));
+    }
+  }
+  return dip;
+}
+
 // The first time in [t0, t1] at which g becomes negative, or empty. `eval(t)` returns g and ġ at any t
 // of the step (from the dense output); g0, g1 are the values at the step ends. A guard that starts at
 // g(t0) ≤ 0 (a vertex that has just left the ground) counts as crossing only after it has been positive,
@@ -150,7 +191,23 @@ std::optional<double> FindFirstDescent(const Eval& eval, double t0, const GuardV
       }
       return t0;
     }
-    if (g1.value >= 0.0) return std::nullopt;
+    if (g1.value >= 0.0) {
+      // It rose and ends above zero: below in between only if it turned twice, down and up again. The crossing
+      // then lies between a positive point before the dip (the cubic's maximum, or an early point) and the dip.
+      const std::optional<double> t_dip = HermiteDipTime(t0, g0, t1, g1);
+      if (!t_dip) return std::nullopt;
+      const GuardValue g_dip = eval(*t_dip);
+      if (!(g_dip.value < 0.0)) return std::nullopt;
+      for (const double fraction : {0.5, 0.25, 0.125, 0.0625}) {
+        const double t_positive = t0 + fraction * (*t_dip - t0);
+        const GuardValue g_positive = eval(t_positive);
+        if (g_positive.value > 0.0) {
+          const std::optional<double> root = PolishCrossing(eval, t_positive, g_positive, *t_dip, g_dip);
+          return root ? root : std::optional<double>(*t_dip);
+        }
+      }
+      return t0;  // it never rose measurably: into the ground at once
+    }
     // It rose and fell back below within the step: the crossing follows the maximum. Any point where g > 0
     // brackets it with t1 (g rises to its one maximum and falls from there); the secant root of ġ is tried first,
     // the located maximum only if g is not positive there.
@@ -180,7 +237,13 @@ std::optional<double> FindFirstDescent(const Eval& eval, double t0, const GuardV
     const std::optional<double> root = PolishCrossing(eval, t0, g0, *below, eval(*below));
     return root ? root : std::optional<double>(*below);
   }
-  return std::nullopt;
+  // No sign of a dip at the ends: below zero in between only if g turned twice within the step.
+  const std::optional<double> t_dip = HermiteDipTime(t0, g0, t1, g1);
+  if (!t_dip) return std::nullopt;
+  const GuardValue g_dip = eval(*t_dip);
+  if (!(g_dip.value < 0.0)) return std::nullopt;
+  const std::optional<double> root = PolishCrossing(eval, t0, g0, *t_dip, g_dip);
+  return root ? root : std::optional<double>(*t_dip);
 }
 
 }  // namespace rockfit::core
