@@ -1,8 +1,9 @@
 // Event location on one integrator step (docs/design.md §4): a guard function g(t) (a vertex height, the margin of
 // the COM over its support, a tilt) must not go below zero unnoticed, not even when it dips below and comes
-// back within the step. Steps are short against the rocking time scale, so g has at most one extremum per
-// step; the sign of ġ at the two step ends tells whether an interior minimum exists, and that minimum is
-// bounded from below (TimeBelowZeroNearMinimum) or searched on the dense output. A crossing is polished by
+// back within the step. Steps are short against the rocking time scale, so g usually has at most one extremum
+// per step; the sign of ġ at the two step ends tells whether an interior minimum exists, and that minimum is
+// bounded from below (TimeBelowZeroNearMinimum) or searched on the dense output. A guard that turns twice within
+// a step (under a moving table) is caught by the step's Hermite cubic (HermiteDipTime). A crossing is polished by
 // Newton's method on g and ġ inside its bracket (PolishCrossing); the maximum of a guard that rose and fell back
 // within a step, which needs only ġ, by GSL's Brent solver.
 #pragma once
