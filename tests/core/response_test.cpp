@@ -13,6 +13,7 @@
 #include "build_type.hpp"
 #include "one_sine_pulse_linearised.hpp"
 #include "planar_base_rocking.hpp"
+#include "rockfit/core/errors.hpp"
 #include "rockfit/core/vertex_dynamics.hpp"
 
 namespace rockfit::core {
@@ -528,6 +529,25 @@ TEST(Respond, UnderTheSideRuleADiagonalPushRocksTheBlockOnAVertexAndLaysItOnASid
   EXPECT_NEAR(on_side.summary.peak_tilt_rad, M_PI / 2.0, 1e-9);
   EXPECT_GT(*on_side.summary.t_overturn_s, *over_support.summary.t_overturn_s);
   EXPECT_LT(over_support.summary.peak_tilt_rad, 1.0);  // the support rule stops near θ_c
+}
+
+TEST(Respond, RoundOffSpreadCountsTheVerdictsOfRunsScaledAtRoundOff) {
+  const Block block = GraniteBlock();
+  ResponseOptions options;
+  options.tail_s = 0.5;
+  // Below the uplift threshold g·b2/h every run rests flat; a strong diagonal step overturns every run.
+  std::vector<Eigen::Vector3d> weak(101, Eigen::Vector3d(0.1 * kG, 0.0, 0.0));
+  const RoundOffSpread none = RespondUnderRoundOff(block, ThreeD(), GroundMotion::Uniform(0.01, weak), options, 5);
+  EXPECT_EQ(none.runs, 5);
+  EXPECT_EQ(none.overturned, 0);
+  EXPECT_EQ(none.peak_tilt_max_rad, 0.0);
+  std::vector<Eigen::Vector3d> strong(81, 0.9 * kG * Eigen::Vector3d(1.0, 0.8, 0.0).normalized());
+  const RoundOffSpread all = RespondUnderRoundOff(block, ThreeD(), GroundMotion::Uniform(0.005, strong), options, 4);
+  EXPECT_EQ(all.runs, 4);
+  EXPECT_EQ(all.overturned, 4);
+  EXPECT_EQ(all.failed, 0);
+  EXPECT_GT(all.peak_tilt_min_rad, std::atan(block.b2() / block.h()));
+  EXPECT_THROW(RespondUnderRoundOff(block, ThreeD(), GroundMotion::Uniform(0.01, weak), options, 0), InvalidArgument);
 }
 
 }  // namespace

@@ -72,6 +72,35 @@ TEST(CliRespond, OverturnSideCarriesTheMotionPastTheSupportUntilTheBlockLiesOnAS
   EXPECT_NE(bad.err.find("--overturn"), std::string::npos) << bad.err;
 }
 
+// Near the overturning boundary a block that chatters along an edge turns round-off into either verdict
+// (core/README.md, "Sensitivity of a single response"). The block of the response benchmark under this
+// generated record is such a case: the 21 runs of --round-off disagree, and the table says so.
+TEST(CliRespond, RoundOffReportsAVerdictThatDependsOnRoundOff) {
+  ROCKFIT_REQUIRE_OPTIMISED_BUILD();
+  const std::vector<std::string> args{"respond", "--b1", "0.05000453", "--b2", "0.035", "--h", "0.2", "--density",
+                                      "2692", "--lambda", "0.6", "--lambda-lat", "0.3", "--lambda-lon", "0.7",
+                                      "--synthetic", "3", "--pga", "0.35", "--synthetic-duration", "30", "--angle", "30",
+                                      "--round-off", "21"};
+  const CommandResult table = RunRockfit(args);
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_NE(table.out.find("the verdict depends on round-off"), std::string::npos) << table.out;
+  std::vector<std::string> json_args = args;
+  json_args.push_back("--json");
+  const CommandResult json = RunRockfit(json_args);
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const nlohmann::json spread = nlohmann::json::parse(json.out)["round_off"];
+  EXPECT_EQ(spread["runs"].get<int>(), 21);
+  EXPECT_GT(spread["overturned"].get<int>(), 0);
+  EXPECT_LT(spread["overturned"].get<int>(), 21);
+  EXPECT_EQ(spread["failed"].get<int>(), 0);
+  EXPECT_LT(spread["peak_tilt_min_rad"].get<double>(), 0.05);  // some runs barely rock
+  std::printf("round-off: %d of 21 runs overturn; peak tilt %.5f … %.5f rad\n", spread["overturned"].get<int>(),
+              spread["peak_tilt_min_rad"].get<double>(), spread["peak_tilt_max_rad"].get<double>());
+  const CommandResult bad = RunRockfit(Respond({"--synthetic", "4", "--round-off", "-1"}));
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--round-off"), std::string::npos) << bad.err;
+}
+
 // tools/overturning_spectrum.py drives `rockfit respond` with a one-sine pulse written as CSV. Its smallest
 // overturning amplitude must be what the same scan finds with rockfit::core::Respond in-process, whose curve the
 // core tests check against a planar integration and a closed form: the script's pulse, units and parameters are

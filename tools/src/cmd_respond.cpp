@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <optional>
 #include <string>
 
 #include <fmt/format.h>
@@ -30,6 +31,7 @@ struct RespondCommand {
   std::string start = "flat";
   std::string until = "rest";
   std::string overturn = "support";
+  int round_off_runs = 0;
   std::string facet_tau = "no-spin";
   std::string format;
   bool json = false;
@@ -61,7 +63,8 @@ nlohmann::json SummaryJson(const core::ResponseSummary& s) {
 }
 
 nlohmann::json ResponseJson(const core::Block& block, const core::ModelParameters& params, const std::string& source,
-                            const LoadedGroundMotion& ground, const core::Response& r) {
+                            const LoadedGroundMotion& ground, const core::Response& r,
+                            const std::optional<core::RoundOffSpread>& spread) {
   nlohmann::json out;
   out["summary"] = SummaryJson(r.summary);
   out["block"] = {{"b1", block.b1()}, {"b2", block.b2()}, {"h", block.h()}, {"mass", block.mass()}};
@@ -100,6 +103,14 @@ nlohmann::json ResponseJson(const core::Block& block, const core::ModelParameter
     mode.push_back(tr.mode[k].ToString());
   }
   out["samples"] = {{"t", tr.t_s}, {"a_g_W", a_g}, {"w_B", w_B}, {"q_WB", q_WB}, {"tilt", tilt}, {"mode", mode}};
+  if (spread) {
+    out["round_off"] = {{"runs", spread->runs},
+                        {"overturned", spread->overturned},
+                        {"failed", spread->failed},
+                        {"relative_step", core::RoundOffSpread::kRoundOffStep},
+                        {"peak_tilt_min_rad", spread->peak_tilt_min_rad},
+                        {"peak_tilt_max_rad", spread->peak_tilt_max_rad}};
+  }
   return out;
 }
 
@@ -118,7 +129,8 @@ std::string ResponseCsv(const core::GroundMotion& g, const core::Trajectory& tr)
 }
 
 void PrintSummary(const core::Block& block, const core::ModelParameters& p, const std::string& source,
-                  const LoadedGroundMotion& ground, const core::Response& r) {
+                  const LoadedGroundMotion& ground, const core::Response& r,
+                  const std::optional<core::RoundOffSpread>& spread) {
   const core::ResponseSummary& s = r.summary;
   const core::GroundMotion& g = ground.assembled.ground;
   std::cout << fmt::format("block           b1 = {} m, b2 = {} m, h = {} m, m = {:.4g} kg\n", block.b1(), block.b2(),
@@ -147,6 +159,17 @@ void PrintSummary(const core::Block& block, const core::ModelParameters& p, cons
   std::cout << fmt::format("impacts         {}\n", s.num_impacts);
   std::cout << fmt::format("friction ratio  {:.4f} (largest |F_t|/F_n needed; sliding is not modelled)\n",
                            s.max_friction_ratio);
+  if (spread) {
+    const int k_max = spread->runs / 2;
+    std::cout << fmt::format("round-off       overturned in {} of {} runs of the record scaled by 1 + k·{:g} (|k| ≤ {}); peak "
+                             "tilt {:.5f} … {:.5f} rad{}{}\n",
+                             spread->overturned, spread->runs, core::RoundOffSpread::kRoundOffStep, k_max,
+                             spread->peak_tilt_min_rad, spread->peak_tilt_max_rad,
+                             spread->failed > 0 ? fmt::format(", {} failed", spread->failed) : "",
+                             spread->overturned > 0 && spread->overturned < spread->runs
+                                 ? " — the verdict depends on round-off: ask `rockfit fragility` for its probability"
+                                 : "");
+  }
   std::cout << fmt::format("wall time       {:.2f} ms\n", 1e3 * s.wall_time_s);
 }
 
@@ -195,6 +218,10 @@ int RunRespond(RespondCommand& cmd) {
 
   const LoadedGroundMotion ground = LoadGroundMotion(cmd.ground);
   const core::Response response = core::Respond(block, cmd.params, ground.assembled.ground, cmd.options);
+  std::optional<core::RoundOffSpread> spread;
+  if (cmd.round_off_runs > 0) {
+    spread = core::RespondUnderRoundOff(block, cmd.params, ground.assembled.ground, cmd.options, cmd.round_off_runs);
+  }
 
   if (cmd.format == "hdf5") {
     core::SimulationOptions written = cmd.options.simulation;
@@ -203,7 +230,7 @@ int RunRespond(RespondCommand& cmd) {
     io::WriteResponseHdf5(cmd.output, block, cmd.params, written, response, ground.assembled.ground, ground.sources);
   } else if (!cmd.format.empty()) {
     const std::string text = cmd.format == "csv" ? ResponseCsv(ground.assembled.ground, response.trajectory)
-                                                 : ResponseJson(block, cmd.params, source, ground, response).dump(2) + "\n";
+                                                 : ResponseJson(block, cmd.params, source, ground, response, spread).dump(2) + "\n";
     if (cmd.output.empty()) {
       std::cout << text << std::flush;
     } else {
@@ -211,7 +238,7 @@ int RunRespond(RespondCommand& cmd) {
     }
   }
   if (cmd.format.empty() || !cmd.output.empty()) {
-    if (!(cmd.format == "json" && cmd.output.empty())) PrintSummary(block, cmd.params, source, ground, response);
+    if (!(cmd.format == "json" && cmd.output.empty())) PrintSummary(block, cmd.params, source, ground, response, spread);
     if (!cmd.output.empty()) std::cout << "written         " << cmd.output << "\n";
   }
   if (response.summary.end_reason == core::EndReason::kFailed) {
@@ -262,6 +289,11 @@ const CommandRegistration kRegistration([](CLI::App& root) {
                   "motion goes on past it (the table may pull the block back) until the block lies on a side — the\n"
                   "criterion of rocking spectra in the literature (core/README.md, \"Overturning under ground motion\")")
       ->check(CLI::IsMember({"support", "side"}))->capture_default_str()->group("Simulation");
+  app->add_option("--round-off", cmd->round_off_runs,
+                  "Also run the record N times scaled by 1 + k·1e-15 (k = 0, ±1, ±2, …) and report how many of the runs\n"
+                  "overturn: near the overturning boundary a block that chatters along an edge can turn round-off into\n"
+                  "either verdict (core/README.md, \"Sensitivity of a single response\")")
+      ->check(CLI::NonNegativeNumber)->group("Simulation");
   app->add_option("--rate", o.simulation.rate_hz, "Output sample rate [Hz] (peaks are taken over the samples, and the end)")
       ->capture_default_str()->group("Simulation");
   app->add_option("--gravity", o.simulation.gravity_m_s2, "Gravitational acceleration of the simulation [m/s²]")
