@@ -655,7 +655,6 @@ HybridRun::Next HybridRun::Stop(EndReason reason, double t, const EndState& stat
     sampler_.Emit(state.mode, state.w_B, [&state] { return state.q_WB; });
   }
   out_->t_end_s = t;
-  out_->end_mode = state.mode;
   out_->end_q_WB = state.q_WB;
   out_->end_w_B = state.w_B;
   out_->end_reason = reason;

@@ -224,7 +224,8 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       ->capture_default_str()->group("Simulation");
   app->add_option("--rel-tol", o.rel_tol, "Integrator relative tolerance")->capture_default_str()->group("Tolerances");
   app->add_option("--abs-tol", o.abs_tol, "Integrator absolute tolerance")->capture_default_str()->group("Tolerances");
-  app->add_option("--event-tol", o.event_time_tol_s, "Event location tolerance [s]")
+  app->add_option("--event-tol", o.event_time_tol_s,
+                  "Location tolerance of a guard's extremum [s] (crossings are located to round-off)")
       ->capture_default_str()->group("Tolerances");
   app->add_option("--max-step", o.max_step_s, "Largest integrator step [s]")->capture_default_str()->group("Tolerances");
   app->add_option("--format", cmd->format, "Output format: json, csv (one row per sample) or hdf5 (needs -o)")

@@ -92,7 +92,9 @@ struct SimulationOptions {
   double gravity_m_s2 = kStandardGravity;
   double rel_tol = 1e-12;               // integrator relative tolerance
   double abs_tol = 1e-14;               // integrator absolute tolerance
-  double event_time_tol_s = 1e-12;      // event location tolerance
+  // Event location: crossings are polished to round-off; this bounds the location of a guard's extremum,
+  // which only brackets a crossing (core/README.md, "Events").
+  double event_time_tol_s = 1e-12;
   // Largest integrator step. Events inside a step are found from the guards' slopes at both ends (a dip
   // below zero and back is an interior minimum), which assumes at most one extremum of a vertex height per
   // step. In vertex rocking the steps are also kept below a turn of the body by kMaxTurnPerStep_rad (0.5 rad,
@@ -173,7 +175,6 @@ struct Trajectory {
   double t_end_s = 0.0;
   // The state at t_end_s, which usually falls between two samples (the attitude at which the block overturned,
   // for instance). Not written to files: the last sample and the impact log describe the end there.
-  Mode end_mode;
   Eigen::Quaterniond end_q_WB = Eigen::Quaterniond::Identity();
   Eigen::Vector3d end_w_B = Eigen::Vector3d::Zero();
   EndReason end_reason = EndReason::kFailed;
