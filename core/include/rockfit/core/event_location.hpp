@@ -164,6 +164,22 @@ inline std::optional<double> HermiteDipTime(double t0, const GuardValue& g0, dou
   return dip;
 }
 
+// For a guard that starts on the surface at t0 and is below it at t_below: the crossing after the first of a few
+// early points of [t0, t_below] where g is positive (it rose, then came down), or t0 when it is positive at none
+// of them (it never rose measurably: into the ground at once).
+template <class Eval>
+std::optional<double> CrossingAfterItRose(const Eval& eval, double t0, double t_below, const GuardValue& g_below) {
+  for (const double fraction : {0.0625, 0.125, 0.25, 0.5}) {
+    const double t_positive = t0 + fraction * (t_below - t0);
+    const GuardValue g_positive = eval(t_positive);
+    if (g_positive.value > 0.0) {
+      const std::optional<double> root = PolishCrossing(eval, t_positive, g_positive, t_below, g_below);
+      return root ? root : std::optional<double>(t_below);
+    }
+  }
+  return t0;
+}
+
 // The first time in [t0, t1] at which g becomes negative, or empty. `eval(t)` returns g and ġ at any t
 // of the step (from the dense output); g0, g1 are the values at the step ends. A guard that starts at
 // g(t0) ≤ 0 (a vertex that has just left the ground) counts as crossing only after it has been positive,
@@ -182,32 +198,15 @@ std::optional<double> FindFirstDescent(const Eval& eval, double t0, const GuardV
       // its acceleration first lifts it and it falls back within the step (a block that uplifts where the
       // table's acceleration barely passes the threshold). A positive value early in the step tells; the
       // crossing then follows the one maximum.
-      for (const double fraction : {0.0625, 0.125, 0.25, 0.5}) {
-        const double t_positive = t0 + fraction * (t1 - t0);
-        const GuardValue g_positive = eval(t_positive);
-        if (g_positive.value > 0.0) {
-          const std::optional<double> root = PolishCrossing(eval, t_positive, g_positive, t1, g1);
-          return root ? root : std::optional<double>(t1);
-        }
-      }
-      return t0;
+      return CrossingAfterItRose(eval, t0, t1, g1);
     }
     if (g1.value >= 0.0) {
-      // It rose and ends above zero: below in between only if it turned twice, down and up again. The crossing
-      // then lies between a positive point before the dip (the cubic's maximum, or an early point) and the dip.
+      // It rose and ends above zero: below in between only if it turned twice, down and up again.
       const std::optional<double> t_dip = HermiteDipTime(t0, g0, t1, g1);
       if (!t_dip) return std::nullopt;
       const GuardValue g_dip = eval(*t_dip);
       if (!(g_dip.value < 0.0)) return std::nullopt;
-      for (const double fraction : {0.5, 0.25, 0.125, 0.0625}) {
-        const double t_positive = t0 + fraction * (*t_dip - t0);
-        const GuardValue g_positive = eval(t_positive);
-        if (g_positive.value > 0.0) {
-          const std::optional<double> root = PolishCrossing(eval, t_positive, g_positive, *t_dip, g_dip);
-          return root ? root : std::optional<double>(*t_dip);
-        }
-      }
-      return t0;  // it never rose measurably: into the ground at once
+      return CrossingAfterItRose(eval, t0, *t_dip, g_dip);
     }
     // It rose and fell back below within the step: the crossing follows the maximum. Any point where g > 0
     // brackets it with t1 (g rises to its one maximum and falls from there); the secant root of ġ is tried first,
