@@ -171,19 +171,23 @@ double MinimumOverturningAmplitude(const Overturns& overturns, double lo, double
   return 0.5 * (lo + hi);
 }
 
-TEST(Respond, OneSinePulseOverturningAmplitudeMatchesIndependentPlanarIntegration) {
-  ROCKFIT_REQUIRE_OPTIMISED_BUILD();
-  // Housner's restitution: (6) with λ = 1 is (3), r = 1 − 1.5 sin²θ_c for a rectangle.
-  const Block block = Block::FromDensity(0.05, 0.05, 0.5, 2500);  // slender, θ_c = 0.0997 rad
+// The smallest a_p/(g tan θ_c) of a one-sine pulse that overturns a slender block (θ_c = 0.0997 rad) with
+// Housner's restitution ((6) with λ = 1 is (3), r = 1 − 1.5 sin²θ_c for a rectangle), by bisection to 1e-3 on
+// rockfit's response under `rule` and on the independent planar integration, which overturns at θ_c (the support
+// rule) or at π/2 (the side rule).
+struct OneSineCurvePoint {
+  double ratio, rockfit, planar;
+};
+constexpr double kOneSineBisectionTol = 1e-3;
+
+std::vector<OneSineCurvePoint> OneSineCurveAgainstPlanar(OverturnRule rule) {
+  const Block block = Block::FromDensity(0.05, 0.05, 0.5, 2500);
   const double theta_c = std::atan(block.b1() / block.h());
-  const double R = std::hypot(block.b1(), block.h());
-  const double p = std::sqrt(3.0 * kG / (4.0 * R));  // frequency parameter of the rectangular block
-  const double tol = 1e-3;
-  struct Point { double ratio, rockfit, planar; };
-  std::vector<Point> points;
+  const double p = std::sqrt(3.0 * kG / (4.0 * std::hypot(block.b1(), block.h())));  // of the rectangular block
+  const bool on_side = rule == OverturnRule::kFallsOnSide;
+  std::vector<OneSineCurvePoint> points;
   for (const double ratio : {2.0, 3.0, 4.0, 6.0}) {
-    const double omega_p = ratio * p;
-    const double period = 2.0 * M_PI / omega_p;
+    const double period = 2.0 * M_PI / (ratio * p);
     const double dt = period / 400.0;
     const auto pulse = [&](double amplitude_ratio) {
       return SinePulse(amplitude_ratio * kG * std::tan(theta_c), 1.0 / period, 1.0, dt);
@@ -192,58 +196,74 @@ TEST(Respond, OneSinePulseOverturningAmplitudeMatchesIndependentPlanarIntegratio
     const auto rockfit_overturns = [&](double amplitude_ratio) {
       ResponseOptions options;
       options.simulation.rate_hz = 10.0;
+      options.simulation.overturn = rule;
       options.tail_s = t_run - period;
-      return Respond(block, Planar(1.0), AlongX(pulse(amplitude_ratio), dt), options).summary.overturned;
+      const Response r = Respond(block, Planar(1.0), AlongX(pulse(amplitude_ratio), dt), options);
+      if (on_side && r.summary.overturned) {
+        EXPECT_NEAR(r.summary.peak_tilt_rad, M_PI / 2.0, 1e-9);  // it lies on a side
+      }
+      return r.summary.overturned;
     };
     const auto planar_overturns = [&](double amplitude_ratio) {
-      return testing::SimulatePlanarBaseRocking(PlanarModel(block, 1.0, pulse(amplitude_ratio), dt), t_run, 0.1, 2e-3)
-          .overturned;
+      testing::PlanarBaseRocking m = PlanarModel(block, 1.0, pulse(amplitude_ratio), dt);
+      if (on_side) m.overturn_tilt_rad = M_PI / 2.0;
+      return testing::SimulatePlanarBaseRocking(m, t_run, 0.1, 2e-3).overturned;
     };
-    points.push_back({ratio, MinimumOverturningAmplitude(rockfit_overturns, 1.0, 20.0, tol),
-                      MinimumOverturningAmplitude(planar_overturns, 1.0, 20.0, tol)});
+    points.push_back({ratio, MinimumOverturningAmplitude(rockfit_overturns, 1.0, 20.0, kOneSineBisectionTol),
+                      MinimumOverturningAmplitude(planar_overturns, 1.0, 20.0, kOneSineBisectionTol)});
+    std::printf("one-sine pulse, overturn rule %s  ω_p/p = %.1f   a_p/(g tan θ): rockfit %.4f   planar reference "
+                "%.4f\n", ToString(rule), ratio, points.back().rockfit, points.back().planar);
+    EXPECT_NEAR(points.back().rockfit, points.back().planar, 2.0 * kOneSineBisectionTol) << "ω_p/p = " << ratio;
   }
-  for (const Point& pt : points) {
+  return points;
+}
+
+TEST(Respond, OneSinePulseOverturningAmplitudeMatchesIndependentPlanarIntegration) {
+  ROCKFIT_REQUIRE_OPTIMISED_BUILD();
+  const std::vector<OneSineCurvePoint> points = OneSineCurveAgainstPlanar(OverturnRule::kComOverSupport);
+  for (const OneSineCurvePoint& pt : points) {
     RecordProperty("a_p/(g tan θ) at ω_p/p = " + std::to_string(pt.ratio), std::to_string(pt.rockfit));
-    std::printf("one-sine pulse  ω_p/p = %.1f   a_p/(g tan θ): rockfit %.4f   planar reference %.4f\n", pt.ratio,
-                pt.rockfit, pt.planar);
-    EXPECT_NEAR(pt.rockfit, pt.planar, 2.0 * tol) << "ω_p/p = " << pt.ratio;
   }
   // The curve rises with the pulse frequency (Zhang & Makris 2001, Fig. 4): short pulses need more.
   for (std::size_t k = 1; k < points.size(); ++k) EXPECT_GT(points[k].rockfit, points[k - 1].rockfit);
 }
 
-TEST(Respond, OneSinePulseOverturningWithoutImpactMatchesTheLinearisedClosedForm) {
-  // A very slender block (α = θ_c = 0.01 rad) on a square base of 1 cm, where the linearised equation errs by
-  // O(α²): the smallest a_p
-  // of a one-sine pulse that overturns it before it lands again, by bisection on the simulator's response and
-  // on the closed form (tests/support/one_sine_pulse_linearised.hpp). The block never lands, so the impact rule
-  // plays no part: this checks the equations of motion under ground acceleration and the overturning test.
-  const Block block = Block::FromDensity(0.005, 0.005, 0.5, 2500);
+// Whether a one-sine pulse of amplitude a·g·α (α = θ_c, ω_p = ratio·p, 400 samples a period) overturns `block`
+// under `rule` before it lands again. A landing is a facet impact (a square base may first tip onto a vertex and
+// settle on the edge: an edge impact, not a landing). Every run must end with a motion: on a short edge the vertex
+// motion alone once "lifted" an end that the edge still loaded with half the weight, and landed it at once, again
+// and again.
+bool OverturnsBeforeLanding(const Block& block, double ratio, double a, OverturnRule rule) {
   const double alpha = std::atan(block.b1() / block.h());
   const double p = std::sqrt(3.0 * kG / (4.0 * std::hypot(block.b1(), block.h())));
+  const double period = 2.0 * M_PI / (ratio * p);
+  const double dt = period / 400.0;
+  ResponseOptions options;
+  options.simulation.rate_hz = 10.0;
+  options.simulation.overturn = rule;
+  options.tail_s = 25.0 / p;  // near the boundary the block creeps along the separatrix before it leaves
+  const Response r = Respond(block, Planar(1.0), AlongX(SinePulse(a * kG * alpha, 1.0 / period, 1.0, dt), dt), options);
+  const bool landed = std::any_of(r.trajectory.impacts.begin(), r.trajectory.impacts.end(),
+                                  [](const ImpactRecord& impact) { return impact.kind == ImpactKind::kFacet; });
+  EXPECT_NE(r.summary.end_reason, EndReason::kFailed) << "a = " << a << ": " << r.summary.message;
+  return r.summary.overturned && !landed;
+}
+
+TEST(Respond, OneSinePulseOverturningWithoutImpactMatchesTheLinearisedClosedForm) {
+  // A very slender block (α = θ_c = 0.01 rad) on a square base of 1 cm, where the linearised equation errs by
+  // O(α²): the smallest a_p of a one-sine pulse that overturns it before it lands again, by bisection on the
+  // simulator's response and on the closed form (tests/support/one_sine_pulse_linearised.hpp). The block never
+  // lands, so the impact rule plays no part: this checks the equations of motion under ground acceleration and
+  // the overturning test.
+  const Block block = Block::FromDensity(0.005, 0.005, 0.5, 2500);
   // Relative agreement: O(α²) of the linearisation, the piecewise-linear pulse (400 samples a period) and the
   // bisection tolerance.
   constexpr double kRelTol = 2e-3;
   constexpr double kBisectionTol = 1e-4;  // in units of g α
   for (const double ratio : {1.0, 2.0, 3.0, 4.0}) {
-    const double period = 2.0 * M_PI / (ratio * p);
-    const double dt = period / 400.0;
-    const auto overturns_before_landing = [&](double a) {
-      ResponseOptions options;
-      options.simulation.rate_hz = 10.0;
-      options.tail_s = 25.0 / p;  // near the boundary the block creeps along the separatrix before it leaves
-      const Response r =
-          Respond(block, Planar(1.0), AlongX(SinePulse(a * kG * alpha, 1.0 / period, 1.0, dt), dt), options);
-      // A landing is a facet impact (a square base may first tip onto a vertex and settle on the edge: an
-      // edge impact, not a landing).
-      const bool landed = std::any_of(r.trajectory.impacts.begin(), r.trajectory.impacts.end(),
-                                      [](const ImpactRecord& i) { return i.kind == ImpactKind::kFacet; });
-      // On this short edge the vertex motion alone once "lifted" an end that the edge still loaded with half
-      // the weight, and landed it at once, again and again: every run must end with a motion.
-      EXPECT_NE(r.summary.end_reason, EndReason::kFailed) << "a = " << a << ": " << r.summary.message;
-      return r.summary.overturned && !landed;
-    };
-    const double simulated = MinimumOverturningAmplitude(overturns_before_landing, 1.0, 20.0, kBisectionTol);
+    const double simulated = MinimumOverturningAmplitude(
+        [&](double a) { return OverturnsBeforeLanding(block, ratio, a, OverturnRule::kComOverSupport); }, 1.0, 20.0,
+        kBisectionTol);
     const double closed_form = MinimumOverturningAmplitude(
         [&](double a) { return testing::OverturnsWithoutImpactLinearised(ratio, a); }, 1.0, 20.0, kBisectionTol);
     const double at_pulse_end = MinimumOverturningAmplitude(
@@ -260,29 +280,15 @@ TEST(Respond, OneSinePulseOverturningWithoutImpactMatchesTheLinearisedClosedForm
 // without having landed, the closed form judged at the pulse's end (Zhang & Makris's criterion).
 TEST(Respond, OneSinePulseFallingOnASideWithoutImpactMatchesTheClosedFormJudgedAtThePulsesEnd) {
   const Block block = Block::FromDensity(0.005, 0.005, 0.5, 2500);
-  const double alpha = std::atan(block.b1() / block.h());
-  const double p = std::sqrt(3.0 * kG / (4.0 * std::hypot(block.b1(), block.h())));
   constexpr double kRelTol = 2e-3;        // as in the test above
   constexpr double kBisectionTol = 1e-4;  // in units of g α
   for (const double ratio : {1.0, 2.0, 3.0, 4.0}) {
-    const double period = 2.0 * M_PI / (ratio * p);
-    const double dt = period / 400.0;
-    const auto falls_before_landing = [&](double a, OverturnRule rule) {
-      ResponseOptions options;
-      options.simulation.rate_hz = 10.0;
-      options.simulation.overturn = rule;
-      options.tail_s = 25.0 / p;
-      const Response r =
-          Respond(block, Planar(1.0), AlongX(SinePulse(a * kG * alpha, 1.0 / period, 1.0, dt), dt), options);
-      const bool landed = std::any_of(r.trajectory.impacts.begin(), r.trajectory.impacts.end(),
-                                      [](const ImpactRecord& i) { return i.kind == ImpactKind::kFacet; });
-      EXPECT_NE(r.summary.end_reason, EndReason::kFailed) << "a = " << a << ": " << r.summary.message;
-      return r.summary.overturned && !landed;
-    };
     const double on_side = MinimumOverturningAmplitude(
-        [&](double a) { return falls_before_landing(a, OverturnRule::kFallsOnSide); }, 1.0, 20.0, kBisectionTol);
+        [&](double a) { return OverturnsBeforeLanding(block, ratio, a, OverturnRule::kFallsOnSide); }, 1.0, 20.0,
+        kBisectionTol);
     const double over_support = MinimumOverturningAmplitude(
-        [&](double a) { return falls_before_landing(a, OverturnRule::kComOverSupport); }, 1.0, 20.0, kBisectionTol);
+        [&](double a) { return OverturnsBeforeLanding(block, ratio, a, OverturnRule::kComOverSupport); }, 1.0, 20.0,
+        kBisectionTol);
     const double at_pulse_end = MinimumOverturningAmplitude(
         [&](double a) { return testing::OverturnsAtPulseEndLinearised(ratio, a); }, 1.0, 20.0, kBisectionTol);
     std::printf("one-sine pulse, no landing  ω_p/p = %.1f   a_p/(g α): falls on a side %.4f   closed form judged at "
@@ -297,41 +303,7 @@ TEST(Respond, OneSinePulseFallingOnASideWithoutImpactMatchesTheClosedFormJudgedA
 // formulation of Zhang & Makris (2001): Housner's restitution, the equation of motion through θ_c.
 TEST(Respond, OneSinePulseFallingOnASideMatchesIndependentPlanarIntegrationCarriedToNinetyDegrees) {
   ROCKFIT_REQUIRE_OPTIMISED_BUILD();
-  const Block block = Block::FromDensity(0.05, 0.05, 0.5, 2500);  // θ_c = 0.0997 rad
-  const double theta_c = std::atan(block.b1() / block.h());
-  const double p = std::sqrt(3.0 * kG / (4.0 * std::hypot(block.b1(), block.h())));
-  const double tol = 1e-3;
-  for (const double ratio : {2.0, 3.0, 4.0, 6.0}) {
-    const double period = 2.0 * M_PI / (ratio * p);
-    const double dt = period / 400.0;
-    const auto pulse = [&](double amplitude_ratio) {
-      return SinePulse(amplitude_ratio * kG * std::tan(theta_c), 1.0 / period, 1.0, dt);
-    };
-    const double t_run = period + 8.0 / p;
-    const double rockfit = MinimumOverturningAmplitude(
-        [&](double a) {
-          ResponseOptions options;
-          options.simulation.rate_hz = 10.0;
-          options.simulation.overturn = OverturnRule::kFallsOnSide;
-          options.tail_s = t_run - period;
-          const Response r = Respond(block, Planar(1.0), AlongX(pulse(a), dt), options);
-          if (r.summary.overturned) {
-            EXPECT_NEAR(r.summary.peak_tilt_rad, M_PI / 2.0, 1e-9);  // it lies on a side
-          }
-          return r.summary.overturned;
-        },
-        1.0, 20.0, tol);
-    const double planar = MinimumOverturningAmplitude(
-        [&](double a) {
-          testing::PlanarBaseRocking m = PlanarModel(block, 1.0, pulse(a), dt);
-          m.overturn_tilt_rad = M_PI / 2.0;
-          return testing::SimulatePlanarBaseRocking(m, t_run, 0.1, 2e-3).overturned;
-        },
-        1.0, 20.0, tol);
-    std::printf("one-sine pulse, falls on a side  ω_p/p = %.1f   a_p/(g tan θ): rockfit %.4f   planar reference %.4f\n",
-                ratio, rockfit, planar);
-    EXPECT_NEAR(rockfit, planar, 2.0 * tol) << "ω_p/p = " << ratio;
-  }
+  OneSineCurveAgainstPlanar(OverturnRule::kFallsOnSide);
 }
 
 // A two-component record: a band of sines along x and y.
