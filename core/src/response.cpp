@@ -76,19 +76,21 @@ Response Respond(const Block& block, const ModelParameters& params, const Ground
 }
 
 RoundOffSpread RespondUnderRoundOff(const Block& block, const ModelParameters& params, const GroundMotion& ground,
-                                    const ResponseOptions& options, int runs) {
+                                    const ResponseOptions& options, const ResponseSummary& at_record, int runs) {
   if (runs < 1) throw InvalidArgument("a round-off study needs at least one run, got " + std::to_string(runs));
   RoundOffSpread spread;
   spread.peak_tilt_min_rad = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < runs; ++i) {
-    const int k = (i + 1) / 2 * (i % 2 == 1 ? 1 : -1);  // 0, 1, −1, 2, −2, …
-    const GroundMotion scaled = k == 0 ? ground : ground.Scaled(1.0 + k * RoundOffSpread::kRoundOffStep);
-    const ResponseSummary s = Respond(block, params, scaled, options).summary;
+  const auto add = [&spread](const ResponseSummary& s) {
     ++spread.runs;
     if (s.overturned) ++spread.overturned;
     if (s.end_reason == EndReason::kFailed) ++spread.failed;
     spread.peak_tilt_min_rad = std::min(spread.peak_tilt_min_rad, s.peak_tilt_rad);
     spread.peak_tilt_max_rad = std::max(spread.peak_tilt_max_rad, s.peak_tilt_rad);
+  };
+  add(at_record);
+  for (int i = 1; i < runs; ++i) {
+    const int k = (i + 1) / 2 * (i % 2 == 1 ? 1 : -1);  // 1, −1, 2, −2, …
+    add(Respond(block, params, ground.Scaled(1.0 + k * RoundOffSpread::kRoundOffStep), options).summary);
   }
   return spread;
 }

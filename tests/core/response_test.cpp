@@ -508,18 +508,21 @@ TEST(Respond, RoundOffSpreadCountsTheVerdictsOfRunsScaledAtRoundOff) {
   ResponseOptions options;
   options.tail_s = 0.5;
   // Below the uplift threshold g·b2/h every run rests flat; a strong diagonal step overturns every run.
-  std::vector<Eigen::Vector3d> weak(101, Eigen::Vector3d(0.1 * kG, 0.0, 0.0));
-  const RoundOffSpread none = RespondUnderRoundOff(block, ThreeD(), GroundMotion::Uniform(0.01, weak), options, 5);
+  const GroundMotion weak = GroundMotion::Uniform(0.01, std::vector<Eigen::Vector3d>(101, {0.1 * kG, 0.0, 0.0}));
+  const ResponseSummary at_weak = Respond(block, ThreeD(), weak, options).summary;
+  const RoundOffSpread none = RespondUnderRoundOff(block, ThreeD(), weak, options, at_weak, 5);
   EXPECT_EQ(none.runs, 5);
   EXPECT_EQ(none.overturned, 0);
   EXPECT_EQ(none.peak_tilt_max_rad, 0.0);
-  std::vector<Eigen::Vector3d> strong(81, 0.9 * kG * Eigen::Vector3d(1.0, 0.8, 0.0).normalized());
-  const RoundOffSpread all = RespondUnderRoundOff(block, ThreeD(), GroundMotion::Uniform(0.005, strong), options, 4);
+  const GroundMotion strong = GroundMotion::Uniform(
+      0.005, std::vector<Eigen::Vector3d>(81, 0.9 * kG * Eigen::Vector3d(1.0, 0.8, 0.0).normalized()));
+  const RoundOffSpread all =
+      RespondUnderRoundOff(block, ThreeD(), strong, options, Respond(block, ThreeD(), strong, options).summary, 4);
   EXPECT_EQ(all.runs, 4);
   EXPECT_EQ(all.overturned, 4);
   EXPECT_EQ(all.failed, 0);
   EXPECT_GT(all.peak_tilt_min_rad, std::atan(block.b2() / block.h()));
-  EXPECT_THROW(RespondUnderRoundOff(block, ThreeD(), GroundMotion::Uniform(0.01, weak), options, 0), InvalidArgument);
+  EXPECT_THROW(RespondUnderRoundOff(block, ThreeD(), weak, options, at_weak, 0), InvalidArgument);
 }
 
 }  // namespace

@@ -220,7 +220,8 @@ int RunRespond(RespondCommand& cmd) {
   const core::Response response = core::Respond(block, cmd.params, ground.assembled.ground, cmd.options);
   std::optional<core::RoundOffSpread> spread;
   if (cmd.round_off_runs > 0) {
-    spread = core::RespondUnderRoundOff(block, cmd.params, ground.assembled.ground, cmd.options, cmd.round_off_runs);
+    spread = core::RespondUnderRoundOff(block, cmd.params, ground.assembled.ground, cmd.options, response.summary,
+                                        cmd.round_off_runs);
   }
 
   if (cmd.format == "hdf5") {

@@ -74,9 +74,10 @@ Response Respond(const Block& block, const ModelParameters& params, const Ground
                  const ResponseOptions& options);
 
 // How a response depends on round-off (core/README.md, "Sensitivity of a single response"): `runs` runs of the
-// record scaled by 1 + k·kRoundOffStep, k = 0, 1, −1, 2, −2, …. A block that chatters along a base edge amplifies
-// a difference of round-off a hundredfold every fifteen impacts; near the overturning boundary its verdict can
-// then differ from one run to the next. Throws InvalidArgument for runs < 1 (and as Respond()).
+// record scaled by 1 + k·kRoundOffStep, k = 0, 1, −1, 2, −2, …, of which the first (k = 0) is `at_record`, the
+// summary of Respond() on the record itself. A block that chatters along a base edge amplifies a difference of
+// round-off a hundredfold every fifteen impacts; near the overturning boundary its verdict can then differ from
+// one run to the next. Throws InvalidArgument for runs < 1 (and as Respond()).
 struct RoundOffSpread {
   static constexpr double kRoundOffStep = 1e-15;  // relative; a few units in the last place of a sample
   int runs = 0;
@@ -86,7 +87,7 @@ struct RoundOffSpread {
   double peak_tilt_max_rad = 0.0;
 };
 RoundOffSpread RespondUnderRoundOff(const Block& block, const ModelParameters& params, const GroundMotion& ground,
-                                    const ResponseOptions& options, int runs);
+                                    const ResponseOptions& options, const ResponseSummary& at_record, int runs);
 
 // The summary of a trajectory of a run under `ground` (Respond() calls it).
 ResponseSummary SummariseResponse(const Block& block, const GroundMotion& ground, const Trajectory& trajectory);
