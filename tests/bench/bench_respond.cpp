@@ -18,14 +18,21 @@ GroundMotion Record(double pga_g, std::uint64_t seed) {
   return rockfit::testing::GeneratedRecordAlongX(seed, 30.0, pga_g * rockfit::core::kRecordGravity, 15.0).Rotated(M_PI / 6.0);
 }
 
-void BM_Respond30sRecord200Hz(benchmark::State& state) {
-  const double pga_g = static_cast<double>(state.range(0)) / 100.0;
-  const GroundMotion ground = Record(pga_g, 5);
-  const auto block = rockfit::core::Block::FromDensity(0.05000453, 0.035, 0.2, 2692);
+rockfit::core::Block GraniteBlock() { return rockfit::core::Block::FromDensity(0.05000453, 0.035, 0.2, 2692); }
+
+rockfit::core::ModelParameters WithinBounds() {
   rockfit::core::ModelParameters params;
   params.lambda = 0.6;
   params.lambda_lat = 0.3;
   params.lambda_lon = 0.7;
+  return params;
+}
+
+void BM_Respond30sRecord200Hz(benchmark::State& state) {
+  const double pga_g = static_cast<double>(state.range(0)) / 100.0;
+  const GroundMotion ground = Record(pga_g, 5);
+  const rockfit::core::Block block = GraniteBlock();
+  const rockfit::core::ModelParameters params = WithinBounds();
   rockfit::core::ResponseOptions options;  // flat at rest, 200 Hz samples, 5 s tail, ends at rest
   rockfit::core::Response r;
   for (auto _ : state) {
@@ -52,11 +59,8 @@ void BM_Respond30sRecords200HzEightSeeds(benchmark::State& state) {
   const double pga_g = static_cast<double>(state.range(0)) / 100.0;
   std::vector<GroundMotion> grounds;
   for (int seed = 1; seed <= kRecords; ++seed) grounds.push_back(Record(pga_g, static_cast<std::uint64_t>(seed)));
-  const auto block = rockfit::core::Block::FromDensity(0.05000453, 0.035, 0.2, 2692);
-  rockfit::core::ModelParameters params;
-  params.lambda = 0.6;
-  params.lambda_lat = 0.3;
-  params.lambda_lon = 0.7;
+  const rockfit::core::Block block = GraniteBlock();
+  const rockfit::core::ModelParameters params = WithinBounds();
   const rockfit::core::ResponseOptions options;
   double impacts = 0.0;
   double overturned = 0.0;
