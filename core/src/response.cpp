@@ -58,6 +58,7 @@ ResponseSummary SummariseResponse(const Block& block, const GroundMotion& ground
   s.peak_ground_horizontal_m_s2 = ground.PeakHorizontal();
   s.peak_ground_vertical_m_s2 = ground.PeakVertical();
   s.wall_time_s = trajectory.wall_time_s;
+  s.max_discarded_rate_rad_s = trajectory.max_discarded_rate_rad_s;
   return s;
 }
 

@@ -55,6 +55,10 @@ constexpr double kFlatTiltTol_rad = 1e-12;
 // An end-vertex lift guard (an acceleration in units of g) below this in magnitude at the start of an Edge
 // segment is zero.
 constexpr double kLoadZeroTol = 1e-9;
+// Under ground motion, a facet impact that leaves |ω⁺| at or below this [rad/s] leaves the block without relative
+// velocity: a numerical floor (a rocking amplitude of ~1e-19 rad at the table's accelerations), not a physical
+// threshold (docs/design.md §11a).
+constexpr double kRestRateFloor_rad_s = 1e-9;
 
 // The free mode of a segment's mode (the impact transitions work on the geometry alone).
 const VertexMode& FreeMode(const VertexMode& mode) { return mode; }
@@ -96,22 +100,35 @@ class ImpactSequence {
   void Add(double t_s, const Contact& contact) {
     if (count_ > 0 && contact != contact_) count_ = 0;
     contact_ = contact;
-    times_[2] = times_[1];
-    times_[1] = times_[0];
+    for (std::size_t k = times_.size() - 1; k > 0; --k) times_[k] = times_[k - 1];
     times_[0] = t_s;
     ++count_;
   }
   // The last interval is shorter than `dt` and shorter than the one before.
   bool Shrinking(double dt) const {
     if (count_ < 3) return false;
-    const double last = times_[0] - times_[1];
-    const double before = times_[1] - times_[2];
-    return last < dt && last < before;
+    const double last = Interval(0);
+    return last < dt && last < Interval(1);
   }
-  bool LastIntervalBelow(double dt) const { return count_ >= 2 && times_[0] - times_[1] < dt; }
+  bool LastIntervalBelow(double dt) const { return count_ >= 2 && Interval(0) < dt; }
+  // Under ground motion a chattering block lands alternately from two edges (or vertices), and the table
+  // pushes one side down harder than the other, so consecutive intervals alternate between short and long:
+  // a shrinking pair of intervals says nothing. The sequence accumulates when both interleaved subsequences
+  // shrink, with the ratio q of a cycle (two impacts) below one; the impacts still to come then take
+  // (I0 + I1)·q/(1 − q), the tail of a geometric series. Returns that time when it is below `dt`.
+  std::optional<double> Accumulation(double dt) const {
+    if (count_ < static_cast<int>(times_.size())) return std::nullopt;
+    const double cycle = Interval(0) + Interval(1);
+    const double q = std::max(Interval(0) / Interval(2), Interval(1) / Interval(3));
+    if (!(q < 1.0)) return std::nullopt;  // also a zero interval before (NaN, infinity)
+    const double remaining = cycle * q / (1.0 - q);
+    if (!(remaining < dt)) return std::nullopt;
+    return remaining;
+  }
 
  private:
-  std::array<double, 3> times_{};
+  double Interval(std::size_t k) const { return times_[k] - times_[k + 1]; }
+  std::array<double, 5> times_{};
   Contact contact_;
   int count_ = 0;
 };
@@ -174,6 +191,11 @@ class HybridRun {
   Next EdgeToVertex(const EdgeMode& mode, double t, const EdgeDynamics::State& y, int lifting);
   // Under ground motion: the flat block at rest from t on, until the next uplift (or the end of the run).
   Next RestOnTable(double t, const Eigen::Quaterniond& q_flat);
+  // Under ground motion: the flat block starts to rock at `uplift` from zero relative velocity.
+  Next StartRocking(const Uplift& uplift, const Eigen::Quaterniond& q_flat);
+  // Under ground motion, after the facet impact `trigger` that left the block flat with w⁺ = trigger.w_plus_B:
+  // rest, rocking on with w⁺, or rocking from zero relative velocity about the contact the table selects.
+  Next AfterFacetImpactOnTable(double t, const Eigen::Quaterniond& q_flat, const ImpactRecord& trigger);
   bool lift_off_before_t_max() const { return t_lift_off_ <= options_.t_max_s; }
   Next AfterEdgeImpact(const VertexMode& mode, double t, const VertexDynamics::State& y, int landing);
   Next AfterFacetImpact(const EdgeMode& mode, double t, const EdgeDynamics::State& y);
@@ -193,6 +215,9 @@ class HybridRun {
   // Books an impact; false (and the run has failed) when impacts no longer advance time or the kinetic
   // energy after it, `kinetic_after_J`, shows that impacts keep adding energy without bound.
   bool BookImpact(const ImpactRecord& record, const EndState& state, double kinetic_after_J);
+  void NoteDiscardedRate(const Eigen::Vector3d& w_B) {
+    out_->max_discarded_rate_rad_s = std::max(out_->max_discarded_rate_rad_s, w_B.norm());
+  }
   bool IsReleaseVertex(int k) const { return k == release_.first || k == release_.second; }
   EdgeStart MakeEdgeStart(const Contact& edge, const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B,
                           const Eigen::Vector3d& p_BQ_B) const;
@@ -396,7 +421,7 @@ HybridRun::Next HybridRun::RestOnTable(double t, const Eigen::Quaterniond& q_fla
   rest_mode.kind = ModeKind::kRest;
   const EndState at_rest{rest_mode, q_flat, Eigen::Vector3d::Zero()};
   const double t_until = std::min(options_.t_max_s, t_lift_off_);
-  const std::optional<Uplift> uplift = NextUplift(block_, *ground_, q_flat, gravity_, t, t_until);
+  std::optional<Uplift> uplift = NextUplift(block_, *ground_, q_flat, gravity_, t, t_until);
   if (!uplift) {
     if (lift_off_before_t_max()) {
       return Stop(EndReason::kLiftOff, t_lift_off_, at_rest,
@@ -415,19 +440,58 @@ HybridRun::Next HybridRun::RestOnTable(double t, const Eigen::Quaterniond& q_fla
   record.kind = ImpactKind::kUplift;
   record.contact_after = uplift->contact;
   out_->impacts.push_back(record);
+  return StartRocking(*uplift, q_flat);
+}
+
+HybridRun::Next HybridRun::StartRocking(const Uplift& uplift, const Eigen::Quaterniond& q_flat) {
   edge_impacts_.Clear();
   facet_impacts_.Clear();
-  t_start_ = uplift->t_s;
-  if (uplift->contact.is_vertex()) {
-    vertex_start_.vertex = uplift->contact.first;
+  t_start_ = uplift.t_s;
+  if (uplift.contact.is_vertex()) {
+    vertex_start_.vertex = uplift.contact.first;
     vertex_start_.y = VertexDynamics::MakeState(q_flat, Eigen::Vector3d::Zero());
     for (int g = 0; g < VertexMode::kNumGuards; ++g) vertex_start_.on_surface[g] = VertexMode::IsTouchdown(g);
     return Next::kVertex;
   }
-  edge_start_.edge = uplift->contact;
+  edge_start_.edge = uplift.contact;
   edge_start_.q_yaw = q_flat;
   edge_start_.y = EdgeDynamics::State::Zero();
   return Next::kEdge;
+}
+
+HybridRun::Next HybridRun::AfterFacetImpactOnTable(double t, const Eigen::Quaterniond& q_flat,
+                                                   const ImpactRecord& trigger) {
+  // Rest under a moving table is a contact condition (docs/design.md §11a): the block stops only where its
+  // relative velocity vanishes — the map's ω⁺ = 0, |ω⁺| at the numerical floor, or the accumulation point of a
+  // Zeno sequence of facet impacts — and there rests only if the moment of gravity and of −m·a_g keeps every
+  // base edge down. An impact that leaves the block rocking is never cut short by an energy threshold.
+  const Contact& contact = trigger.contact_after;
+  const bool stopped = !contact.is_vertex() && !contact.is_edge();
+  double accumulates_in_s = 0.0;
+  if (!stopped && trigger.w_plus_B.norm() > kRestRateFloor_rad_s) {
+    const std::optional<double> remaining = facet_impacts_.Accumulation(options_.zeno_dt_s);
+    if (!remaining) return Continue(contact, t, q_flat, trigger.w_plus_B, contact.first, -1, -1);
+    accumulates_in_s = *remaining;
+  }
+  // The contact must hold from now to the accumulation point; where the table tips the block before it, the
+  // impacts go on (they are the motion), unless there is no velocity left to carry them.
+  const double t_until = std::min({t + accumulates_in_s, options_.t_max_s, t_lift_off_});
+  const std::optional<Uplift> uplift = NextUplift(block_, *ground_, q_flat, gravity_, t, t_until);
+  if (!uplift) return Rest(t, q_flat, trigger);
+  if (uplift->t_s > t) return Continue(contact, t, q_flat, trigger.w_plus_B, contact.first, -1, -1);
+  // The table tips the block at this instant: it rocks on from zero relative velocity about the edge or vertex
+  // the moment selects, logged as a switch of contact (kind zeno) that drops the velocity left.
+  ImpactRecord zeno;
+  zeno.t_s = t;
+  zeno.kind = ImpactKind::kZeno;
+  zeno.contact_before = contact;
+  zeno.contact_after = uplift->contact;
+  zeno.w_minus_B = trigger.w_plus_B;
+  zeno.w_minus_W = trigger.w_plus_W;
+  zeno.delta_energy_J = -KineticEnergyAfterLanding(block_, gravity_, contact, q_flat, trigger.w_plus_B);
+  out_->impacts.push_back(zeno);
+  NoteDiscardedRate(trigger.w_plus_B);
+  return StartRocking(*uplift, q_flat);
 }
 
 bool HybridRun::BookImpact(const ImpactRecord& record, const EndState& state, double kinetic_after_J) {
@@ -503,7 +567,10 @@ HybridRun::Next HybridRun::AfterEdgeImpact(const VertexMode& mode, double t, con
   const VertexDynamics about_landing(block_, landing, gravity_);
   const double kinetic_after = about_landing.KineticEnergy(VertexDynamics::MakeState(q_WB, record.w_plus_B));
   if (!BookImpact(record, after, kinetic_after)) return Next::kStopped;
-  facet_impacts_.Clear();
+  // Under ground motion a chatter that lands on the base from alternate corners has edge impacts between its
+  // facet impacts (facet → vertex → edge impacts → Zeno → edge → facet): the facet impacts of such a cycle
+  // still accumulate, so the sequence goes on through them (docs/design.md §11a).
+  if (ground_ == nullptr) facet_impacts_.Clear();
   edge_impacts_.Add(t, Contact::Edge(pivot, landing));
 
   if (facet_seen_ && IsReleaseVertex(landing) && options_.stop == StopCondition::kPhase4) {
@@ -594,7 +661,9 @@ HybridRun::Next HybridRun::AfterFacetImpact(const EdgeMode& mode, double t, cons
   }
   facet_seen_ = true;
 
-  // Rest: too little kinetic energy to lift the COM by rest_energy_height, or facet impacts accumulating.
+  if (ground_ != nullptr) return AfterFacetImpactOnTable(t, q_flat, record);
+  // Free rocking: rest when the kinetic energy cannot lift the COM by rest_energy_height, or facet impacts
+  // accumulate (docs/design.md §4).
   const double rest_energy = block_.mass() * gravity_ * options_.rest_energy_height_m;
   const bool stays_down = !map.contact_after.is_vertex() && !map.contact_after.is_edge();
   if (stays_down || kinetic_after < rest_energy || facet_impacts_.Shrinking(options_.zeno_dt_s)) {
@@ -639,6 +708,7 @@ HybridRun::Next HybridRun::Rest(double t, const Eigen::Quaterniond& q_flat, cons
   const double kinetic = KineticEnergyAfterLanding(block_, gravity_, trigger.contact_after, q_flat, trigger.w_plus_B);
   rest.delta_energy_J = -kinetic;
   out_->impacts.push_back(rest);
+  NoteDiscardedRate(trigger.w_plus_B);
   if (ground_ != nullptr) return RestOnTable(t, q_flat);
   Mode rest_mode;
   rest_mode.kind = ModeKind::kRest;

@@ -19,7 +19,7 @@ namespace rockfit::fitting {
 namespace {
 
 static_assert(std::is_trivially_copyable_v<SampleOutcome>, "outcomes travel as bytes");
-static_assert(sizeof(SampleOutcome) == 152, "SampleOutcome has no padding: its bytes are its values");
+static_assert(sizeof(SampleOutcome) == 160, "SampleOutcome has no padding: its bytes are its values");
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kTwoPi = 6.283185307179586476925286766559;
@@ -79,7 +79,7 @@ std::int64_t FragilityStudyOptions::num_samples() const {
 }
 
 std::string FragilityStudyOptions::SettingsText() const {
-  std::string s = fmt::format("fragility v1; seed={}; measure={}; samples_per_level={}; angle={}; levels=", seed,
+  std::string s = fmt::format("fragility v2; seed={}; measure={}; samples_per_level={}; angle={}; levels=", seed,
                               ToString(measure), samples_per_level,
                               angle_rad ? fmt::format("{:.17g}", *angle_rad) : std::string("uniform"));
   for (double l : levels) s += fmt::format("{:.17g},", l);
@@ -170,6 +170,7 @@ SampleOutcome RunSample(const FragilityStudyOptions& study, std::int64_t index) 
     o.peak_rotation_rad = s.peak_rotation_rad;
     o.peak_rate_rad_s = s.peak_rate_rad_s;
     o.num_impacts = static_cast<std::int64_t>(s.num_impacts);
+    o.max_discarded_rate_rad_s = s.max_discarded_rate_rad_s;
     o.counted = s.end_reason == core::EndReason::kRest || s.end_reason == core::EndReason::kTMax || s.overturned ? 1 : 0;
   } catch (const InvalidArgument&) {
     o.end_reason = kSampleInvalid;  // parameters Respond refuses (the distribution reached a non-finite value)

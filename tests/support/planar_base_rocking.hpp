@@ -3,9 +3,11 @@
 // GSL's rk8pd and its own event search, and the impact rule (6):
 //   J θ̈ = s m [ −g R sin(θ_c − |θ|) + s a_x(t) R cos(θ_c − |θ|) ],   s = sign θ,   J = Θ_yy + m R²,
 // θ > 0 rocking about the edge x = −b1 (lifted by a_x > 0), θ̇⁺ = r θ̇⁻ at θ = 0 with r of (6); the block
-// leaves rest when a_x h > g b1 (θ > 0) or −a_x h > g b1 (θ < 0), returns to rest when |θ̇| after an impact
-// is below a threshold, and overturns when |θ| reaches θ_c (or, when asked, π/2: it lies on its side). Nothing
-// here uses rockfit's simulator.
+// leaves rest when a_x h > g b1 (θ > 0) or −a_x h > g b1 (θ < 0). Rest is done the textbook way: every impact
+// is integrated, also those of a Zeno sequence, until |θ̇| after an impact falls below `rest_rate_rad_s`
+// (1e-9 rad/s); the block then rests if the table cannot tip it at that instant, and otherwise rocks on from
+// θ̇ = 0 on the side the table lifts. It overturns when |θ| reaches θ_c (or, when asked, π/2: it lies on its
+// side). Nothing here uses rockfit's simulator.
 #pragma once
 
 #include <algorithm>
@@ -27,7 +29,7 @@ struct PlanarBaseRocking {
   double lambda = 1.0;  // (6)
   double dt_record_s = 0.01;
   std::vector<double> a_x;  // record samples at k·dt, linear between, zero outside
-  double rest_rate_rad_s = 1e-6;
+  double rest_rate_rad_s = 1e-9;
   // Overturned when |θ| reaches this; 0: θ_c (the COM over the edge). π/2: the block lies on its side, the
   // equation going on past θ_c, where the table can still pull the block back.
   double overturn_tilt_rad = 0.0;
@@ -52,8 +54,9 @@ struct PlanarBaseRocking {
 };
 
 struct PlanarResult {
-  std::vector<double> uplift_times;
+  std::vector<double> uplift_times;  // from rest (a rest followed at once by rocking counts as neither)
   std::vector<double> impact_times;
+  std::vector<double> rest_times;    // the impacts after which the block rests
   double peak_tilt = 0.0;  // largest |θ| at the output times
   std::vector<double> output_theta;  // θ at k·output_dt_s (until the end of the run)
   bool overturned = false;
@@ -102,9 +105,12 @@ inline PlanarResult SimulatePlanarBaseRocking(const PlanarBaseRocking& m, double
   };
   const double g_b = m.gravity * m.b_m;
   const auto margin = [&](double t, double side) { return side * m.Accel(t) * m.h_m - g_b; };
+  double peak_accel = 0.0;
+  for (double a : m.a_x) peak_accel = std::max(peak_accel, std::abs(a));
   double t = 0.0;
   double y[2] = {0.0, 0.0};
   bool resting = true;
+  bool just_stopped = false;  // θ̇ vanished at an impact: rest, or rocking on from θ̇ = 0
   const double theta_over = m.overturn_tilt_rad > 0.0 ? m.overturn_tilt_rad : m.ThetaC();
   while (t < t_end) {
     if (resting) {
@@ -128,8 +134,13 @@ inline PlanarResult SimulatePlanarBaseRocking(const PlanarBaseRocking& m, double
         rest_until(t_end + output_dt_s);
         return out;
       }
-      rest_until(found);
-      out.uplift_times.push_back(found);
+      if (just_stopped && found == t) {
+        out.rest_times.pop_back();  // the table tips the block at once: it never rested
+      } else {
+        rest_until(found);
+        out.uplift_times.push_back(found);
+      }
+      just_stopped = false;
       t = found;
       y[0] = 0.0;
       y[1] = 0.0;
@@ -138,7 +149,13 @@ inline PlanarResult SimulatePlanarBaseRocking(const PlanarBaseRocking& m, double
       y[0] = side * 1e-300;
     }
     const double next_sample = (std::floor(t / m.dt_record_s + 1e-9) + 1.0) * m.dt_record_s;
-    const double t1 = std::min({t + chunk_s, next_sample, t_end, output_time(next_output)});
+    // A chunk must not hold two crossings of θ = 0 (an impact, the motion through θ = 0 on the wrong side's
+    // equation, and a return): keep it below a quarter of the time |θ| and |θ̇| need to come back under the
+    // largest angular acceleration the table can give.
+    const double accel_bound = m.mass_kg * m.R() / m.J() * (m.gravity + peak_accel);
+    const double return_s = (std::abs(y[1]) + std::sqrt(2.0 * accel_bound * std::abs(y[0]))) / accel_bound;
+    const double t1 = std::min({t + std::min(chunk_s, std::max(0.25 * return_s, 1e-13)), next_sample, t_end,
+                                output_time(next_output)});
     double y1[2];
     detail::Advance(m, t, y, t1, y1);
     const double side = y[0] >= 0.0 ? 1.0 : -1.0;
@@ -175,7 +192,9 @@ inline PlanarResult SimulatePlanarBaseRocking(const PlanarBaseRocking& m, double
     const double rate = m.Restitution() * ye[1];
     t = hi;
     if (std::abs(rate) < m.rest_rate_rad_s) {
+      out.rest_times.push_back(hi);
       resting = true;
+      just_stopped = true;
       continue;
     }
     y[0] = -side * 1e-300;

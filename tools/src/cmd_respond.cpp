@@ -55,6 +55,7 @@ nlohmann::json SummaryJson(const core::ResponseSummary& s) {
           {"peak_rate_rad_s", s.peak_rate_rad_s},
           {"num_impacts", s.num_impacts},
           {"uplift_times", s.uplift_times_s},
+          {"max_discarded_rate_rad_s", s.max_discarded_rate_rad_s},
           {"max_friction_ratio", s.max_friction_ratio},
           {"min_normal_force", s.min_normal_force_N},
           {"pga_horizontal_m_s2", s.peak_ground_horizontal_m_s2},
@@ -157,6 +158,7 @@ void PrintSummary(const core::Block& block, const core::ModelParameters& p, cons
   if (s.uplift_times_s.size() > 10) uplifts += fmt::format(" … ({} in all)", s.uplift_times_s.size());
   std::cout << fmt::format("uplifts         {}{}\n", s.uplift_times_s.size(), s.uplift_times_s.empty() ? "" : " at" + uplifts + " s");
   std::cout << fmt::format("impacts         {}\n", s.num_impacts);
+  std::cout << fmt::format("rests           largest |ω| set to zero {:.3g} rad/s\n", s.max_discarded_rate_rad_s);
   std::cout << fmt::format("friction ratio  {:.4f} (largest |F_t|/F_n needed; sliding is not modelled)\n",
                            s.max_friction_ratio);
   if (spread) {

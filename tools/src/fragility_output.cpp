@@ -104,6 +104,8 @@ void WriteFragilityHdf5(const io::hdf5::Group& root, const fitting::FragilityStu
   s.WriteDoubles("pga_horizontal_g",
                  Column(outcomes, [](const O& o) { return o.pga_horizontal_m_s2 / core::kRecordGravity; }), "g");
   s.WriteInts("num_impacts", IntColumn(outcomes, [](const O& o) { return o.num_impacts; }), "1");
+  s.WriteDoubles("max_discarded_rate_rad_s", Column(outcomes, [](const O& o) { return o.max_discarded_rate_rad_s; }),
+                 "rad/s");
 
   const io::hdf5::Group blocks = f.CreateGroup("blocks");
   std::vector<std::string> ids;

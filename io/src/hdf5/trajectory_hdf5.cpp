@@ -123,6 +123,7 @@ void WriteGroundMotionAndResponse(const hdf5::Group& root, const ResponseContent
   rg.SetInt("num_impacts", static_cast<std::int64_t>(r.num_impacts));
   rg.SetDouble("max_friction_ratio", r.max_friction_ratio);
   rg.SetDouble("min_normal_force_N", r.min_normal_force_N);
+  rg.SetDouble("max_discarded_rate_rad_s", r.max_discarded_rate_rad_s);
   rg.WriteDoubles("uplift_times_s", r.uplift_times_s, "s");
 }
 

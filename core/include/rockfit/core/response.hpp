@@ -56,6 +56,8 @@ struct ResponseSummary {
   double critical_tilt_rad = 0.0;
   std::size_t num_impacts = 0;         // edge and facet impacts
   std::vector<double> uplift_times_s;  // rest → rocking
+  // The largest |w_B| that a rest set to zero (Trajectory::max_discarded_rate_rad_s): the rest tolerance at work.
+  double max_discarded_rate_rad_s = 0.0;
   double max_friction_ratio = 0.0;     // largest |F_t|/F_n needed for no slip (sliding is not modelled)
   double min_normal_force_N = 0.0;     // smallest normal force while rocking (negative: the block would jump)
   double peak_ground_horizontal_m_s2 = 0.0;

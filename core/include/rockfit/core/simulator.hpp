@@ -86,9 +86,12 @@ struct SimulationOptions {
   int release_edge_first = 1;           // release edge V_iV_j (default V1V2, +x side lifted)
   int release_edge_second = 2;
   // Edge impacts on one edge whose interval shrinks below this switch to edge rocking; facet impacts
-  // whose interval shrinks below this end in Rest.
+  // whose interval shrinks below this end in Rest. Under ground motion facet impacts end only at an
+  // accumulation point predicted less than this ahead, where the table keeps the block down.
   double zeno_dt_s = 1e-4;
-  double rest_energy_height_m = 1e-9;   // kinetic energy after a facet impact below m·g·this ends in Rest
+  // Free rocking only: kinetic energy after a facet impact below m·g·this ends in Rest. Under ground motion
+  // no energy threshold decides rest against rocking (docs/design.md §11a).
+  double rest_energy_height_m = 1e-9;
   double gravity_m_s2 = kStandardGravity;
   double rel_tol = 1e-12;               // integrator relative tolerance
   double abs_tol = 1e-14;               // integrator absolute tolerance
@@ -180,6 +183,9 @@ struct Trajectory {
   EndReason end_reason = EndReason::kFailed;
   FailureReason failure = FailureReason::kNone;  // why a Failed run failed
   std::string message;                           // the same in words, with times and contacts
+  // The largest |w_B| [rad/s] that a rest (or, under ground motion, a switch to rocking from zero relative
+  // velocity) set to zero: a Zeno sequence's last post-impact rate, or what rest_energy_height ended.
+  double max_discarded_rate_rad_s = 0.0;
   double wall_time_s = 0.0;  // of Simulate() itself
   long num_steps = 0;        // accepted integrator steps over all segments
   long num_evaluations = 0;  // right-hand-side evaluations over all segments

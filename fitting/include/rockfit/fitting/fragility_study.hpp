@@ -105,6 +105,7 @@ struct SampleOutcome {
   double t_end_s;
   double t_overturn_s;  // NaN when the block did not overturn
   double peak_tilt_rad, critical_tilt_rad, peak_rotation_rad, peak_rate_rad_s, pga_horizontal_m_s2;
+  double max_discarded_rate_rad_s;  // the largest |ω| a rest of the run set to zero
   std::int64_t num_impacts;
   std::uint64_t seed;
   std::int32_t overturned;  // 1 or 0

@@ -22,7 +22,7 @@
 //   /samples        a_g_W_m_s2 (N×3) (the ground acceleration at the sample times), tilt_rad (N)
 //   /response       attributes overturned (0/1), t_overturn_s (NaN if not), peak_tilt_rad, t_peak_tilt_s,
 //                   peak_rotation_rad, peak_rate_rad_s, critical_tilt_rad, num_impacts, max_friction_ratio,
-//                   min_normal_force_N; dataset uplift_times_s (U)
+//                   min_normal_force_N, max_discarded_rate_rad_s; dataset uplift_times_s (U)
 #pragma once
 
 #include <filesystem>
