@@ -63,9 +63,10 @@ ContactForce GroundVertexMode::Force(double t, const State& y, const State& dydt
 }
 
 GroundEdgeMode::GroundEdgeMode(const Block& block, int i, int j, const Eigen::Quaterniond& q_yaw, double gravity_m_s2,
-                               const GroundMotion& ground, bool falls_on_side)
+                               const GroundMotion& ground, bool falls_on_side, double lift_margin_g)
     : free_(block, i, j, q_yaw, gravity_m_s2),
       ground_(&ground),
+      lift_margin_g_(lift_margin_g),
       falls_on_side_(falls_on_side),
       mass_kg_(block.mass()),
       gravity_m_s2_(gravity_m_s2),
@@ -148,7 +149,8 @@ double GroundEdgeMode::LiftAcceleration(int end, double t, const State& y) const
 
 double GroundEdgeMode::EndHold(int end, double t, const State& y) const {
   const double g = gravity_m_s2_;
-  return std::max(-LiftAcceleration(end, t, y) / g, EndForces(t, y)[static_cast<std::size_t>(end)] / (mass_kg_ * g));
+  return std::max(-LiftAcceleration(end, t, y) / g, EndForces(t, y)[static_cast<std::size_t>(end)] / (mass_kg_ * g)) +
+         lift_margin_g_;
 }
 
 GuardValue GroundEdgeMode::Guard(int index, double t, const State& y) const {

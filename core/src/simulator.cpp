@@ -55,6 +55,11 @@ constexpr double kFlatTiltTol_rad = 1e-12;
 // An end-vertex lift guard (an acceleration in units of g) below this in magnitude at the start of an Edge
 // segment is zero.
 constexpr double kLoadZeroTol = 1e-9;
+// Under ground motion, an end vertex that left the edge and landed again at the same instant (the edge mode saw it
+// unload, the vertex mode brought it straight down: both accelerations at round-off of zero) may lift again only
+// when the lift and the pull both exceed this [g]; without it the two modes hand the vertex back and forth at
+// one instant until the run fails.
+constexpr double kReliftMargin_g = 1e-3;
 // Under ground motion, a facet impact that leaves |ω⁺| at or below this [rad/s] leaves the block without relative
 // velocity: a numerical floor (a rocking amplitude of ~1e-19 rad at the table's accelerations), not a physical
 // threshold (docs/design.md §11a).
@@ -90,6 +95,7 @@ struct EdgeStart {
   Contact edge;
   Eigen::Quaterniond q_yaw = Eigen::Quaterniond::Identity();
   EdgeDynamics::State y = EdgeDynamics::State::Zero();
+  double lift_margin_g = 0.0;  // GroundEdgeMode's lift margin for this segment
 };
 
 // The last few impact times of one kind, to recognise geometrically shrinking intervals.
@@ -114,21 +120,29 @@ class ImpactSequence {
   // Under ground motion a chattering block lands alternately from two edges (or vertices), and the table
   // pushes one side down harder than the other, so consecutive intervals alternate between short and long:
   // a shrinking pair of intervals says nothing. The sequence accumulates when both interleaved subsequences
-  // shrink, with the ratio q of a cycle (two impacts) below one; the impacts still to come then take
-  // (I0 + I1)·q/(1 − q), the tail of a geometric series. Returns that time when it is below `dt`.
+  // shrink and the last three cycles (two impacts each) shrink by consistent ratios, as a geometric series
+  // does (a sudden pair of quick impacts after slow ones is a change of motion, not an accumulation). With q
+  // the ratio of the last cycle to the one before, the impacts still to come take (I0 + I1)·q/(1 − q).
+  // Returns that time when it is below `dt`.
   std::optional<double> Accumulation(double dt) const {
     if (count_ < static_cast<int>(times_.size())) return std::nullopt;
+    if (!(Interval(0) < Interval(2) && Interval(1) < Interval(3))) return std::nullopt;
     const double cycle = Interval(0) + Interval(1);
-    const double q = std::max(Interval(0) / Interval(2), Interval(1) / Interval(3));
-    if (!(q < 1.0)) return std::nullopt;  // also a zero interval before (NaN, infinity)
+    const double q = cycle / (Interval(2) + Interval(3));
+    const double q_before = (Interval(2) + Interval(3)) / (Interval(4) + Interval(5));
+    if (!(q < 1.0 && q_before < 1.0)) return std::nullopt;  // also NaN from impacts at one instant
+    if (!(q < kCycleRatioSpread * q_before && q_before < kCycleRatioSpread * q)) return std::nullopt;
     const double remaining = cycle * q / (1.0 - q);
     if (!(remaining < dt)) return std::nullopt;
     return remaining;
   }
 
  private:
+  // Two consecutive cycle ratios of an accumulation differ by less than this factor (a ratio is the square of
+  // the restitution of the two landings, which the table changes little within a cycle).
+  static constexpr double kCycleRatioSpread = 2.0;
   double Interval(std::size_t k) const { return times_[k] - times_[k + 1]; }
-  std::array<double, 5> times_{};
+  std::array<double, 7> times_{};
   Contact contact_;
   int count_ = 0;
 };
@@ -249,6 +263,7 @@ class HybridRun {
   const GroundMotion* ground_ = nullptr;
   bool start_flat_ = false;
   double t_lift_off_ = std::numeric_limits<double>::infinity();
+  double end_lift_t_s_ = -std::numeric_limits<double>::infinity();  // the last Edge → Vertex switch
 };
 
 EdgeStart HybridRun::MakeEdgeStart(const Contact& edge, const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B,
@@ -358,7 +373,7 @@ HybridRun::Next HybridRun::RunEdge() {
   const Contact& e = edge_start_.edge;
   if (ground_ != nullptr) {
     return RunEdgeIn(GroundEdgeMode(block_, e.first, e.second, edge_start_.q_yaw, gravity_, *ground_,
-                                    options_.overturn == OverturnRule::kFallsOnSide));
+                                    options_.overturn == OverturnRule::kFallsOnSide, edge_start_.lift_margin_g));
   }
   return RunEdgeIn(EdgeMode(block_, e.first, e.second, edge_start_.q_yaw, gravity_));
 }
@@ -412,6 +427,7 @@ HybridRun::Next HybridRun::EdgeToVertex(const EdgeMode& mode, double t, const Ed
     return Next::kStopped;
   }
   edge_impacts_.Clear();
+  end_lift_t_s_ = t;
   const bool flat = y[0] < kFlatTiltTol_rad;
   return Continue(record.contact_after, t, q_WB, w_B, pivot, flat ? -1 : lifting, flat ? -1 : 0);
 }
@@ -576,9 +592,12 @@ HybridRun::Next HybridRun::AfterEdgeImpact(const VertexMode& mode, double t, con
   if (facet_seen_ && IsReleaseVertex(landing) && options_.stop == StopCondition::kPhase4) {
     return Stop(EndReason::kPhase4, t, after);
   }
+  // Under ground motion the wobble between the two ends of an edge alternates short and long intervals (the
+  // table lifts one end harder): where it accumulates, the interleaved test sees it (docs/design.md §11a).
   const bool zeno = map.contact_after.is_vertex() &&
                     (edge_impacts_.Shrinking(options_.zeno_dt_s) ||
-                     edge_impacts_.LastIntervalBelow(kZenoFloorFactor * options_.event_time_tol_s));
+                     edge_impacts_.LastIntervalBelow(kZenoFloorFactor * options_.event_time_tol_s) ||
+                     (ground_ != nullptr && edge_impacts_.Accumulation(options_.zeno_dt_s)));
   if (zeno) {
     // Accumulating edge impacts on one edge: continue as rocking about that edge with the angular momentum
     // about the edge line of the post-impact rotation about V_a (docs/design.md §4).
@@ -603,7 +622,12 @@ HybridRun::Next HybridRun::AfterEdgeImpact(const VertexMode& mode, double t, con
     t_start_ = t;
     return Next::kEdge;
   }
-  return Continue(map.contact_after, t, q_WB, record.w_plus_B, landing, pivot, 0);
+  const Next next = Continue(map.contact_after, t, q_WB, record.w_plus_B, landing, pivot, 0);
+  if (ground_ != nullptr && map.contact_after.is_edge() &&
+      t - end_lift_t_s_ <= kSameInstantFactor * options_.event_time_tol_s) {
+    edge_start_.lift_margin_g = kReliftMargin_g;  // the end that just lifted came straight back
+  }
+  return next;
 }
 
 HybridRun::Next HybridRun::AfterFacetImpact(const EdgeMode& mode, double t, const EdgeDynamics::State& y) {

@@ -200,6 +200,19 @@ TEST(FindFirstDescent, FindsADipBetweenAMaximumAndAMinimumThatTheStepEndsDoNotSh
   EXPECT_NEAR(*t_surface, 0.4, 1e-14);
 }
 
+TEST(FindFirstDescent, AHopFarShorterThanTheStepFromTheSurfaceLandsAfterTheHopNotAtTheStart) {
+  RootPolisher polisher;
+  // g = t (t − 2e-7)(t − 0.6) on [0, 1]: leaves the surface rising, hops for 2e-7 of the step, stays below zero up
+  // to 0.6 and ends above it, rising (a vertex after a chatter's facet impact). The landing is the hop's end: at
+  // t = 0 the vertex still rises, and a landing there has no solution.
+  const Cubic hop{0.0, 2e-7, 0.6};
+  ASSERT_GT(hop(0.0).rate, 0.0);
+  ASSERT_GT(hop(1.0).value, 0.0);
+  const auto t = FindFirstDescent(hop, 0.0, GuardValue{0.0, hop(0.0).rate}, 1.0, hop(1.0), polisher, kTimeTol);
+  ASSERT_TRUE(t.has_value());
+  EXPECT_NEAR(*t, 2e-7, 1e-16);  // round-off of g near its root, 5e-10 relative
+}
+
 TEST(HermiteDipTime, IsEmptyForAGuardThatTurnsTwiceAboveZeroAndExactForACubic) {
   // (t + 0.2)(t − 0.4)(t − 0.6) + 0.02 turns twice but stays above zero: no dip.
   const auto above = [](double t) {

@@ -51,6 +51,36 @@ TEST(CliRespond, SyntheticRecordGivesASummaryAndJsonWithDocumentedKeys) {
   EXPECT_EQ(j["samples"]["t"].size(), j["samples"]["a_g_W"].size());
 }
 
+// Runs that once ended as `failed` in a census of fragility samples of block2 in position A (its fitted spread):
+// each must end with a status (rest, t_max, overturned, lift_off), and the JSON says how much velocity rests dropped.
+TEST(CliRespond, RunsThatOnceFailedInAFragilityCensusEndWithAStatus) {
+  const std::vector<std::string> block2{"--b1", "0.05000453", "--b2", "0.035", "--h", "0.2", "--mass", "7.538"};
+  const auto expect_status = [&](std::vector<std::string> args, const std::string& what) {
+    args.insert(args.begin(), "respond");
+    args.insert(args.end(), block2.begin(), block2.end());
+    args.push_back("--json");
+    const CommandResult r = RunRockfit(args);
+    ASSERT_EQ(r.exit_code, 0) << what << ": " << r.err;
+    const nlohmann::json summary = nlohmann::json::parse(r.out)["summary"];
+    EXPECT_NE(summary["end_reason"].get<std::string>(), "failed") << what << ": " << summary["message"];
+    EXPECT_GE(summary["max_discarded_rate_rad_s"].get<double>(), 0.0) << what;
+  };
+  // A vertex lifted at 1e-6 m/s by a chatter's facet impact hopped for ~1e-7 s inside a 5 ms step; the event
+  // search took its landing for the step's start, and the facet impact that followed had no solution.
+  expect_status({"--lambda", "2.1771509303727963", "--lambda-lat", "-1.900754009726313", "--lambda-lon",
+                 "0.2277491938384034", "--synthetic", "1", "--synthetic-duration", "20", "--scale", "2.471372835497835",
+                 "--angle", "146.69969784969646"},
+                "a hop shorter than the step");
+  // An end vertex of edge V4V1 lifted and landed at the same instant, over and over ("more than 16 impacts at
+  // t = 2.01662 s without the contact resolving").
+  const std::filesystem::path dir = GroundMotionsDir();
+  if (dir.empty()) GTEST_SKIP() << "../shared/ground-motions not present";
+  expect_status({"--lambda", "2.1501764880796337", "--lambda-lat", "-1.923644236599688", "--lambda-lon",
+                 "0.2821196657186537", "--record", (dir / "elCentro.AT2").string(), "--scale", "1.5682830437237314",
+                 "--angle", "54.58982266694947"},
+                "an end that came straight back");
+}
+
 TEST(CliRespond, OverturnSideCarriesTheMotionPastTheSupportUntilTheBlockLiesOnASide) {
   // A strong record overturns the block under both rules; under `side` later, with the block's z axis horizontal.
   const auto run = [](const char* rule) {

@@ -96,8 +96,10 @@ class GroundEdgeMode {
   enum GuardIndex { kFlat = EdgeMode::kFlat, kOver = EdgeMode::kOver, kLoadFirst = 2, kLoadSecond = 3 };
 
   // falls_on_side: OverturnRule::kFallsOnSide (the over guard becomes cos ψ: the block lies on a side at ψ = π/2).
+  // lift_margin_g: the end-load guards are raised by this much [g], so that an end lifts only when both the
+  // vertex motion's lift and the edge's pull exceed it (the simulator sets it after an end came straight back).
   GroundEdgeMode(const Block& block, int i, int j, const Eigen::Quaterniond& q_yaw, double gravity_m_s2,
-                 const GroundMotion& ground, bool falls_on_side = false);
+                 const GroundMotion& ground, bool falls_on_side = false, double lift_margin_g = 0.0);
 
   void operator()(double t, const State& y, State& dydt) const;
   // kLoadFirst/kLoadSecond: EndHold of V_i / V_j (positive while the edge holds it), with its rate by a
@@ -116,7 +118,7 @@ class GroundEdgeMode {
   std::array<double, 2> EndForces(double t, const State& y) const;
   // Vertical acceleration [m/s²] of end vertex `end` (0: V_i, 1: V_j) in Vertex mode about the other end.
   double LiftAcceleration(int end, double t, const State& y) const;
-  // The end-load guard's value: max(N_end/(m g), −LiftAcceleration/g) (see the header).
+  // The end-load guard's value: max(N_end/(m g), −LiftAcceleration/g) + lift_margin_g (see the header).
   double EndHold(int end, double t, const State& y) const;
   static void Project(State* /*y*/) {}
   Mode mode() const { return free_.mode(); }
@@ -129,6 +131,7 @@ class GroundEdgeMode {
 
   EdgeMode free_;
   const GroundMotion* ground_;
+  double lift_margin_g_ = 0.0;
   bool falls_on_side_;
   double mass_kg_;
   double gravity_m_s2_;

@@ -164,17 +164,36 @@ inline std::optional<double> HermiteDipTime(double t0, const GuardValue& g0, dou
   return dip;
 }
 
+// Halvings of the search for a short hop below 1/16 of the interval: 2^-46 of a 10 ms step is ~1e-16 s.
+inline constexpr int kHopSearchHalvings = 42;
+
 // For a guard that starts on the surface at t0 and is below it at t_below: the crossing after the first of a few
 // early points of [t0, t_below] where g is positive (it rose, then came down), or t0 when it is positive at none
-// of them (it never rose measurably: into the ground at once).
+// of them (it never rose measurably: into the ground at once). With a positive starting rate `rate0` the search
+// goes on towards t0 by halving.
 template <class Eval>
-std::optional<double> CrossingAfterItRose(const Eval& eval, double t0, double t_below, const GuardValue& g_below) {
+std::optional<double> CrossingAfterItRose(const Eval& eval, double t0, double t_below, const GuardValue& g_below,
+                                          double rate0 = 0.0) {
+  const auto crossing_from = [&](double t_positive, const GuardValue& g_positive) {
+    const std::optional<double> root = PolishCrossing(eval, t_positive, g_positive, t_below, g_below);
+    return root ? root : std::optional<double>(t_below);
+  };
   for (const double fraction : {0.0625, 0.125, 0.25, 0.5}) {
     const double t_positive = t0 + fraction * (t_below - t0);
     const GuardValue g_positive = eval(t_positive);
-    if (g_positive.value > 0.0) {
-      const std::optional<double> root = PolishCrossing(eval, t_positive, g_positive, t_below, g_below);
-      return root ? root : std::optional<double>(t_below);
+    if (g_positive.value > 0.0) return crossing_from(t_positive, g_positive);
+  }
+  // A guard that left the surface rising (rate0 > 0) rose for certain: its hop may be too short for the
+  // fractions above (a vertex lifted at 1e-6 m/s after a chatter's facet impact comes back within 1e-7 s of a
+  // 5 ms step). Halving towards t0 finds it; a landing at t0, still rising, would have no solution.
+  if (rate0 > 0.0) {
+    double fraction = 0.0625;
+    for (int k = 0; k < kHopSearchHalvings; ++k) {
+      fraction *= 0.5;
+      const double t_positive = t0 + fraction * (t_below - t0);
+      if (!(t_positive > t0)) break;
+      const GuardValue g_positive = eval(t_positive);
+      if (g_positive.value > 0.0) return crossing_from(t_positive, g_positive);
     }
   }
   return t0;
@@ -206,7 +225,7 @@ std::optional<double> FindFirstDescent(const Eval& eval, double t0, const GuardV
       if (!t_dip) return std::nullopt;
       const GuardValue g_dip = eval(*t_dip);
       if (!(g_dip.value < 0.0)) return std::nullopt;
-      return CrossingAfterItRose(eval, t0, *t_dip, g_dip);
+      return CrossingAfterItRose(eval, t0, *t_dip, g_dip, g0.rate);
     }
     // It rose and fell back below within the step: the crossing follows the maximum. Any point where g > 0
     // brackets it with t1 (g rises to its one maximum and falls from there); the secant root of ġ is tried first,
