@@ -60,6 +60,14 @@ constexpr double kLoadZeroTol = 1e-9;
 // when the lift and the pull both exceed this [g]; without it the two modes hand the vertex back and forth at
 // one instant until the run fails.
 constexpr double kReliftMargin_g = 1e-3;
+// Under ground motion, a chatter of this many impacts within kMicroChatterSpan_s [s], with the block flat to within
+// kMicroChatterTilt_rad and turning slower than kMicroChatterRate_rad_s, is motion below the resolution of the
+// integration (hops of ~1e-10 s at 1e-9–1e-11 rad/s, where the table drives the block right at its threshold):
+// its velocity is dropped and the contact decides (below kMaxImpactsAtOneInstant, which would fail the run).
+constexpr int kMicroChatterImpacts = 12;
+constexpr double kMicroChatterSpan_s = 1e-6;
+constexpr double kMicroChatterTilt_rad = 1e-9;
+constexpr double kMicroChatterRate_rad_s = 1e-6;
 // Under ground motion, a facet impact that leaves |ω⁺| at or below this [rad/s] leaves the block without relative
 // velocity: a numerical floor (a rocking amplitude of ~1e-19 rad at the table's accelerations), not a physical
 // threshold (docs/design.md §11a).
@@ -147,6 +155,35 @@ class ImpactSequence {
   int count_ = 0;
 };
 
+// The times of the last few impacts of any kind.
+class RecentTimes {
+ public:
+  void Add(double t_s) {
+    times_[next_] = t_s;
+    next_ = (next_ + 1) % times_.size();
+    count_ = std::min(count_ + 1, times_.size());
+  }
+  // The last n (≤ capacity) times lie within span_s.
+  bool Spans(int n, double span_s) const {
+    const auto k = static_cast<std::size_t>(n);
+    if (count_ < k || k == 0 || k > times_.size()) return false;
+    const std::size_t newest = (next_ + times_.size() - 1) % times_.size();
+    const std::size_t oldest = (next_ + times_.size() - k) % times_.size();
+    return times_[newest] - times_[oldest] < span_s;
+  }
+
+ private:
+  std::array<double, 16> times_{};
+  std::size_t next_ = 0;
+  std::size_t count_ = 0;
+};
+
+// The flat attitude with the heading of q_WB: the yaw about the vertical of its body x axis.
+Eigen::Quaterniond FlatWithHeadingOf(const Eigen::Quaterniond& q_WB) {
+  const Eigen::Matrix3d R_WB = q_WB.toRotationMatrix();
+  return Eigen::Quaterniond(Eigen::AngleAxisd(std::atan2(R_WB(1, 0), R_WB(0, 0)), Eigen::Vector3d::UnitZ()));
+}
+
 // Kinetic energy of the flat block (attitude q_flat) right after an impact that leaves it on `contact` with
 // body rate w_B: about the vertex, about the edge (the rate about it), or zero when the base stays down.
 double KineticEnergyAfterLanding(const Block& block, double gravity, const Contact& contact,
@@ -210,6 +247,15 @@ class HybridRun {
   // Under ground motion, after the facet impact `trigger` that left the block flat with w⁺ = trigger.w_plus_B:
   // rest, rocking on with w⁺, or rocking from zero relative velocity about the contact the table selects.
   Next AfterFacetImpactOnTable(double t, const Eigen::Quaterniond& q_flat, const ImpactRecord& trigger);
+  // Under ground motion, the block flat (attitude q_flat) at t after the impact `trigger`, its remaining velocity
+  // to be dropped: rest if the table keeps it down up to horizon_s ahead, rocking from zero relative velocity if
+  // the table tips it at once; empty if the table tips it later within the horizon (the impacts go on).
+  std::optional<Next> SettleOnTable(double t, const Eigen::Quaterniond& q_flat, const ImpactRecord& trigger,
+                                    double horizon_s);
+  // Under ground motion: the last kMicroChatterImpacts impacts came within kMicroChatterSpan_s with the block
+  // flat and still to within kMicroChatterTilt_rad and kMicroChatterRate_rad_s (attitude q_WB, rate w_B after
+  // the last): a motion below the resolution of the integration, whose velocity is zero for all purposes.
+  bool MicroChatter(const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B) const;
   bool lift_off_before_t_max() const { return t_lift_off_ <= options_.t_max_s; }
   Next AfterEdgeImpact(const VertexMode& mode, double t, const VertexDynamics::State& y, int landing);
   Next AfterFacetImpact(const EdgeMode& mode, double t, const EdgeDynamics::State& y);
@@ -264,6 +310,7 @@ class HybridRun {
   bool start_flat_ = false;
   double t_lift_off_ = std::numeric_limits<double>::infinity();
   double end_lift_t_s_ = -std::numeric_limits<double>::infinity();  // the last Edge → Vertex switch
+  RecentTimes recent_impacts_;  // of edge and facet impacts, under ground motion
 };
 
 EdgeStart HybridRun::MakeEdgeStart(const Contact& edge, const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B,
@@ -478,25 +525,33 @@ HybridRun::Next HybridRun::StartRocking(const Uplift& uplift, const Eigen::Quate
 HybridRun::Next HybridRun::AfterFacetImpactOnTable(double t, const Eigen::Quaterniond& q_flat,
                                                    const ImpactRecord& trigger) {
   // Rest under a moving table is a contact condition (docs/design.md §11a): the block stops only where its
-  // relative velocity vanishes — the map's ω⁺ = 0, |ω⁺| at the numerical floor, or the accumulation point of a
-  // Zeno sequence of facet impacts — and there rests only if the moment of gravity and of −m·a_g keeps every
-  // base edge down. An impact that leaves the block rocking is never cut short by an energy threshold.
+  // relative velocity vanishes — the map's ω⁺ = 0, |ω⁺| at the numerical floor, the accumulation point of a
+  // Zeno sequence of facet impacts, or a micro-chatter below the integrator's resolution — and there rests only
+  // if the moment of gravity and of −m·a_g keeps every base edge down. An impact that leaves the block rocking
+  // is never cut short by an energy threshold.
   const Contact& contact = trigger.contact_after;
   const bool stopped = !contact.is_vertex() && !contact.is_edge();
   double accumulates_in_s = 0.0;
-  if (!stopped && trigger.w_plus_B.norm() > kRestRateFloor_rad_s) {
+  if (!stopped && trigger.w_plus_B.norm() > kRestRateFloor_rad_s && !MicroChatter(q_flat, trigger.w_plus_B)) {
     const std::optional<double> remaining = facet_impacts_.Accumulation(options_.zeno_dt_s);
     if (!remaining) return Continue(contact, t, q_flat, trigger.w_plus_B, contact.first, -1, -1);
     accumulates_in_s = *remaining;
   }
-  // The contact must hold from now to the accumulation point; where the table tips the block before it, the
-  // impacts go on (they are the motion), unless there is no velocity left to carry them.
-  const double t_until = std::min({t + accumulates_in_s, options_.t_max_s, t_lift_off_});
+  if (const std::optional<Next> settled = SettleOnTable(t, q_flat, trigger, accumulates_in_s)) return *settled;
+  // The table tips the block before the accumulation point: the impacts go on (they are the motion).
+  return Continue(contact, t, q_flat, trigger.w_plus_B, contact.first, -1, -1);
+}
+
+std::optional<HybridRun::Next> HybridRun::SettleOnTable(double t, const Eigen::Quaterniond& q_flat,
+                                                        const ImpactRecord& trigger, double horizon_s) {
+  // The contact must hold from now to the accumulation point (horizon_s ahead).
+  const double t_until = std::min({t + horizon_s, options_.t_max_s, t_lift_off_});
   const std::optional<Uplift> uplift = NextUplift(block_, *ground_, q_flat, gravity_, t, t_until);
   if (!uplift) return Rest(t, q_flat, trigger);
-  if (uplift->t_s > t) return Continue(contact, t, q_flat, trigger.w_plus_B, contact.first, -1, -1);
+  if (uplift->t_s > t) return std::nullopt;
   // The table tips the block at this instant: it rocks on from zero relative velocity about the edge or vertex
   // the moment selects, logged as a switch of contact (kind zeno) that drops the velocity left.
+  const Contact& contact = trigger.contact_after;
   ImpactRecord zeno;
   zeno.t_s = t;
   zeno.kind = ImpactKind::kZeno;
@@ -508,6 +563,13 @@ HybridRun::Next HybridRun::AfterFacetImpactOnTable(double t, const Eigen::Quater
   out_->impacts.push_back(zeno);
   NoteDiscardedRate(trigger.w_plus_B);
   return StartRocking(*uplift, q_flat);
+}
+
+bool HybridRun::MicroChatter(const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B) const {
+  if (!recent_impacts_.Spans(kMicroChatterImpacts, kMicroChatterSpan_s)) return false;
+  const Eigen::Matrix3d R_WB = q_WB.toRotationMatrix();
+  const double sin_tilt = std::hypot(R_WB(0, 2), R_WB(1, 2));  // the body z axis off the vertical
+  return sin_tilt <= kMicroChatterTilt_rad && w_B.norm() <= kMicroChatterRate_rad_s;
 }
 
 bool HybridRun::BookImpact(const ImpactRecord& record, const EndState& state, double kinetic_after_J) {
@@ -588,9 +650,13 @@ HybridRun::Next HybridRun::AfterEdgeImpact(const VertexMode& mode, double t, con
   // still accumulate, so the sequence goes on through them (docs/design.md §11a).
   if (ground_ == nullptr) facet_impacts_.Clear();
   edge_impacts_.Add(t, Contact::Edge(pivot, landing));
+  if (ground_ != nullptr) recent_impacts_.Add(t);
 
   if (facet_seen_ && IsReleaseVertex(landing) && options_.stop == StopCondition::kPhase4) {
     return Stop(EndReason::kPhase4, t, after);
+  }
+  if (ground_ != nullptr && MicroChatter(q_WB, record.w_plus_B)) {
+    if (const std::optional<Next> settled = SettleOnTable(t, FlatWithHeadingOf(q_WB), record, 0.0)) return *settled;
   }
   // Under ground motion the wobble between the two ends of an edge alternates short and long intervals (the
   // table lifts one end harder): where it accumulates, the interleaved test sees it (docs/design.md §11a).
@@ -674,6 +740,7 @@ HybridRun::Next HybridRun::AfterFacetImpact(const EdgeMode& mode, double t, cons
   if (!BookImpact(record, after, kinetic_after)) return Next::kStopped;
   edge_impacts_.Clear();
   facet_impacts_.Add(t, Contact{});
+  if (ground_ != nullptr) recent_impacts_.Add(t);
 
   // The vertices that land are those off the pre-impact edge.
   bool release_side_lands = false;

@@ -51,13 +51,15 @@ TEST(CliRespond, SyntheticRecordGivesASummaryAndJsonWithDocumentedKeys) {
   EXPECT_EQ(j["samples"]["t"].size(), j["samples"]["a_g_W"].size());
 }
 
-// Runs that once ended as `failed` in a census of fragility samples of block2 in position A (its fitted spread):
-// each must end with a status (rest, t_max, overturned, lift_off), and the JSON says how much velocity rests dropped.
+// Runs that once ended as `failed` in a census of fragility samples of the sample campaign's blocks with their
+// fitted spreads: each must end with a status (rest, t_max, overturned, lift_off).
 TEST(CliRespond, RunsThatOnceFailedInAFragilityCensusEndWithAStatus) {
   const std::vector<std::string> block2{"--b1", "0.05000453", "--b2", "0.035", "--h", "0.2", "--mass", "7.538"};
-  const auto expect_status = [&](std::vector<std::string> args, const std::string& what) {
+  const std::vector<std::string> block3{"--b1", "0.05000453", "--b2", "0.045", "--h", "0.2", "--density", "2692"};
+  const auto expect_status = [&](const std::vector<std::string>& block, std::vector<std::string> args,
+                                 const std::string& what) {
     args.insert(args.begin(), "respond");
-    args.insert(args.end(), block2.begin(), block2.end());
+    args.insert(args.end(), block.begin(), block.end());
     args.push_back("--json");
     const CommandResult r = RunRockfit(args);
     ASSERT_EQ(r.exit_code, 0) << what << ": " << r.err;
@@ -67,18 +69,33 @@ TEST(CliRespond, RunsThatOnceFailedInAFragilityCensusEndWithAStatus) {
   };
   // A vertex lifted at 1e-6 m/s by a chatter's facet impact hopped for ~1e-7 s inside a 5 ms step; the event
   // search took its landing for the step's start, and the facet impact that followed had no solution.
-  expect_status({"--lambda", "2.1771509303727963", "--lambda-lat", "-1.900754009726313", "--lambda-lon",
+  expect_status(block2,
+                {"--lambda", "2.1771509303727963", "--lambda-lat", "-1.900754009726313", "--lambda-lon",
                  "0.2277491938384034", "--synthetic", "1", "--synthetic-duration", "20", "--scale", "2.471372835497835",
                  "--angle", "146.69969784969646"},
                 "a hop shorter than the step");
-  // An end vertex of edge V4V1 lifted and landed at the same instant, over and over ("more than 16 impacts at
-  // t = 2.01662 s without the contact resolving").
+  // The table drove the flat block right at its threshold: edge impacts around the base every ~5e-12 s at
+  // 1e-11 rad/s ("more than 16 impacts at one instant"), a micro-chatter the contact now settles.
+  const std::string record = (SourceDir() / "data-samples" / "ground-motions" / "cp-seed1-0.30g.AT2").string();
+  expect_status(block3,
+                {"--record", record, "--scale", "1.318181818181818", "--angle", "162.30398617869147", "--lambda",
+                 "1.2393593972199581", "--lambda-lat", "4.2398603250082525", "--lambda-lon", "1.0821387835895908"},
+                "a micro-chatter");
   const std::filesystem::path dir = GroundMotionsDir();
   if (dir.empty()) GTEST_SKIP() << "../shared/ground-motions not present";
-  expect_status({"--lambda", "2.1501764880796337", "--lambda-lat", "-1.923644236599688", "--lambda-lon",
+  // An end vertex of edge V4V1 lifted and landed at the same instant, over and over ("more than 16 impacts at
+  // t = 2.01662 s without the contact resolving").
+  expect_status(block2,
+                {"--lambda", "2.1501764880796337", "--lambda-lat", "-1.923644236599688", "--lambda-lon",
                  "0.2821196657186537", "--record", (dir / "elCentro.AT2").string(), "--scale", "1.5682830437237314",
                  "--angle", "54.58982266694947"},
                 "an end that came straight back");
+  // A 3D micro-chatter at 3e-9 rad/s (facet, vertex, edge impacts, Zeno, again) ran into max_impacts.
+  expect_status(block3,
+                {"--record", (dir / "A-ELC180.AT2").string(), "--scale", "6.360255643136818", "--angle",
+                 "261.66070223715604", "--lambda", "1.3088067972533384", "--lambda-lat", "3.0137969826411766",
+                 "--lambda-lon", "0.9284971749954252"},
+                "a 3D micro-chatter");
 }
 
 TEST(CliRespond, OverturnSideCarriesTheMotionPastTheSupportUntilTheBlockLiesOnASide) {
