@@ -47,6 +47,31 @@ void FlushOrThrow(const std::filesystem::path& temporary, const std::filesystem:
   }
 }
 
+// The followed path (target) of a symbolic link or chain of links, else `path` itself. A link to a missing file
+// gives the path it names, where the new file is then written.
+std::filesystem::path FollowSymlinks(std::filesystem::path path) {
+  constexpr int kMaxLinks = 40;  // as the kernel's own limit on a path's symbolic links (ELOOP)
+  for (int links = 0; links < kMaxLinks; ++links) {
+    std::error_code ec;
+    if (!std::filesystem::is_symlink(std::filesystem::symlink_status(path, ec))) return path;
+    const std::filesystem::path next = std::filesystem::read_symlink(path, ec);
+    if (ec) throw OutputError(fmt::format("cannot follow the symbolic link {}: {}", path.string(), ec.message()));
+    path = next.is_absolute() ? next : DirectoryOf(path) / next;
+  }
+  throw OutputError(fmt::format("{}: more than {} symbolic links in a chain (a loop?); give the path of a file",
+                                path.string(), kMaxLinks));
+}
+
+std::string DescribeSpecialFile(std::filesystem::file_type type) {
+  switch (type) {
+    case std::filesystem::file_type::character: return "a character device";
+    case std::filesystem::file_type::block: return "a block device";
+    case std::filesystem::file_type::fifo: return "a FIFO (named pipe)";
+    case std::filesystem::file_type::socket: return "a socket";
+    default: return "a special file";
+  }
+}
+
 }  // namespace
 
 std::filesystem::path TemporaryPathFor(const std::filesystem::path& target, long pid, unsigned serial) {
@@ -70,11 +95,17 @@ void RemoveStaleTemporaries(const std::filesystem::path& target) {
   }
 }
 
-AtomicReplacement::AtomicReplacement(std::filesystem::path target) : target_(std::move(target)) {
+AtomicReplacement::AtomicReplacement(std::filesystem::path target) : target_(FollowSymlinks(std::move(target))) {
   if (target_.filename().empty()) throw OutputError(fmt::format("'{}' is not a file name", target_.string()));
   std::error_code ec;
-  if (std::filesystem::is_directory(target_, ec)) {
+  const std::filesystem::file_status status = std::filesystem::symlink_status(target_, ec);
+  if (std::filesystem::is_directory(status)) {
     throw OutputError(fmt::format("{} is a directory; give a file name", target_.string()));
+  }
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    throw OutputError(fmt::format("{} is {}, not a regular file: rockfit writes a file by renaming a new one over "
+                                  "the old, which would replace it; give the path of a regular file or a new one",
+                                  target_.string(), DescribeSpecialFile(status.type())));
   }
   RemoveStaleTemporaries(target_);
   temporary_ = TemporaryPathFor(target_, static_cast<long>(::getpid()), g_serial++);
