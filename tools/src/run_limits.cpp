@@ -1,0 +1,60 @@
+#include "run_limits.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "rockfit/core/errors.hpp"
+#include "rockfit/io/input_limits.hpp"
+
+namespace rockfit::tools {
+
+std::string LimitsHelp() {
+  const auto mib = [](std::uint64_t bytes) { return bytes >> 20; };
+  return fmt::format(
+      "Limits (docs/file-formats.md, \"Limits\"): inputs must be regular files (a directory, FIFO, socket or device "
+      "is refused);\n"
+      "-o writes a regular file (a symbolic link is followed) and refuses a device, FIFO or socket.\n"
+      "  recording CSV file     up to {} MiB (memory: about 6 times the file)\n"
+      "  ground-motion record   up to {} MiB and {} samples per component (32 bytes each in memory)\n"
+      "  manifest               up to {} MiB, dotted keys of up to {} parts\n"
+      "  response               up to {:.0f} samples: (record + --tail) x --rate (about 150 bytes each, more as JSON)\n"
+      "  fragility study        up to {} levels, {} samples (152 bytes each), {} record samples in all (24 bytes "
+      "each)",
+      mib(io::kMaxRecordingFileBytes), mib(io::kMaxRecordFileBytes), io::kMaxRecordSamples,
+      mib(io::kMaxManifestFileBytes), io::kMaxManifestKeyParts, kMaxResponseSamples, kMaxFragilityLevels,
+      kMaxFragilitySamples, kMaxStudyRecordSamples);
+}
+
+void CheckResponseLength(const core::GroundMotion& ground, const std::string& source, bool from_file, double tail_s,
+                         double rate_hz) {
+  if (!(tail_s >= 0.0) || !std::isfinite(tail_s)) {
+    throw InvalidArgument(fmt::format("--tail must be a finite number of seconds ≥ 0, got {}", tail_s));
+  }
+  if (!(rate_hz > 0.0) || !std::isfinite(rate_hz)) {
+    throw InvalidArgument(fmt::format("--rate must be a positive number of hertz, got {}", rate_hz));
+  }
+  const double record_samples = ground.t_end_s() * rate_hz;
+  if (!(record_samples <= kMaxResponseSamples) && !from_file) {
+    throw InvalidArgument(fmt::format("the generated record of {:.6g} s at --rate {} Hz asks for {:.4g} response "
+                                      "samples, more than the {:.0e} a response may have (docs/file-formats.md, "
+                                      "\"Limits\"); lower --synthetic-duration or --rate",
+                                      ground.t_end_s(), rate_hz, record_samples, kMaxResponseSamples));
+  }
+  if (!(record_samples <= kMaxResponseSamples)) {
+    throw BadInput(fmt::format("{}: the record lasts {:.6g} s ({} samples at DT = {:.6g} s); its response at --rate "
+                               "{} Hz would hold {:.4g} samples, more than the {:.0e} a response may have "
+                               "(docs/file-formats.md, \"Limits\"): check DT (and --dt), cut the record or lower --rate",
+                               source, ground.t_end_s(), ground.size(), ground.dt_s(), rate_hz, record_samples,
+                               kMaxResponseSamples));
+  }
+  const double samples = (ground.t_end_s() + tail_s) * rate_hz;
+  if (!(samples <= kMaxResponseSamples)) {
+    throw InvalidArgument(fmt::format("the record ({:.6g} s) and --tail {} s at --rate {} Hz ask for {:.4g} response "
+                                      "samples, more than the {:.0e} a response may have (docs/file-formats.md, "
+                                      "\"Limits\"); lower --tail or --rate",
+                                      ground.t_end_s(), tail_s, rate_hz, samples, kMaxResponseSamples));
+  }
+}
+
+}  // namespace rockfit::tools

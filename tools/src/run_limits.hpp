@@ -1,0 +1,35 @@
+// The largest studies and responses the commands accept, checked against the options before anything is
+// allocated for them (docs/file-formats.md, "Limits"; the file limits are in rockfit/io/input_limits.hpp).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "rockfit/core/ground_motion.hpp"
+
+namespace rockfit::tools {
+
+// Intensity levels of one fragility study: a curve needs a dozen; more only lengthens the tables.
+inline constexpr std::size_t kMaxFragilityLevels = 1000;
+// Samples of one fragility study (blocks × levels × --samples): each keeps a 152-byte outcome in memory and in
+// the journal, 0.3 GB at the limit; at ~1000 simulations/s per core it is hours of work.
+inline constexpr std::int64_t kMaxFragilitySamples = 1'000'000;
+// Ground-motion samples held by one fragility study over all its records (24 bytes each: 0.5 GB), besides one
+// scaled copy of a record per thread.
+inline constexpr std::size_t kMaxStudyRecordSamples = 20'000'000;
+// Output samples of one response (record + --tail, times --rate): about 150 bytes each in memory, several
+// hundred more when written as JSON; 10⁶ are 83 minutes at 200 Hz.
+inline constexpr double kMaxResponseSamples = 1e6;
+
+// The lines of `--help` that state these limits and those of the input files, with their memory cost.
+std::string LimitsHelp();
+
+// Throws before a response is simulated whose samples would exceed kMaxResponseSamples: when the record alone is
+// too long, BadInput naming the record file `source` (InvalidArgument naming --synthetic-duration when the record
+// is generated, `from_file` false); else InvalidArgument naming --tail and --rate. Also refuses a --tail or --rate
+// that is negative or not finite.
+void CheckResponseLength(const core::GroundMotion& ground, const std::string& source, bool from_file, double tail_s,
+                         double rate_hz);
+
+}  // namespace rockfit::tools
