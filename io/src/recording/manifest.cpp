@@ -305,7 +305,7 @@ const BlockSpec& Manifest::FindBlock(const std::string& id) const {
   }
   std::vector<std::string> known;
   for (const auto& block : blocks) known.push_back(block.id);
-  throw BadInput(fmt::format("{}: no block '{}'; known blocks: {}", path.string(), id,
+  throw BadInput(fmt::format("{}: no block {}; known blocks: {}", path.string(), QuoteCell(id),
                              known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
 }
 
@@ -315,7 +315,7 @@ const TrialSpec& Manifest::FindTrial(const std::string& id) const {
   }
   std::vector<std::string> known;
   for (const auto& trial : trials) known.push_back(trial.id);
-  throw BadInput(fmt::format("{}: no trial '{}'; known trials: {}", path.string(), id,
+  throw BadInput(fmt::format("{}: no trial {}; known trials: {}", path.string(), QuoteCell(id),
                              known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
 }
 

@@ -205,6 +205,16 @@ TEST(Manifest, NulInAStringIsRefusedAtItsPositionAndQuotedEscaped) {
   EXPECT_NE(message.find("'B3\\x00x'"), std::string::npos) << message;
 }
 
+TEST(Manifest, UnknownIdWithANulByteIsQuotedWhole) {
+  const Manifest m = ParseManifest(kGood, "/campaign/m.toml");
+  try {
+    m.FindTrial(std::string("B3-A-1\0x", 8));
+    FAIL();
+  } catch (const BadInput& e) {
+    EXPECT_NE(std::string(e.what()).find("no trial 'B3-A-1\\x00x'; known trials: B3-A-1"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Manifest, DirectoryOrFifoIsBadInputNamingWhatItIs) {
   const testing::ScratchDir dir("manifest_special");
   try {
