@@ -36,22 +36,22 @@ void CheckResponseLength(const core::GroundMotion& ground, const std::string& so
   }
   const double record_samples = ground.t_end_s() * rate_hz;
   if (!(record_samples <= kMaxResponseSamples) && !from_file) {
-    throw InvalidArgument(fmt::format("the generated record of {:.6g} s at --rate {} Hz asks for {:.4g} response "
-                                      "samples, more than the {:.0e} a response may have (docs/file-formats.md, "
+    throw InvalidArgument(fmt::format("the generated record of {:.6g} s at --rate {} Hz asks for {:.0f} response "
+                                      "samples, more than the {:.0f} a response may have (docs/file-formats.md, "
                                       "\"Limits\"); lower --synthetic-duration or --rate",
                                       ground.t_end_s(), rate_hz, record_samples, kMaxResponseSamples));
   }
   if (!(record_samples <= kMaxResponseSamples)) {
     throw BadInput(fmt::format("{}: the record lasts {:.6g} s ({} samples at DT = {:.6g} s); its response at --rate "
-                               "{} Hz would hold {:.4g} samples, more than the {:.0e} a response may have "
+                               "{} Hz would hold {:.3g} samples, more than the {:.0f} a response may have "
                                "(docs/file-formats.md, \"Limits\"): check DT (and --dt), cut the record or lower --rate",
                                source, ground.t_end_s(), ground.size(), ground.dt_s(), rate_hz, record_samples,
                                kMaxResponseSamples));
   }
   const double samples = (ground.t_end_s() + tail_s) * rate_hz;
   if (!(samples <= kMaxResponseSamples)) {
-    throw InvalidArgument(fmt::format("the record ({:.6g} s) and --tail {} s at --rate {} Hz ask for {:.4g} response "
-                                      "samples, more than the {:.0e} a response may have (docs/file-formats.md, "
+    throw InvalidArgument(fmt::format("the record ({:.6g} s) and --tail {} s at --rate {} Hz ask for {:.0f} response "
+                                      "samples, more than the {:.0f} a response may have (docs/file-formats.md, "
                                       "\"Limits\"); lower --tail or --rate",
                                       ground.t_end_s(), tail_s, rate_hz, samples, kMaxResponseSamples));
   }
