@@ -17,13 +17,13 @@ std::string LimitsHelp() {
       "-o writes a regular file (a symbolic link is followed) and refuses a device, FIFO or socket.\n"
       "  recording CSV file     up to {} MiB (memory: about 6 times the file)\n"
       "  ground-motion record   up to {} MiB and {} samples per component (32 bytes each in memory)\n"
-      "  manifest               up to {} MiB, dotted keys of up to {} parts\n"
+      "  manifest               up to {} MiB and {} [[blocks]] or [[trials]], dotted keys of up to {} parts\n"
       "  response               up to {:.0f} samples: (record + --tail) x --rate (about 150 bytes each, more as JSON)\n"
       "  fragility study        up to {} levels, {} samples (152 bytes each), {} record samples in all (24 bytes "
       "each)",
       mib(io::kMaxRecordingFileBytes), mib(io::kMaxRecordFileBytes), io::kMaxRecordSamples,
-      mib(io::kMaxManifestFileBytes), io::kMaxManifestKeyParts, kMaxResponseSamples, kMaxFragilityLevels,
-      kMaxFragilitySamples, kMaxStudyRecordSamples);
+      mib(io::kMaxManifestFileBytes), io::kMaxManifestEntries, io::kMaxManifestKeyParts, kMaxResponseSamples,
+      kMaxFragilityLevels, kMaxFragilitySamples, kMaxStudyRecordSamples);
 }
 
 void CheckResponseLength(const core::GroundMotion& ground, const std::string& source, bool from_file, double tail_s,
@@ -44,7 +44,8 @@ void CheckResponseLength(const core::GroundMotion& ground, const std::string& so
   if (!(record_samples <= kMaxResponseSamples)) {
     throw BadInput(fmt::format("{}: the record lasts {:.6g} s ({} samples at DT = {:.6g} s); its response at --rate "
                                "{} Hz would hold {:.3g} samples, more than the {:.0f} a response may have "
-                               "(docs/file-formats.md, \"Limits\"): check DT (and --dt), cut the record or lower --rate",
+                               "(docs/file-formats.md, \"Limits\"): check DT (and --dt), cut the record or lower "
+                               "--rate",
                                source, ground.t_end_s(), ground.size(), ground.dt_s(), rate_hz, record_samples,
                                kMaxResponseSamples));
   }

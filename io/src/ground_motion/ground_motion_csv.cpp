@@ -120,7 +120,8 @@ GroundMotionComponents ReadGroundMotionCsv(const std::filesystem::path& path, co
                      "Add a time column or give the step with --dt SECONDS."});
     }
     if (!(*options.dt_s > 0.0) || !std::isfinite(*options.dt_s)) {
-      ThrowBadInput({table.HeaderPosition(0), "header", "no time column, and the step given is " + std::to_string(*options.dt_s) + " s",
+      ThrowBadInput({table.HeaderPosition(0), "header",
+                     "no time column, and the step given is " + std::to_string(*options.dt_s) + " s",
                      "a positive step (--dt SECONDS) for a record without a time column",
                      "Give the record's step with --dt, or add a time column."});
     }

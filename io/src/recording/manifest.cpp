@@ -90,7 +90,8 @@ const toml::node* Find(const toml::table& table, const char* key) { return table
 const std::string& WithoutNul(const Reporter& report, const std::string& value, const char* key,
                               const std::string& what, SourcePosition where) {
   if (value.find('\0') != std::string::npos) {
-    report.Fail(where, fmt::format("'{}' in {} holds a NUL byte (\\u0000): {}; remove it", key, what, QuoteCell(value)));
+    report.Fail(where,
+                fmt::format("'{}' in {} holds a NUL byte (\\u0000): {}; remove it", key, what, QuoteCell(value)));
   }
   return value;
 }
@@ -153,7 +154,7 @@ void CheckId(const Reporter& report, const std::string& id, const std::string& w
   }
 }
 
-// The array of tables `key` (may be absent); anything else there is an error.
+// The array of tables `key` (may be absent); anything else there, or more than kMaxManifestEntries, is an error.
 const toml::array* TableArray(const Reporter& report, const toml::table& root, const char* key) {
   const toml::node* node = root.get(key);
   if (!node) return nullptr;
@@ -161,6 +162,12 @@ const toml::array* TableArray(const Reporter& report, const toml::table& root, c
   if (!array || !array->is_array_of_tables()) {
     report.Fail(PositionOf(node->source()),
                 fmt::format("'{}' must be an array of tables: write each entry as [[{}]]", key, key));
+  }
+  if (array->size() > kMaxManifestEntries) {
+    report.Fail(PositionOf((*array)[kMaxManifestEntries].source()),
+                fmt::format("{} [[{}]] entries, more than the {} a manifest may have (docs/file-formats.md, "
+                            "\"Limits\"); split the campaign into several manifests",
+                            array->size(), key, kMaxManifestEntries));
   }
   return array;
 }

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/io/input_limits.hpp"
 #include "scratch_dir.hpp"
 #include "special_files.hpp"
 
@@ -197,6 +198,13 @@ TEST(Manifest, DottedKeyOfFortyThousandPartsIsRefusedWithoutParsing) {
   EXPECT_NE(ErrorOf("[" + key + "]\n").find("more than 64 parts"), std::string::npos);
 }
 
+TEST(Manifest, MoreTrialsThanTheLimitAreRefusedAtTheFirstOneTooMany) {
+  std::string text = "[[blocks]]\nid = \"b\"\nb1 = 0.05\nb2 = 0.03\nh = 0.2\ndensity = 2692\n";
+  for (std::size_t k = 0; k <= kMaxManifestEntries; ++k) text += "[[trials]]\n";
+  const std::string message = ErrorOf(text);
+  EXPECT_NE(message.find(":100007:1: 100001 [[trials]] entries, more than the 100000"), std::string::npos) << message;
+}
+
 TEST(Manifest, NulInAStringIsRefusedAtItsPositionAndQuotedEscaped) {
   std::string text = kGood;
   text.replace(text.find("id = \"B3-B-1\""), 13, "id = \"B3\\u0000x\"");
@@ -211,7 +219,8 @@ TEST(Manifest, UnknownIdWithANulByteIsQuotedWhole) {
     m.FindTrial(std::string("B3-A-1\0x", 8));
     FAIL();
   } catch (const BadInput& e) {
-    EXPECT_NE(std::string(e.what()).find("no trial 'B3-A-1\\x00x'; known trials: B3-A-1"), std::string::npos) << e.what();
+    const std::string what = e.what();
+    EXPECT_NE(what.find("no trial 'B3-A-1\\x00x'; known trials: B3-A-1"), std::string::npos) << what;
   }
 }
 
@@ -221,7 +230,8 @@ TEST(Manifest, DirectoryOrFifoIsBadInputNamingWhatItIs) {
     ReadManifest(dir.path());
     FAIL();
   } catch (const BadInput& e) {
-    EXPECT_NE(std::string(e.what()).find("found a directory, expected a manifest (TOML)"), std::string::npos) << e.what();
+    const std::string what = e.what();
+    EXPECT_NE(what.find("found a directory, expected a manifest (TOML)"), std::string::npos) << what;
   }
   ASSERT_TRUE(testing::MakeFifo(dir / "m.toml"));
   EXPECT_THROW(ReadManifest(dir / "m.toml"), BadInput);

@@ -19,8 +19,12 @@ inline constexpr std::uint64_t kMaxRecordFileBytes = std::uint64_t{256} << 20;  
 // 10⁴–10⁵); 80 MB as doubles, a few times that while a response runs on it.
 inline constexpr std::size_t kMaxRecordSamples = 10'000'000;
 
-// A manifest: 10⁴ trials are 1 MB; its parsed tree takes about 20 times the text.
-inline constexpr std::uint64_t kMaxManifestFileBytes = std::uint64_t{64} << 20;  // 64 MiB
+// A manifest: 10⁵ trials are 10 MB; its parsed tree takes about 20 times the text.
+inline constexpr std::uint64_t kMaxManifestFileBytes = std::uint64_t{16} << 20;  // 16 MiB
+
+// [[blocks]] or [[trials]] entries of one manifest: `summary` and `batch` keep a few kB per trial (66 MB for 10⁴),
+// 0.7 GB at the limit.
+inline constexpr std::size_t kMaxManifestEntries = 100'000;
 
 // Parts of one dotted TOML key or table name (`a.b.c` has 3): the TOML parser recurses once per part, and
 // tens of thousands of parts overflow its stack. A manifest needs 2.
