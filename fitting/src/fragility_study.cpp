@@ -6,8 +6,6 @@
 #include <limits>
 #include <string_view>
 #include <type_traits>
-#include <utility>
-#include <vector>
 
 #include <fmt/format.h>
 
@@ -135,26 +133,14 @@ SampleInputs DrawSample(const FragilityStudyOptions& study, std::int64_t index) 
 }
 
 core::GroundMotion SampleGroundMotion(const FragilityStudyOptions& study, const SampleInputs& inputs, double* scale) {
-  // One copy of the record per sample (per thread), rotated and then scaled in place: the operations of
-  // GroundMotion::Rotated and Scaled, bit for bit, without holding the rotated and the scaled copy at once.
+  // Views of the record (GroundMotion::RotatedAndScaled): every thread shares the study's one copy of it.
   const core::GroundMotion& record = study.records[static_cast<std::size_t>(inputs.record)].ground;
-  if (!std::isfinite(inputs.angle_rad)) throw InvalidArgument("the incidence angle of a ground motion must be finite");
-  const double c = std::cos(inputs.angle_rad);
-  const double s = std::sin(inputs.angle_rad);
-  std::vector<Eigen::Vector3d> a_W(record.size());
-  double peak_horizontal = 0.0;
-  for (std::size_t k = 0; k < a_W.size(); ++k) {
-    const Eigen::Vector3d& a = record.Sample(k);
-    a_W[k] = Eigen::Vector3d(c * a.x() - s * a.y(), s * a.x() + c * a.y(), a.z());
-    peak_horizontal = std::max(peak_horizontal, a_W[k].head<2>().norm());
-  }
   const double factor = study.measure == IntensityMeasure::kPga
-                            ? inputs.intensity * core::kRecordGravity / peak_horizontal
+                            ? inputs.intensity * core::kRecordGravity /
+                                  record.RotatedAndScaled(inputs.angle_rad, 1.0).PeakHorizontal()
                             : inputs.intensity;
-  if (!std::isfinite(factor)) throw InvalidArgument("the scale factor of a ground motion must be finite");
   if (scale) *scale = factor;
-  for (Eigen::Vector3d& a : a_W) a *= factor;
-  return core::GroundMotion::Uniform(record.dt_s(), std::move(a_W), record.t_start_s());
+  return record.RotatedAndScaled(inputs.angle_rad, factor);
 }
 
 SampleOutcome RunSample(const FragilityStudyOptions& study, std::int64_t index) {
