@@ -15,8 +15,8 @@ inline constexpr std::size_t kMaxFragilityLevels = 1000;
 // Samples of one fragility study (blocks × levels × --samples): each keeps a 152-byte outcome in memory and in
 // the journal, 0.3 GB at the limit; at ~1000 simulations/s per core it is hours of work.
 inline constexpr std::int64_t kMaxFragilitySamples = 1'000'000;
-// Ground-motion samples held by one fragility study over all its records (24 bytes each: 0.5 GB), besides one
-// scaled copy of a record per thread.
+// Ground-motion samples held by one fragility study over all its records (24 bytes each: 0.5 GB; the threads
+// share them).
 inline constexpr std::size_t kMaxStudyRecordSamples = 20'000'000;
 // Output samples of one response (record + --tail, times --rate): about 150 bytes each in memory, several
 // hundred more when written as JSON; 10⁶ are 83 minutes at 200 Hz.
