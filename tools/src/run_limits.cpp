@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/fitting/fragility_study.hpp"
 #include "rockfit/io/input_limits.hpp"
 
 namespace rockfit::tools {
@@ -19,11 +20,11 @@ std::string LimitsHelp() {
       "  ground-motion record   up to {} MiB and {} samples per component (32 bytes each in memory)\n"
       "  manifest               up to {} MiB and {} [[blocks]] or [[trials]], dotted keys of up to {} parts\n"
       "  response               up to {:.0f} samples: (record + --tail) x --rate (about 150 bytes each, more as JSON)\n"
-      "  fragility study        up to {} levels, {} samples (152 bytes each), {} record samples in all (24 bytes "
-      "each)",
+      "  fragility study        up to {} levels, {} samples ({} bytes each), {} record samples in all (24 bytes "
+      "each, shared by the threads)",
       mib(io::kMaxRecordingFileBytes), mib(io::kMaxRecordFileBytes), io::kMaxRecordSamples,
       mib(io::kMaxManifestFileBytes), io::kMaxManifestEntries, io::kMaxManifestKeyParts, kMaxResponseSamples,
-      kMaxFragilityLevels, kMaxFragilitySamples, kMaxStudyRecordSamples);
+      kMaxFragilityLevels, kMaxFragilitySamples, sizeof(fitting::SampleOutcome), kMaxStudyRecordSamples);
 }
 
 void CheckResponseLength(const core::GroundMotion& ground, const std::string& source, bool from_file, double tail_s,

@@ -12,8 +12,9 @@ namespace rockfit::tools {
 
 // Intensity levels of one fragility study: a curve needs a dozen; more only lengthens the tables.
 inline constexpr std::size_t kMaxFragilityLevels = 1000;
-// Samples of one fragility study (blocks × levels × --samples): each keeps a 152-byte outcome in memory and in
-// the journal, 0.3 GB at the limit; at ~1000 simulations/s per core it is hours of work.
+// Samples of one fragility study (blocks × levels × --samples): each keeps its outcome (fitting::SampleOutcome, about
+// 160 bytes) in memory and in the journal, 0.3 GB at the limit with the journal read back; at ~1000 simulations/s
+// per core it is hours of work.
 inline constexpr std::int64_t kMaxFragilitySamples = 1'000'000;
 // Ground-motion samples held by one fragility study over all its records (24 bytes each: 0.5 GB; the threads
 // share them).
