@@ -1,6 +1,6 @@
 // Resource limits: a very long recording and a manifest of 10⁴ trials are read by the real `rockfit` binary
-// within a stated memory bound, and a fragility study's threads share its record (peak resident set of the child, from wait4). Time is reported, not asserted
-// (speed is measured with Google Benchmark). The CI sizes are 10⁶ rows (10⁵ under the sanitizers);
+// within a stated memory bound, and a fragility study's threads share its record (peak resident set of the child,
+// from wait4). Time is reported, not asserted (speed is measured with Google Benchmark). The CI sizes are 10⁶ rows (10⁵ under the sanitizers);
 // ROCKFIT_LARGE_RECORDING_ROWS=10000000 is the documented manual check of the README's "Reliability" section.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
