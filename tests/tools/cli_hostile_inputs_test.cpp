@@ -110,6 +110,10 @@ TEST(HostileInputs, CountsFromOptionsAboveTheirLimitsAreRefusedBeforeAllocation)
   ExpectRefused(RunLimited(Join({"respond", "--synthetic", "1", "--synthetic-duration", "20000"}, kBlock)), 1,
                 "lower --synthetic-duration or --rate");
   ExpectRefused(RunLimited(Join(fragility, {"--pga", "0.1,0.2", "--tail", "1e9"})), 1, "lower --tail or --rate");
+  ExpectRefused(RunLimited(Join({"simulate", "--alpha", "0.1", "--t-max", "99999", "--rate", "1000"}, kBlock)), 1,
+                "--t-max and --rate ask for 99999000 samples");
+  ExpectRefused(RunLimited(Join({"synth", "--alpha", "0.1", "--t0", "1", "--duration", "300000", "-o",
+                                 (dir / "trial").string()}, kBlock)), 1, "--duration and --rate ask for 76800000");
 }
 
 TEST(HostileInputs, AllocationFailureIsOutOfMemoryNamingTheStepNotPleaseReport) {

@@ -19,12 +19,22 @@ std::string LimitsHelp() {
       "  recording CSV file     up to {} MiB (memory: about 6 times the file)\n"
       "  ground-motion record   up to {} MiB and {} samples per component (32 bytes each in memory)\n"
       "  manifest               up to {} MiB and {} [[blocks]] or [[trials]], dotted keys of up to {} parts\n"
-      "  response               up to {:.0f} samples: (record + --tail) x --rate (about 150 bytes each, more as JSON)\n"
+      "  simulated motion       up to {:.0f} samples: (record + --tail), --t-max or --duration times --rate\n"
+      "                         (about 150 bytes each in memory, more as JSON or CSV)\n"
       "  fragility study        up to {} levels, {} samples ({} bytes each), {} record samples in all (24 bytes "
       "each, shared by the threads)",
       mib(io::kMaxRecordingFileBytes), mib(io::kMaxRecordFileBytes), io::kMaxRecordSamples,
-      mib(io::kMaxManifestFileBytes), io::kMaxManifestEntries, io::kMaxManifestKeyParts, kMaxResponseSamples,
+      mib(io::kMaxManifestFileBytes), io::kMaxManifestEntries, io::kMaxManifestKeyParts, kMaxTrajectorySamples,
       kMaxFragilityLevels, kMaxFragilitySamples, sizeof(fitting::SampleOutcome), kMaxStudyRecordSamples);
+}
+
+void CheckTrajectorySamples(double seconds, double rate_hz, const std::string& options) {
+  const double samples = seconds * rate_hz;
+  if (std::isfinite(samples) && samples <= kMaxTrajectorySamples) return;
+  if (!(seconds > 0.0) || !(rate_hz > 0.0)) return;  // refused where they are used, with their own message
+  throw InvalidArgument(fmt::format("{} ask for {:.0f} samples ({} s at {} Hz), more than the {:.0f} a simulated "
+                                    "motion may have (docs/file-formats.md, \"Limits\"); lower them",
+                                    options, samples, seconds, rate_hz, kMaxTrajectorySamples));
 }
 
 void CheckResponseLength(const core::GroundMotion& ground, const std::string& source, bool from_file, double tail_s,
@@ -36,26 +46,26 @@ void CheckResponseLength(const core::GroundMotion& ground, const std::string& so
     throw InvalidArgument(fmt::format("--rate must be a positive number of hertz, got {}", rate_hz));
   }
   const double record_samples = ground.t_end_s() * rate_hz;
-  if (!(record_samples <= kMaxResponseSamples) && !from_file) {
+  if (!(record_samples <= kMaxTrajectorySamples) && !from_file) {
     throw InvalidArgument(fmt::format("the generated record of {:.6g} s at --rate {} Hz asks for {:.0f} response "
                                       "samples, more than the {:.0f} a response may have (docs/file-formats.md, "
                                       "\"Limits\"); lower --synthetic-duration or --rate",
-                                      ground.t_end_s(), rate_hz, record_samples, kMaxResponseSamples));
+                                      ground.t_end_s(), rate_hz, record_samples, kMaxTrajectorySamples));
   }
-  if (!(record_samples <= kMaxResponseSamples)) {
+  if (!(record_samples <= kMaxTrajectorySamples)) {
     throw BadInput(fmt::format("{}: the record lasts {:.6g} s ({} samples at DT = {:.6g} s); its response at --rate "
                                "{} Hz would hold {:.3g} samples, more than the {:.0f} a response may have "
                                "(docs/file-formats.md, \"Limits\"): check DT (and --dt), cut the record or lower "
                                "--rate",
                                source, ground.t_end_s(), ground.size(), ground.dt_s(), rate_hz, record_samples,
-                               kMaxResponseSamples));
+                               kMaxTrajectorySamples));
   }
   const double samples = (ground.t_end_s() + tail_s) * rate_hz;
-  if (!(samples <= kMaxResponseSamples)) {
+  if (!(samples <= kMaxTrajectorySamples)) {
     throw InvalidArgument(fmt::format("the record ({:.6g} s) and --tail {} s at --rate {} Hz ask for {:.0f} response "
                                       "samples, more than the {:.0f} a response may have (docs/file-formats.md, "
                                       "\"Limits\"); lower --tail or --rate",
-                                      ground.t_end_s(), tail_s, rate_hz, samples, kMaxResponseSamples));
+                                      ground.t_end_s(), tail_s, rate_hz, samples, kMaxTrajectorySamples));
   }
 }
 

@@ -19,14 +19,19 @@ inline constexpr std::int64_t kMaxFragilitySamples = 1'000'000;
 // Ground-motion samples held by one fragility study over all its records (24 bytes each: 0.5 GB; the threads
 // share them).
 inline constexpr std::size_t kMaxStudyRecordSamples = 20'000'000;
-// Output samples of one response (record + --tail, times --rate): about 150 bytes each in memory, several
-// hundred more when written as JSON; 10⁶ are 83 minutes at 200 Hz.
-inline constexpr double kMaxResponseSamples = 1e6;
+// Output samples of one simulated motion — a response ((record + --tail) × --rate), a simulation (--t-max ×
+// --rate) or a synthetic recording (--duration × --rate): about 150 bytes each in memory, several hundred more
+// when written as JSON or CSV text; 10⁶ are 83 minutes at 200 Hz, an hour at 256 Hz.
+inline constexpr double kMaxTrajectorySamples = 1e6;
 
 // The lines of `--help` that state these limits and those of the input files, with their memory cost.
 std::string LimitsHelp();
 
-// Throws before a response is simulated whose samples would exceed kMaxResponseSamples: when the record alone is
+// InvalidArgument naming `options` (e.g. "--t-max × --rate") when `seconds` × `rate_hz` samples would exceed
+// kMaxTrajectorySamples; also when either is not a positive finite number (they are checked again where used).
+void CheckTrajectorySamples(double seconds, double rate_hz, const std::string& options);
+
+// Throws before a response is simulated whose samples would exceed kMaxTrajectorySamples: when the record alone is
 // too long, BadInput naming the record file `source` (InvalidArgument naming --synthetic-duration when the record
 // is generated, `from_file` false); else InvalidArgument naming --tail and --rate. Also refuses a --tail or --rate
 // that is negative or not finite.
