@@ -166,6 +166,13 @@ TEST(HostileInputs, BadRecordValuesAndStepsNameTheFileOrOptionAndExistingOptions
                 "a second column for the first horizontal component (x), which column 1 'x' already is");
 }
 
+TEST(HostileInputs, FragilityWithoutOneCountedSampleIsANumericalFailureNotASilentSuccess) {
+  const ScratchDir dir("hostile_uncounted");
+  ExpectRefused(RunLimited(Join({"fragility", "--synthetic-records", "1", "--synthetic-duration", "2", "--scale",
+                                 "1e300,1e305", "--samples", "2", "-o", (dir / "f.h5").string()}, kBlock)), 3,
+                "none of the 4 samples gave an outcome that counts (4 failed)");
+}
+
 TEST(HostileInputs, DirectoryWhereTheJournalGoesIsBadInputNotAnInternalError) {
   const ScratchDir dir("hostile_journal");
   const std::string out = (dir / "f.h5").string();

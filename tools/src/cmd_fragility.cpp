@@ -8,10 +8,12 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <thread>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "activity.hpp"
 #include "cli_common.hpp"
@@ -321,15 +323,15 @@ int RunFragility(const FragilityCommand& cmd) {
   std::error_code ec;
   std::filesystem::remove(FragilityJournalPath(cmd.output), ec);
 
-  const auto invalid = std::count_if(ledger->by_index.begin(), ledger->by_index.end(), [](const fitting::SampleOutcome& o) {
-    return o.end_reason == fitting::kSampleInvalid;
-  });
-  if (static_cast<std::size_t>(invalid) == total) {
-    throw NumericalFailure(fmt::format("the simulator refused every one of the {} samples (their drawn parameters or "
-                                       "records are outside what it accepts), so {} holds no fragility curve; check "
-                                       "the parameter spreads (--lambda-sd, --lambda-lat-sd, --lambda-lon-sd), "
-                                       "--tail and --rate",
-                                       total, cmd.output));
+  if (summary.not_counted == static_cast<std::int64_t>(total)) {
+    std::map<std::string, std::size_t> reasons;
+    for (const fitting::SampleOutcome& o : ledger->by_index) ++reasons[EndReasonName(o.end_reason)];
+    std::vector<std::string> counts;
+    for (const auto& [reason, n] : reasons) counts.push_back(fmt::format("{} {}", n, reason));
+    throw NumericalFailure(fmt::format("none of the {} samples gave an outcome that counts ({}), so {} holds no "
+                                       "fragility curve; check the levels (--pga, --scale), the parameter spreads "
+                                       "(--lambda-sd, --lambda-lat-sd, --lambda-lon-sd), --tail and --rate",
+                                       total, fmt::join(counts, ", "), cmd.output));
   }
   const std::size_t simulated = total - resumed;
   const double rate = wall_s > 0.0 ? static_cast<double>(simulated) / wall_s : 0.0;
