@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -16,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "rockfit/core/errors.hpp"
+#include "text/text_file.hpp"
 
 namespace rockfit::io {
 
@@ -62,16 +64,6 @@ std::filesystem::path FollowSymlinks(std::filesystem::path path) {
                                 path.string(), kMaxLinks));
 }
 
-std::string DescribeSpecialFile(std::filesystem::file_type type) {
-  switch (type) {
-    case std::filesystem::file_type::character: return "a character device";
-    case std::filesystem::file_type::block: return "a block device";
-    case std::filesystem::file_type::fifo: return "a FIFO (named pipe)";
-    case std::filesystem::file_type::socket: return "a socket";
-    default: return "a special file";
-  }
-}
-
 }  // namespace
 
 std::filesystem::path TemporaryPathFor(const std::filesystem::path& target, long pid, unsigned serial) {
@@ -97,15 +89,14 @@ void RemoveStaleTemporaries(const std::filesystem::path& target) {
 
 AtomicReplacement::AtomicReplacement(std::filesystem::path target) : target_(FollowSymlinks(std::move(target))) {
   if (target_.filename().empty()) throw OutputError(fmt::format("'{}' is not a file name", target_.string()));
-  std::error_code ec;
-  const std::filesystem::file_status status = std::filesystem::symlink_status(target_, ec);
-  if (std::filesystem::is_directory(status)) {
-    throw OutputError(fmt::format("{} is a directory; give a file name", target_.string()));
-  }
-  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
-    throw OutputError(fmt::format("{} is {}, not a regular file: rockfit writes a file by renaming a new one over "
-                                  "the old, which would replace it; give the path of a regular file or a new one",
-                                  target_.string(), DescribeSpecialFile(status.type())));
+  struct stat info {};
+  if (::lstat(target_.c_str(), &info) == 0) {  // else a new file
+    if (S_ISDIR(info.st_mode)) throw OutputError(fmt::format("{} is a directory; give a file name", target_.string()));
+    if (!S_ISREG(info.st_mode)) {
+      throw OutputError(fmt::format("{} is {}, not a regular file: rockfit writes a file by renaming a new one over "
+                                    "the old, which would replace it; give the path of a regular file or a new one",
+                                    target_.string(), DescribeFileType(info.st_mode)));
+    }
   }
   RemoveStaleTemporaries(target_);
   temporary_ = TemporaryPathFor(target_, static_cast<long>(::getpid()), g_serial++);

@@ -42,18 +42,20 @@ std::string ReadRegularFile(const std::filesystem::path& path, const std::string
     for (char c : name) shown += c == '\0' ? std::string("\\0") : std::string(1, c);
     ThrowBadInput({{shown}, "path", "a NUL byte in the path", expected, "Remove the NUL byte from the path."});
   }
-  // O_NONBLOCK: opening a FIFO without a writer returns at once instead of waiting; the type is checked below,
-  // before anything is read.
+  struct stat info {};
+  if (::stat(path.c_str(), &info) == 0 && !S_ISREG(info.st_mode)) {  // a socket cannot even be opened
+    ThrowBadInput({{name}, "", DescribeFileType(info.st_mode), expected, "Give the path of a regular file."});
+  }
+  // O_NONBLOCK: opening a FIFO without a writer returns at once instead of waiting; the type is checked again on
+  // what was opened, before anything is read.
   FileDescriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
   if (file.fd < 0) {
     const int error = errno;
     ThrowBadInput({{name}, "", fmt::format("a file that cannot be opened ({})", std::strerror(error)), expected,
                    error == ENOENT ? "Check the path." : "Check the path and the file's permissions."});
   }
-  struct stat info {};
   if (::fstat(file.fd, &info) != 0 || !S_ISREG(info.st_mode)) {
-    ThrowBadInput({{name}, "", DescribeFileType(info.st_mode), expected,
-                   "Give the path of a regular file."});
+    ThrowBadInput({{name}, "", DescribeFileType(info.st_mode), expected, "Give the path of a regular file."});
   }
   const auto size_bytes = static_cast<std::uint64_t>(info.st_size);
   if (size_bytes > max_bytes) {
