@@ -104,7 +104,9 @@ TEST(HostileInputs, CountsFromOptionsAboveTheirLimitsAreRefusedBeforeAllocation)
   ExpectRefused(RunLimited(Join(fragility, {"--pga", "0.1,0.2", "--samples", "2000000000"})), 1,
                 "more than the 1000000 a study may have");
   ExpectRefused(RunLimited(Join({"fragility", "--synthetic-records", "100000000", "--pga", "0.1,0.2", "-o", out}, kBlock)),
-                1, "more than the 20000000 a study may hold");
+                1, "more than the 10000 records a study may have");
+  ExpectRefused(RunLimited(Join({"fragility", "--synthetic-records", "9000", "--pga", "0.1,0.2", "-o", out}, kBlock)), 1,
+                "more than the 20000000 a study may hold");
   ExpectRefused(RunLimited(Join({"respond", "--synthetic", "1", "--synthetic-duration", "499000"}, kBlock)), 1,
                 "more than the 10000000 of the largest record");
   ExpectRefused(RunLimited(Join({"respond", "--synthetic", "1", "--synthetic-duration", "20000"}, kBlock)), 1,

@@ -158,6 +158,12 @@ void CheckRecordSamples(std::size_t held, double adding, const std::string& what
 }
 
 std::vector<fitting::FragilityRecord> LoadRecords(const FragilityCommand& cmd) {
+  if (cmd.synthetic_records < 0) throw InvalidArgument("--synthetic-records must be ≥ 0");
+  if (cmd.records.size() + static_cast<std::size_t>(cmd.synthetic_records) > kMaxFragilityRecords) {
+    throw InvalidArgument(fmt::format("{} --record and --synthetic-records {} are more than the {} records a study may "
+                                      "have (docs/file-formats.md, \"Limits\")",
+                                      cmd.records.size(), cmd.synthetic_records, kMaxFragilityRecords));
+  }
   std::vector<fitting::FragilityRecord> records;
   std::size_t held = 0;  // samples of the records read so far
   for (const std::string& path : cmd.records) {
@@ -171,7 +177,6 @@ std::vector<fitting::FragilityRecord> LoadRecords(const FragilityCommand& cmd) {
     CheckRecordSamples(held, static_cast<double>(records.back().ground.size()), "--record " + path);
     held += records.back().ground.size();
   }
-  if (cmd.synthetic_records < 0) throw InvalidArgument("--synthetic-records must be ≥ 0");
   if (cmd.synthetic_records > 0) {
     const double each = cmd.synthetic_duration_s / cmd.synthetic_dt_s + 1.0;
     CheckRecordSamples(held, static_cast<double>(cmd.synthetic_records) * each,

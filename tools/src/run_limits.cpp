@@ -21,11 +21,12 @@ std::string LimitsHelp() {
       "  manifest               up to {} MiB and {} [[blocks]] or [[trials]], dotted keys of up to {} parts\n"
       "  simulated motion       up to {:.0f} samples: (record + --tail), --t-max or --duration times --rate\n"
       "                         (about 150 bytes each in memory, more as JSON or CSV)\n"
-      "  fragility study        up to {} levels, {} samples ({} bytes each), {} record samples in all (24 bytes "
-      "each, shared by the threads)",
+      "  fragility study        up to {} levels, {} samples ({} bytes each), {} records with {} samples in all\n"
+      "                         (24 bytes each, shared by the threads)",
       mib(io::kMaxRecordingFileBytes), mib(io::kMaxRecordFileBytes), io::kMaxRecordSamples,
       mib(io::kMaxManifestFileBytes), io::kMaxManifestEntries, io::kMaxManifestKeyParts, kMaxTrajectorySamples,
-      kMaxFragilityLevels, kMaxFragilitySamples, sizeof(fitting::SampleOutcome), kMaxStudyRecordSamples);
+      kMaxFragilityLevels, kMaxFragilitySamples, sizeof(fitting::SampleOutcome), kMaxFragilityRecords,
+      kMaxStudyRecordSamples);
 }
 
 void CheckTrajectorySamples(double seconds, double rate_hz, const std::string& options) {

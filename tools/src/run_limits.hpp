@@ -16,6 +16,9 @@ inline constexpr std::size_t kMaxFragilityLevels = 1000;
 // 160 bytes) in memory and in the journal, 0.3 GB at the limit with the journal read back; at ~1000 simulations/s
 // per core it is hours of work.
 inline constexpr std::int64_t kMaxFragilitySamples = 1'000'000;
+// Records of one fragility study (--record and --synthetic-records): suites of ground motions have tens to
+// hundreds.
+inline constexpr std::size_t kMaxFragilityRecords = 10'000;
 // Ground-motion samples held by one fragility study over all its records (24 bytes each: 0.5 GB; the threads
 // share them).
 inline constexpr std::size_t kMaxStudyRecordSamples = 20'000'000;
