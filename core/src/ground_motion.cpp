@@ -32,16 +32,22 @@ GroundMotion GroundMotion::Uniform(double dt_s, std::vector<Eigen::Vector3d> a_W
   GroundMotion g;
   g.dt_s_ = dt_s;
   g.t_start_s_ = t_start_s;
-  g.a_W_ = std::move(a_W);
+  g.samples_W_ = std::make_shared<const std::vector<Eigen::Vector3d>>(std::move(a_W));
   return g;
 }
 
+std::vector<Eigen::Vector3d> GroundMotion::samples_W() const {
+  std::vector<Eigen::Vector3d> a_W(size());
+  for (std::size_t k = 0; k < a_W.size(); ++k) a_W[k] = Sample(k);
+  return a_W;
+}
+
 double GroundMotion::NextBreak(double t_s) const {
-  if (a_W_.empty()) return std::numeric_limits<double>::infinity();
+  if (empty()) return std::numeric_limits<double>::infinity();
   const double floor_s = TimeFloor(t_s);
   if (t_s < t_start_s_ - floor_s) return t_start_s_;
   const double x = std::max(0.0, std::floor((t_s - t_start_s_) / dt_s_));
-  for (std::size_t k = static_cast<std::size_t>(x); k < a_W_.size(); ++k) {
+  for (std::size_t k = static_cast<std::size_t>(x); k < size(); ++k) {
     const double t_k = SampleTime(k);
     if (t_k > t_s + floor_s) return t_k;
   }
@@ -50,29 +56,47 @@ double GroundMotion::NextBreak(double t_s) const {
 
 double GroundMotion::PeakHorizontal() const {
   double peak = 0.0;
-  for (const Eigen::Vector3d& a : a_W_) peak = std::max(peak, a.head<2>().norm());
+  for (std::size_t k = 0; k < size(); ++k) peak = std::max(peak, Sample(k).head<2>().norm());
   return peak;
 }
 
 double GroundMotion::PeakVertical() const {
   double peak = 0.0;
-  for (const Eigen::Vector3d& a : a_W_) peak = std::max(peak, std::abs(a.z()));
+  for (std::size_t k = 0; k < size(); ++k) peak = std::max(peak, std::abs(Sample(k).z()));
   return peak;
 }
 
 GroundMotion GroundMotion::Scaled(double factor) const {
   if (!std::isfinite(factor)) throw InvalidArgument("the scale factor of a ground motion must be finite");
+  std::vector<Eigen::Vector3d> a_W = samples_W();
+  for (Eigen::Vector3d& a : a_W) a *= factor;
   GroundMotion g = *this;
-  for (Eigen::Vector3d& a : g.a_W_) a *= factor;
+  g.samples_W_ = std::make_shared<const std::vector<Eigen::Vector3d>>(std::move(a_W));
+  g.transformed_ = false;
   return g;
 }
 
 GroundMotion GroundMotion::Rotated(double beta_rad) const {
   if (!std::isfinite(beta_rad)) throw InvalidArgument("the incidence angle of a ground motion must be finite");
-  GroundMotion g = *this;
   const double c = std::cos(beta_rad);
   const double s = std::sin(beta_rad);
-  for (Eigen::Vector3d& a : g.a_W_) a = Eigen::Vector3d(c * a.x() - s * a.y(), s * a.x() + c * a.y(), a.z());
+  std::vector<Eigen::Vector3d> a_W = samples_W();
+  for (Eigen::Vector3d& a : a_W) a = Eigen::Vector3d(c * a.x() - s * a.y(), s * a.x() + c * a.y(), a.z());
+  GroundMotion g = *this;
+  g.samples_W_ = std::make_shared<const std::vector<Eigen::Vector3d>>(std::move(a_W));
+  g.transformed_ = false;
+  return g;
+}
+
+GroundMotion GroundMotion::RotatedAndScaled(double beta_rad, double factor) const {
+  if (!std::isfinite(beta_rad)) throw InvalidArgument("the incidence angle of a ground motion must be finite");
+  if (!std::isfinite(factor)) throw InvalidArgument("the scale factor of a ground motion must be finite");
+  if (transformed_) return Rotated(beta_rad).Scaled(factor);  // a view of a view: materialised, as before
+  GroundMotion g = *this;
+  g.transformed_ = true;
+  g.cos_ = std::cos(beta_rad);
+  g.sin_ = std::sin(beta_rad);
+  g.factor_ = factor;
   return g;
 }
 

@@ -133,12 +133,14 @@ SampleInputs DrawSample(const FragilityStudyOptions& study, std::int64_t index) 
 }
 
 core::GroundMotion SampleGroundMotion(const FragilityStudyOptions& study, const SampleInputs& inputs, double* scale) {
-  const core::GroundMotion rotated = study.records[static_cast<std::size_t>(inputs.record)].ground.Rotated(inputs.angle_rad);
+  // Views of the record (GroundMotion::RotatedAndScaled): every thread shares the study's one copy of it.
+  const core::GroundMotion& record = study.records[static_cast<std::size_t>(inputs.record)].ground;
   const double factor = study.measure == IntensityMeasure::kPga
-                            ? inputs.intensity * core::kRecordGravity / rotated.PeakHorizontal()
+                            ? inputs.intensity * core::kRecordGravity /
+                                  record.RotatedAndScaled(inputs.angle_rad, 1.0).PeakHorizontal()
                             : inputs.intensity;
   if (scale) *scale = factor;
-  return rotated.Scaled(factor);
+  return record.RotatedAndScaled(inputs.angle_rad, factor);
 }
 
 SampleOutcome RunSample(const FragilityStudyOptions& study, std::int64_t index) {

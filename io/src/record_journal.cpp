@@ -6,7 +6,6 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
-#include <iterator>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -14,12 +13,25 @@
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/atomic_file.hpp"
 #include "rockfit/io/content_hash.hpp"
+#include "text/text_file.hpp"
 
 namespace rockfit::io {
 namespace {
 
 constexpr const char* kMagic = "rockfit-journal";
 constexpr std::size_t kChecksumBytes = 8;
+// The header line: magic, version, kind, record size and a key of a few dozen characters.
+constexpr std::uint64_t kMaxHeaderBytes = 4096;
+
+// Bytes of a file that may be anything, for a message: printable ASCII as it is, the rest as \xNN.
+std::string Printable(const std::string& bytes) {
+  std::string text;
+  for (char c : bytes) {
+    const auto byte = static_cast<unsigned char>(c);
+    text += byte >= 0x20 && byte < 0x7f ? std::string(1, c) : fmt::format("\\x{:02x}", byte);
+  }
+  return text;
+}
 
 std::string HeaderLine(const std::string& kind, std::size_t record_bytes, const std::string& key) {
   return fmt::format("{} 1 {} {} {}\n", kMagic, kind, record_bytes, key);
@@ -35,10 +47,11 @@ std::string ChecksumBytes(const std::string& record) {
 }  // namespace
 
 std::optional<JournalContents> ReadJournal(const std::filesystem::path& path, const std::string& kind,
-                                           std::size_t record_bytes) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+                                           std::size_t record_bytes, std::uint64_t max_records) {
+  std::error_code ec;
+  if (!std::filesystem::exists(std::filesystem::symlink_status(path, ec))) return std::nullopt;
+  const std::uint64_t max_bytes = kMaxHeaderBytes + max_records * (record_bytes + kChecksumBytes);
+  const std::string bytes = ReadRegularFile(path, "a rockfit journal or no file", max_bytes);
   const std::size_t newline = bytes.find('\n');
   if (newline == std::string::npos) {
     if (bytes.rfind(kMagic, 0) == 0 || std::string(kMagic).rfind(bytes, 0) == 0) return std::nullopt;
@@ -53,7 +66,8 @@ std::optional<JournalContents> ReadJournal(const std::filesystem::path& path, co
   if (magic != kMagic || version != 1 || !header) {
     throw BadInput(fmt::format("{}:1:1: not a rockfit journal, found '{}', expected '{} 1 {} …'; remove the file or "
                                "choose another output",
-                               path.string(), bytes.substr(0, std::min<std::size_t>(newline, 60)), kMagic, kind));
+                               path.string(), Printable(bytes.substr(0, std::min<std::size_t>(newline, 60))), kMagic,
+                               kind));
   }
   if (found_kind != kind || found_bytes != record_bytes) {
     throw BadInput(fmt::format("{}:1:1: a {} journal with {}-byte records, expected a {} journal with {}-byte records "

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include "bindings.hpp"
+#include "path_argument.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/manifest.hpp"
 
@@ -23,7 +24,9 @@ void RegisterBlock(py::module_& m) {
            py::arg("mass") = py::none())
       .def_static(
           "from_manifest",
-          [](const std::string& path, const std::string& id) { return io::ReadManifest(path).FindBlock(id).ToBlock(); },
+          [](const PathArgument& path, const std::string& id) {
+            return io::ReadManifest(path.path).FindBlock(id).ToBlock();
+          },
           py::arg("path"), py::arg("id"),
           "The block `id` of the campaign manifest at `path` (TOML). Raises rockfit.InputError naming the file, line\n"
           "and column for a bad manifest or an unknown id.")

@@ -17,6 +17,7 @@
 
 #include "bindings.hpp"
 #include "fit_setup.hpp"
+#include "path_argument.hpp"
 #include "mounting_report.hpp"
 #include "recording_input.hpp"
 #include "rockfit/core/errors.hpp"
@@ -269,11 +270,12 @@ py::object Fit(const TrialRecording& r, const std::optional<core::Block>& given,
 
 // ------------------------------------------------------------------------------------------- campaign
 
-py::list FitCampaign(const std::string& manifest_path, const py::object& trials, int jobs, const std::string& method,
+py::list FitCampaign(const PathArgument& manifest_argument, const py::object& trials, int jobs, const std::string& method,
                      const py::object& bounds, const py::object& free, const py::object& fix, const py::object& lower,
                      const py::object& upper, std::optional<double> t_end, int max_evaluations, bool global_stage,
                      bool keep_bias) {
   if (jobs < 0) throw InvalidArgument("jobs must be ≥ 0 (0: all cores)");
+  const std::string& manifest_path = manifest_argument.path;
   tools::FitArgs args =
       MakeFitArgs(method, bounds, free, fix, lower, upper, t_end, max_evaluations, global_stage, keep_bias, 1);
   args.threads = 1;  // parallel over trials, not inside one fit (as `rockfit batch`)

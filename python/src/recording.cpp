@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "bindings.hpp"
+#include "path_argument.hpp"
 #include "recording_input.hpp"
 #include "rockfit/core/errors.hpp"
 
@@ -138,11 +139,11 @@ void RegisterRecording(py::module_& m) {
 
   m.def(
       "load_recording",
-      [](const std::string& path, std::optional<std::string> trial, const std::string& format,
+      [](const PathArgument& path, std::optional<std::string> trial, const std::string& format,
          std::optional<double> rate, std::optional<std::string> mounting, std::optional<std::string> columns,
          const std::string& orientation) {
         tools::RecordingArgs args;
-        args.path = path;
+        args.path = path.path;
         args.trial_id = trial.value_or("");
         args.format = format;
         args.rate_hz = rate;

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "bindings.hpp"
+#include "path_argument.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/mounting.hpp"
 #include "rockfit/io/synth_recording.hpp"
@@ -151,7 +152,7 @@ void RegisterSynth(py::module_& m) {
   const core::ModelParameters p;
   m.def(
       "synth",
-      [](const std::string& prefix, const core::Block& block, double alpha, double lambda, double lambda_lat,
+      [](const PathArgument& prefix, const core::Block& block, double alpha, double lambda, double lambda_lat,
          double lambda_lon, double tau_edge, const std::string& facet_tau, std::optional<double> rest_energy_height,
          double t0, double duration, double rate, std::optional<double> quaternion_rate, const std::string& mounting,
          py::object sensor_position, std::int64_t rtc_start_s, bool rotation_matrix, bool crlf, std::uint64_t seed,
@@ -164,7 +165,7 @@ void RegisterSynth(py::module_& m) {
                               rotation_matrix, crlf, seed, noise, gyro_noise_dps, std::move(gyro_bias_dps),
                               quantisation, ringing_gain, ringing_frequency_hz, ringing_decay_time_s, ringing,
                               std::move(drift_slope_dps), std::move(drift_walk_deg_per_rt_s), drift, accel_noise_g};
-        return Synth(prefix, block, k);
+        return Synth(prefix.path, block, k);
       },
       py::arg("prefix"), py::arg("block"), py::kw_only(), py::arg("alpha") = p.alpha_rad, py::arg("lambda_") = p.lambda,
       py::arg("lambda_lat") = p.lambda_lat, py::arg("lambda_lon") = p.lambda_lon, py::arg("tau_edge") = p.tau_edge,

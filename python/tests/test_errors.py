@@ -45,6 +45,32 @@ def test_wrong_argument_types_are_type_errors(rockfit):
         rockfit.metrics("not a recording")
 
 
+def test_paths_may_be_pathlib_paths(rockfit):
+    block = rockfit.Block.from_manifest(MANIFEST, "block2")
+    assert block.b1 == rockfit.Block.from_manifest(str(MANIFEST), "block2").b1
+    assert len(rockfit.load_recording(MANIFEST, trial="block2-A-1")) > 1000
+
+
+def test_a_nul_byte_in_a_path_is_a_value_error_naming_the_path(rockfit):
+    with pytest.raises(ValueError, match="contains a NUL byte"):
+        rockfit.load_recording(str(MANIFEST) + "\0.csv", trial="block2-A-1")
+    with pytest.raises(ValueError, match="contains a NUL byte"):
+        rockfit.Block.from_manifest(str(MANIFEST) + "\0x", "block2")
+
+
+def test_a_deep_dotted_manifest_key_or_a_fifo_is_an_input_error_not_a_crash(rockfit, tmp_path):
+    manifest = tmp_path / "deep.toml"
+    manifest.write_text(".".join(["a"] * 40000) + " = 1\n")
+    with pytest.raises(rockfit.InputError, match="more than 64 parts"):
+        rockfit.Block.from_manifest(manifest, "b")
+    with pytest.raises(rockfit.InputError, match="more than 64 parts"):
+        rockfit.load_recording(manifest, trial="t")
+    fifo = tmp_path / "fifo.toml"
+    os.mkfifo(fifo)
+    with pytest.raises(rockfit.InputError, match="FIFO"):
+        rockfit.load_recording(fifo, trial="t")
+
+
 @pytest.mark.skipif(not REAL_IMU.is_dir(), reason="the real x-IMU recordings beside the checkout are not present")
 def test_real_ximu_set_without_registers_says_which_rate_to_pass(rockfit):
     prefix = REAL_IMU / "Oscillatory-Motion-Tracking-With-x-IMU" / "LoggedData" / "LoggedData"

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -48,6 +49,26 @@ TEST(GroundMotion, RotationTurnsAnXRecordToTheIncidenceDirection) {
   EXPECT_EQ(a.z(), -4.0);
   EXPECT_NEAR(g.PeakHorizontal(), 4.0, 1e-15);
   EXPECT_NEAR(Ramp().Scaled(0.5).PeakVertical(), 2.0, 1e-15);
+}
+
+TEST(GroundMotion, RotatedAndScaledViewIsRotatedThenScaledBitForBitAtEveryTime) {
+  std::vector<Eigen::Vector3d> a{{0.3, -1.7, 0.2}, {1.1, 0.4, -0.9}, {-2.3, 0.7, 0.1}, {0.9, -0.2, 0.6}};
+  const GroundMotion g = GroundMotion::Uniform(0.01, a);
+  for (const double beta : {0.0, 0.4, 2.9, -1.3}) {
+    const GroundMotion view = g.RotatedAndScaled(beta, 1.7);
+    const GroundMotion copy = g.Rotated(beta).Scaled(1.7);
+    EXPECT_EQ(view.PeakHorizontal(), copy.PeakHorizontal());
+    EXPECT_EQ(view.PeakVertical(), copy.PeakVertical());
+    for (double t = -0.005; t < 0.04; t += 0.0013) {
+      EXPECT_EQ(view.Acceleration_W(t), copy.Acceleration_W(t)) << "beta " << beta << ", t " << t;
+    }
+    EXPECT_EQ(view.samples_W(), copy.samples_W());
+    // A view of a view is materialised in the same order.
+    EXPECT_EQ(view.RotatedAndScaled(0.2, 0.5).samples_W(), view.Rotated(0.2).Scaled(0.5).samples_W());
+  }
+  EXPECT_EQ(g.samples_W(), a);  // the record itself is unchanged
+  EXPECT_THROW(g.RotatedAndScaled(std::nan(""), 1.0), InvalidArgument);
+  EXPECT_THROW(g.RotatedAndScaled(0.0, std::numeric_limits<double>::infinity()), InvalidArgument);
 }
 
 TEST(GroundMotion, LiftOffIsTheExactCrossingOfMinusG) {

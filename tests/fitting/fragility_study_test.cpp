@@ -83,6 +83,22 @@ TEST(FragilityStudy, SamplePlanUsesEveryRecordEquallyAndGivesEachSampleItsOwnSee
   EXPECT_THROW(DrawSample(s, s.num_samples()), InvalidArgument);
 }
 
+TEST(FragilityStudy, SampleGroundMotionIsTheRecordRotatedThenScaledBitForBit) {
+  FragilityStudyOptions s = PlanarStudy({PlanarBlock(0.2, 0.8)}, 2, 2.0, {0.2, 0.4}, 4);
+  s.angle_rad.reset();  // a random angle per sample: the rotation is not the identity
+  for (std::int64_t index = 0; index < s.num_samples(); ++index) {
+    const SampleInputs in = DrawSample(s, index);
+    double scale = 0.0;
+    const core::GroundMotion sampled = SampleGroundMotion(s, in, &scale);
+    const core::GroundMotion rotated = s.records[static_cast<std::size_t>(in.record)].ground.Rotated(in.angle_rad);
+    const core::GroundMotion expected = rotated.Scaled(in.intensity * core::kRecordGravity / rotated.PeakHorizontal());
+    ASSERT_EQ(sampled.size(), expected.size());
+    EXPECT_EQ(sampled.dt_s(), expected.dt_s());
+    EXPECT_EQ(std::memcmp(sampled.samples_W().data(), expected.samples_W().data(),
+                          sizeof(Eigen::Vector3d) * sampled.size()), 0) << "sample " << index;
+  }
+}
+
 TEST(FragilityStudy, ParametersFollowTheirNormalDistributions) {
   FragilityStudyOptions s = PlanarStudy({PlanarBlock(0.2, 0.8)}, 1, 2.0, {0.3}, 20000);
   s.blocks[0].lambda = {0.9, 0.05};

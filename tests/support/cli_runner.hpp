@@ -39,13 +39,16 @@ inline std::string ReadWholeFile(const std::filesystem::path& path) {
   return ss.str();
 }
 
-// Runs `rockfit args...` in `working_dir` (the current directory when empty).
-inline CommandResult RunRockfit(const std::vector<std::string>& args, const std::filesystem::path& working_dir = {}) {
+// Runs `rockfit args...` in `working_dir` (the current directory when empty), with its virtual memory limited to
+// `virtual_memory_kib` (ulimit -v) when that is not 0.
+inline CommandResult RunRockfit(const std::vector<std::string>& args, const std::filesystem::path& working_dir = {},
+                                unsigned long virtual_memory_kib = 0) {
   static int counter = 0;
   const auto tmp = std::filesystem::temp_directory_path() /
                    ("rockfit_cli_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
   std::filesystem::create_directories(tmp);
   std::string command;
+  if (virtual_memory_kib > 0) command += "ulimit -v " + std::to_string(virtual_memory_kib) + " && ";
   if (!working_dir.empty()) command += "cd " + ShellQuote(working_dir.string()) + " && ";
   command += ShellQuote(RockfitBinary().string());
   for (const auto& a : args) command += " " + ShellQuote(a);

@@ -289,7 +289,7 @@ TEST(CliFragility, KilledAtRandomInstantsAndResumedGivesTheUninterruptedResult) 
     std::this_thread::sleep_for(std::chrono::duration<double>(instant_s));
     killed += ::kill(pid, SIGKILL) == 0 ? 1 : 0;
     WaitForExit(pid);
-    const auto journal = io::ReadJournal(h5 + ".journal", "fragility", sizeof(fitting::SampleOutcome));
+    const auto journal = io::ReadJournal(h5 + ".journal", "fragility", sizeof(fitting::SampleOutcome), 1000000);
     finished = !journal && std::filesystem::exists(h5);
     const std::size_t now = journal ? journal->records.size() : finished ? kTotal : 0;
     EXPECT_GE(now, journaled_before) << "a kill lost journaled samples";

@@ -1,6 +1,6 @@
 // Resource limits: a very long recording and a manifest of 10⁴ trials are read by the real `rockfit` binary
-// within a stated memory bound (peak resident set of the child, from wait4). Time is reported, not asserted
-// (speed is measured with Google Benchmark). The CI sizes are 10⁶ rows (10⁵ under the sanitizers);
+// within a stated memory bound, and a fragility study's threads share its record (peak resident set of the child,
+// from wait4). Time is reported, not asserted (speed is measured with Google Benchmark). The CI sizes are 10⁶ rows (10⁵ under the sanitizers);
 // ROCKFIT_LARGE_RECORDING_ROWS=10000000 is the documented manual check of the README's "Reliability" section.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -120,6 +120,29 @@ TEST(ResourceLimits, ManifestOfTenThousandTrialsIsSummarisedWithinTheStatedMemor
   }
   std::printf("summary of %d trials (manifest %.1f MB): exit %d, %.2f s, peak resident %.0f MB\n", kTrials,
               static_cast<double>(text.size()) / 1e6, u.exit_code, u.wall_s, u.peak_resident_bytes / 1e6);
+}
+
+TEST(ResourceLimits, FragilityThreadsShareTheRecordInsteadOfEachHoldingACopy) {
+  // One generated record of 2·10⁶ samples (48 MB as the study holds it); a block at rest under 0.05 and 0.1 g, so
+  // that the runs are short and their responses (at 1 Hz) small: what more threads could add is record copies.
+  constexpr double kRecordBytes = 2e6 * 24.0;
+  const ScratchDir dir("fragility_threads");
+  const auto run = [&dir](const std::string& threads) {
+    const std::string output = (dir / ("f" + threads + ".h5")).string();
+    return RunMeasured({"fragility", "--b1", "0.05", "--b2", "0.05", "--h", "0.2", "--density", "2692",
+                        "--synthetic-records", "1", "--synthetic-duration", "10000", "--rate", "1", "--tail", "0",
+                        "--pga", "0.05,0.1", "--samples", "4", "-j", threads, "-o", output, "--json"},
+                       dir.path());
+  };
+  const ChildUsage one = run("1");
+  const ChildUsage four = run("4");
+  ASSERT_EQ(one.exit_code, 0) << one.out;
+  ASSERT_EQ(four.exit_code, 0) << four.out;
+  if (!kAddressSanitizedBuild) {
+    EXPECT_LT(four.peak_resident_bytes - one.peak_resident_bytes, 0.25 * kRecordBytes);  // build_type.hpp
+  }
+  std::printf("fragility on a 2e6-sample record: peak resident %.0f MB on 1 thread, %.0f MB on 4\n",
+              one.peak_resident_bytes / 1e6, four.peak_resident_bytes / 1e6);
 }
 
 }  // namespace

@@ -8,11 +8,14 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <thread>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include "activity.hpp"
 #include "cli_common.hpp"
 #include "command_registry.hpp"
 #include "fit_setup.hpp"
@@ -24,6 +27,7 @@
 #include "rockfit/core/errors.hpp"
 #include "rockfit/fitting/fit_store.hpp"
 #include "rockfit/io/hdf5_transaction.hpp"
+#include "run_limits.hpp"
 #include "sample_ranks.hpp"
 
 namespace rockfit::tools {
@@ -83,11 +87,19 @@ std::vector<double> ParseLevels(const std::string& text, const std::string& opti
     if (parts.size() != 3 || n < 2 || n != std::floor(n)) {
       throw InvalidArgument(fmt::format("{} expects FROM:TO:N with N ≥ 2 levels, got '{}'", option, text));
     }
+    if (n > static_cast<double>(kMaxFragilityLevels)) {
+      throw InvalidArgument(fmt::format("{} asks for {} levels, more than the {} a study may have (docs/file-formats.md, "
+                                        "\"Limits\"); a fragility curve needs a dozen", option, n, kMaxFragilityLevels));
+    }
     const double from = ParseNumber(parts[0], option), to = ParseNumber(parts[1], option);
     for (int i = 0; i < static_cast<int>(n); ++i) levels.push_back(from + (to - from) * i / (n - 1.0));
     return levels;
   }
   for (const std::string& cell : SplitList(text)) levels.push_back(ParseNumber(cell, option));
+  if (levels.size() > kMaxFragilityLevels) {
+    throw InvalidArgument(fmt::format("{} lists {} levels, more than the {} a study may have (docs/file-formats.md, "
+                                      "\"Limits\")", option, levels.size(), kMaxFragilityLevels));
+  }
   return levels;
 }
 
@@ -136,8 +148,24 @@ std::vector<fitting::FragilityBlock> MakeBlocks(const FragilityCommand& cmd) {
   return blocks;
 }
 
+// Refuses a study whose records would hold more than kMaxStudyRecordSamples samples, before the next `adding`.
+void CheckRecordSamples(std::size_t held, double adding, const std::string& what) {
+  if (static_cast<double>(held) + adding > static_cast<double>(kMaxStudyRecordSamples)) {
+    throw InvalidArgument(fmt::format("{} would bring the study's records to {:.4g} samples, more than the {} a study "
+                                      "may hold (docs/file-formats.md, \"Limits\"); use fewer or shorter records",
+                                      what, static_cast<double>(held) + adding, kMaxStudyRecordSamples));
+  }
+}
+
 std::vector<fitting::FragilityRecord> LoadRecords(const FragilityCommand& cmd) {
+  if (cmd.synthetic_records < 0) throw InvalidArgument("--synthetic-records must be ≥ 0");
+  if (cmd.records.size() + static_cast<std::size_t>(cmd.synthetic_records) > kMaxFragilityRecords) {
+    throw InvalidArgument(fmt::format("{} --record and --synthetic-records {} are more than the {} records a study may "
+                                      "have (docs/file-formats.md, \"Limits\")",
+                                      cmd.records.size(), cmd.synthetic_records, kMaxFragilityRecords));
+  }
   std::vector<fitting::FragilityRecord> records;
+  std::size_t held = 0;  // samples of the records read so far
   for (const std::string& path : cmd.records) {
     GroundMotionArgs a;
     a.record = path;
@@ -145,14 +173,23 @@ std::vector<fitting::FragilityRecord> LoadRecords(const FragilityCommand& cmd) {
     a.units = cmd.units;
     a.csv_dt_s = cmd.csv_dt_s;
     records.push_back({path, LoadGroundMotion(a).assembled.ground});
+    CheckResponseLength(records.back().ground, path, true, cmd.tail_s, cmd.rate_hz);
+    CheckRecordSamples(held, static_cast<double>(records.back().ground.size()), "--record " + path);
+    held += records.back().ground.size();
   }
-  if (cmd.synthetic_records < 0) throw InvalidArgument("--synthetic-records must be ≥ 0");
+  if (cmd.synthetic_records > 0) {
+    const double each = cmd.synthetic_duration_s / cmd.synthetic_dt_s + 1.0;
+    CheckRecordSamples(held, static_cast<double>(cmd.synthetic_records) * each,
+                       fmt::format("--synthetic-records {} of {} s at {} s", cmd.synthetic_records,
+                                   cmd.synthetic_duration_s, cmd.synthetic_dt_s));
+  }
   for (int k = 0; k < cmd.synthetic_records; ++k) {
     GroundMotionArgs a;
     a.synthetic_seed = cmd.synthetic_seed + static_cast<std::uint64_t>(k);
     a.synthetic_duration_s = cmd.synthetic_duration_s;
     a.synthetic_dt_s = cmd.synthetic_dt_s;
     records.push_back({fmt::format("synthetic:{}", *a.synthetic_seed), LoadGroundMotion(a).assembled.ground});
+    CheckResponseLength(records.back().ground, records.back().name, false, cmd.tail_s, cmd.rate_hz);
   }
   if (records.empty()) {
     throw InvalidArgument("give ground motions: --record FILE (repeatable; PEER AT2 or CSV) and/or --synthetic-records N");
@@ -170,6 +207,14 @@ fitting::FragilityStudyOptions MakeStudy(const FragilityCommand& cmd) {
   study.measure = cmd.pga.empty() ? fitting::IntensityMeasure::kScale : fitting::IntensityMeasure::kPga;
   study.levels = cmd.pga.empty() ? ParseLevels(cmd.scale, "--scale") : ParseLevels(cmd.pga, "--pga");
   study.samples_per_level = cmd.samples;
+  const double samples = static_cast<double>(study.blocks.size()) * static_cast<double>(study.levels.size()) *
+                         static_cast<double>(cmd.samples);
+  if (samples > static_cast<double>(kMaxFragilitySamples)) {
+    throw InvalidArgument(fmt::format("{} block(s) × {} levels × --samples {} are {:.4g} samples, more than the {} a "
+                                      "study may have (docs/file-formats.md, \"Limits\"); lower --samples or the "
+                                      "number of levels", study.blocks.size(), study.levels.size(), cmd.samples,
+                                      samples, kMaxFragilitySamples));
+  }
   if (cmd.angle != "random") study.angle_rad = ParseNumber(cmd.angle, "--angle") * M_PI / 180.0;
   if (!cmd.tilts.empty()) {
     for (const std::string& cell : SplitList(cmd.tilts)) study.tilt_fractions.push_back(ParseNumber(cell, "--tilt"));
@@ -241,6 +286,7 @@ int RunFragility(const FragilityCommand& cmd) {
   std::size_t done = resumed, overturned_this_run = 0;
   const auto start = std::chrono::steady_clock::now();
   auto last_report = start, last_sync = start;
+  const Activity activity(fmt::format("running the {} samples of the fragility study", total));
   for (std::size_t r = 0; r < rounds; ++r) {
     const std::size_t from = std::min(mine.size(), r * per_round), to = std::min(mine.size(), (r + 1) * per_round);
     const std::vector<std::int64_t> chunk(mine.begin() + static_cast<std::ptrdiff_t>(from),
@@ -282,6 +328,16 @@ int RunFragility(const FragilityCommand& cmd) {
   std::error_code ec;
   std::filesystem::remove(FragilityJournalPath(cmd.output), ec);
 
+  if (summary.not_counted == static_cast<std::int64_t>(total)) {
+    std::map<std::string, std::size_t> reasons;
+    for (const fitting::SampleOutcome& o : ledger->by_index) ++reasons[EndReasonName(o.end_reason)];
+    std::vector<std::string> counts;
+    for (const auto& [reason, n] : reasons) counts.push_back(fmt::format("{} {}", n, reason));
+    throw NumericalFailure(fmt::format("none of the {} samples gave an outcome that counts ({}), so {} holds no "
+                                       "fragility curve; check the levels (--pga, --scale), the parameter spreads "
+                                       "(--lambda-sd, --lambda-lat-sd, --lambda-lon-sd), --tail and --rate",
+                                       total, fmt::join(counts, ", "), cmd.output));
+  }
   const std::size_t simulated = total - resumed;
   const double rate = wall_s > 0.0 ? static_cast<double>(simulated) / wall_s : 0.0;
   if (cmd.json) {
@@ -383,7 +439,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   app->add_option("-o,--output", cmd->output, "HDF5 file for /fragility (created or extended; other groups are kept)")
       ->required()->group("Output");
   app->add_flag("--json", cmd->json, "Print one JSON object instead of the table")->group("Output");
-  app->footer("Exit codes: 0 done; 1 bad options (or MPI asked of a build without it); 2 unreadable input or a journal of "
+  app->footer(LimitsHelp() + "\nExit codes: 0 done; 1 bad options (or MPI asked of a build without it); 2 unreadable input or a journal of "
               "another study; 3 numerical failure; 4 cannot write.");
   app->callback([cmd] { SetExitCode(RunFragility(*cmd)); });
 });

@@ -8,11 +8,13 @@
 #include "cli_common.hpp"
 #include "command_registry.hpp"
 #include "ground_motion_args.hpp"
+#include "rockfit/core/checks.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/ground_motion.hpp"
 #include "rockfit/io/atomic_file.hpp"
 #include "rockfit/io/peer_at2.hpp"
 #include "rockfit/io/stochastic_ground_motion.hpp"
+#include "run_limits.hpp"
 
 namespace rockfit::tools {
 namespace {
@@ -53,6 +55,7 @@ int RunInspect(const InspectCommand& cmd) {
 }
 
 int RunSynth(SynthCommand& cmd) {
+  RequirePositive(cmd.pga_g, "--pga", "g");
   cmd.options.pga_m_s2 = cmd.pga_g * core::kRecordGravity;
   const std::vector<double> a = io::CloughPenzienRecord(cmd.options);
   io::PeerRecord record;
@@ -80,6 +83,7 @@ int RunSynth(SynthCommand& cmd) {
 const CommandRegistration kRegistration([](CLI::App& root) {
   CLI::App* gm = root.add_subcommand("ground-motion", "Ground-motion records: inspect AT2 files, generate records");
   gm->require_subcommand(1);
+  gm->footer(LimitsHelp());
 
   auto inspect = std::make_shared<InspectCommand>();
   CLI::App* i = gm->add_subcommand("inspect", "NPTS, DT, duration and peak acceleration of PEER AT2 records");
@@ -105,6 +109,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   s->add_option("--decay", o.decay_per_s, "Envelope: exponential decay rate c [1/s]")->capture_default_str();
   s->add_option("-o,--output", synth->output, "Output AT2 file")->required();
   s->add_flag("--json", synth->json, "Print JSON: output, npts, dt_s, pga_g, seed");
+  s->footer(LimitsHelp());
   s->callback([synth] { SetExitCode(RunSynth(*synth)); });
 });
 

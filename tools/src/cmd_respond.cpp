@@ -8,10 +8,12 @@
 
 #include <fmt/format.h>
 
+#include "activity.hpp"
 #include "cli_common.hpp"
 #include "command_registry.hpp"
 #include "fitted_parameters.hpp"
 #include "ground_motion_args.hpp"
+#include "run_limits.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/response.hpp"
 #include "rockfit/io/atomic_file.hpp"
@@ -219,6 +221,9 @@ int RunRespond(RespondCommand& cmd) {
   if (!cmd.output.empty() && cmd.format.empty()) cmd.format = "json";
 
   const LoadedGroundMotion ground = LoadGroundMotion(cmd.ground);
+  CheckResponseLength(ground.assembled.ground, cmd.ground.record, !cmd.ground.synthetic_seed, cmd.options.tail_s,
+                      cmd.options.simulation.rate_hz);
+  const Activity activity("simulating the response and keeping its samples");
   const core::Response response = core::Respond(block, cmd.params, ground.assembled.ground, cmd.options);
   std::optional<core::RoundOffSpread> spread;
   if (cmd.round_off_runs > 0) {
@@ -308,6 +313,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   app->add_flag("--json", cmd->json, "Print the JSON (summary, ground motion, impacts, samples) instead of the table")
       ->group("Output");
   app->add_option("-o,--output", cmd->output, "Output file for the trajectory (json unless --format)")->group("Output");
+  app->footer(LimitsHelp());
   app->callback([cmd] { SetExitCode(RunRespond(*cmd)); });
 });
 

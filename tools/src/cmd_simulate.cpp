@@ -1,6 +1,7 @@
 // `rockfit simulate`: the hybrid simulator of docs/design.md §4 — trajectory, impact log and diagnostics as JSON,
 // CSV or HDF5.
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <sstream>
@@ -8,8 +9,10 @@
 
 #include <fmt/format.h>
 
+#include "activity.hpp"
 #include "cli_common.hpp"
 #include "command_registry.hpp"
+#include "run_limits.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/simulator.hpp"
 #include "rockfit/io/atomic_file.hpp"
@@ -157,6 +160,10 @@ int RunSimulate(SimulateCommand& cmd) {
   if (cmd.format == "hdf5" && cmd.output.empty()) {
     throw InvalidArgument("--format hdf5 writes a file: give it with -o FILE");
   }
+  if (cmd.options.sample_times_s.empty()) {
+    CheckTrajectorySamples(cmd.options.t_max_s, cmd.options.rate_hz, "--t-max and --rate");
+  }
+  const Activity activity("simulating the motion and keeping its samples");
   const core::Trajectory trajectory = core::Simulate(block, cmd.params, cmd.options);
 
   if (cmd.format == "hdf5") {
@@ -232,6 +239,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       ->check(CLI::IsMember({"json", "csv", "hdf5"}))->capture_default_str()->group("Output");
   app->add_flag("--json", cmd->json, "Same as --format json")->group("Output");
   app->add_option("-o,--output", cmd->output, "Output file (default: stdout for json and csv)")->group("Output");
+  app->footer(LimitsHelp());
   app->callback([cmd] { SetExitCode(RunSimulate(*cmd)); });
 });
 

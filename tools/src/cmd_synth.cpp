@@ -1,5 +1,6 @@
 // `rockfit synth`: a synthetic x-IMU recording of one rocking trial from known parameters, with the
 // measurement model of io/README.md ("Synthetic recordings"): noise, bias, quantisation, ringing, drift.
+#include <algorithm>
 #include <cstdint>
 #include <iostream>
 #include <optional>
@@ -7,8 +8,10 @@
 
 #include <fmt/format.h>
 
+#include "activity.hpp"
 #include "cli_common.hpp"
 #include "command_registry.hpp"
+#include "run_limits.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/mounting.hpp"
 #include "rockfit/io/synth_recording.hpp"
@@ -151,6 +154,8 @@ int RunSynth(const SynthCommand& cmd) {
   if (cmd.accel_noise_g) m.accel_noise_g = *cmd.accel_noise_g;
 
   o.command_line = ReproducingCommand(cmd, params, o);
+  CheckTrajectorySamples(o.duration_s, std::max(o.rate_hz, o.files.quaternion_rate_hz), "--duration and --rate");
+  const Activity activity("making the synthetic recording and its files");
   const io::SynthRecording recording = io::Synthesize(block, params, o);
   const std::vector<std::string> files = io::WriteSynthRecording(cmd.output, block, params, o, recording);
 
@@ -244,6 +249,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   app->add_flag("--json", cmd->json,
                 "Print one JSON object: prefix, files, samples, rate_hz, duration_s, t0_s, seed, impacts, first_impact_s, "
                 "phase4_end_s, rest_s (times in recording time [s]; null when the event does not happen)");
+  app->footer(LimitsHelp());
   app->callback([cmd] { SetExitCode(RunSynth(*cmd)); });
 });
 

@@ -52,7 +52,7 @@ FragilityLedger OpenLedger(const std::filesystem::path& path, const fitting::Fra
   const std::size_t n = static_cast<std::size_t>(study.num_samples());
   ledger.by_index.resize(n);
   ledger.done.assign(n, 0);
-  std::optional<io::JournalContents> old = io::ReadJournal(path, kJournalKind, sizeof(fitting::SampleOutcome));
+  std::optional<io::JournalContents> old = io::ReadJournal(path, kJournalKind, sizeof(fitting::SampleOutcome), n);
   if (old && !resume) {
     std::cerr << fmt::format("rockfit: {} holds {} samples of an interrupted study; starting over (--resume would "
                              "continue it)\n", path.string(), old->records.size());

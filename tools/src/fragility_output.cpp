@@ -9,14 +9,15 @@
 #include "rockfit/core/simulator.hpp"
 
 namespace rockfit::tools {
-namespace {
-
-constexpr double kRadToDeg = 180.0 / M_PI;
 
 std::string EndReasonName(std::int32_t code) {
   if (code == fitting::kSampleInvalid) return "invalid";
   return core::ToString(static_cast<core::EndReason>(code));
 }
+
+namespace {
+
+constexpr double kRadToDeg = 180.0 / M_PI;
 
 template <class F>
 std::vector<double> Column(const std::vector<fitting::SampleOutcome>& outcomes, F f) {

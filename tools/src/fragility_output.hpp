@@ -19,6 +19,10 @@ void WriteFragilityHdf5(const io::hdf5::Group& root, const fitting::FragilityStu
                         const std::string& settings_hash, const std::vector<fitting::SampleOutcome>& outcomes,
                         const fitting::FragilitySummary& summary);
 
+// "rest", "t_max", "overturned", "failed", "lift_off", … for an outcome's end_reason, "invalid" for
+// fitting::kSampleInvalid.
+std::string EndReasonName(std::int32_t code);
+
 // The settings hash of the study stored in a file, empty when it holds none.
 std::string StoredFragilityHash(const std::filesystem::path& path);
 

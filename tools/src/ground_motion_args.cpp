@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "activity.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/ground_motion.hpp"
 #include "rockfit/io/ground_motion_csv.hpp"
@@ -72,6 +73,13 @@ void AddGroundMotionOptions(CLI::App& app, GroundMotionArgs& a) {
 }
 
 LoadedGroundMotion LoadGroundMotion(const GroundMotionArgs& a) {
+  if (a.csv_dt_s && !(*a.csv_dt_s > 0.0 && std::isfinite(*a.csv_dt_s))) {
+    throw InvalidArgument(fmt::format("--dt must be a positive number of seconds (the step of a CSV record without a "
+                                      "time column), got {}", *a.csv_dt_s));
+  }
+  const Activity activity(a.synthetic_seed ? fmt::format("generating a Clough–Penzien record of {} s at a step of {} s",
+                                                         a.synthetic_duration_s, a.synthetic_dt_s)
+                                           : "reading the ground motion " + a.record);
   LoadedGroundMotion out;
   io::GroundMotionAssembly assembly;
   if (a.synthetic_seed) {

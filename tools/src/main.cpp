@@ -2,11 +2,15 @@
 #include <csignal>
 #include <exception>
 #include <iostream>
+#include <new>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
+#include "activity.hpp"
 #include "cli_common.hpp"
 #include "command_registry.hpp"
+#include "run_limits.hpp"
 #include "rockfit/core/errors.hpp"
 
 namespace rockfit::tools {
@@ -31,6 +35,7 @@ int main(int argc, char** argv) {
   std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"rockfit — IMU recordings, 3D impact maps, simulation and fitting of rocking blocks\n"
                "(Várkonyi, Kocsis & Ther 2021, Nonlinear Dynamics). Run `rockfit SUBCOMMAND --help` for details."};
+  app.footer(LimitsHelp());
   app.set_version_flag("--version", std::string("rockfit ") + ROCKFIT_VERSION);
   app.require_subcommand(1);
   for (const auto& setup : CommandSetups()) setup(app);
@@ -58,6 +63,14 @@ int main(int argc, char** argv) {
   } catch (const rockfit::OutputError& e) {
     std::cerr << "rockfit: " << e.what() << std::endl;
     return kExitCannotWrite;
+  } catch (const std::bad_alloc&) {
+    const std::string what = Activity::Current();
+    std::cerr << "rockfit: out of memory" << (what.empty() ? std::string() : " while " + what)
+              << ".\nGive the command less to hold (shorter records, fewer levels or samples; the largest inputs and "
+                 "their memory are listed under `rockfit --help` and in docs/file-formats.md, \"Limits\") or run it "
+                 "where more memory is available."
+              << std::endl;
+    return kExitNumerical;
   } catch (const std::exception& e) {
     std::cerr << "rockfit: internal error: " << e.what()
               << "\nPlease report this with the command line that caused it." << std::endl;

@@ -32,6 +32,13 @@ std::string RoleOf(const std::string& bare) {
   return "";
 }
 
+// "h1" → "first horizontal component (x)", for messages.
+std::string RoleName(const std::string& role) {
+  if (role == "h1") return "first horizontal component (x)";
+  if (role == "h2") return "second horizontal component (y)";
+  return "vertical component (z)";
+}
+
 }  // namespace
 
 GroundAccelerationUnit ParseGroundAccelerationUnit(const std::string& text) {
@@ -77,9 +84,13 @@ GroundMotionComponents ReadGroundMotionCsv(const std::filesystem::path& path, co
   static const char* kOrder[] = {"h1", "h2", "v"};
   for (std::size_t k = 0; k < columns.size(); ++k) {
     const std::string role = by_name ? named[k] : kOrder[k];
-    if (std::find(out.roles.begin(), out.roles.end(), role) != out.roles.end()) {
-      ThrowBadInput({table.HeaderPosition(columns[k]), table.DescribeColumn(columns[k]), "a second '" + role + "' column",
-                     "each of x, y, z at most once", "Rename the columns."});
+    const auto first = std::find(out.roles.begin(), out.roles.end(), role);
+    if (first != out.roles.end()) {
+      const std::size_t first_column = columns[static_cast<std::size_t>(first - out.roles.begin())];
+      ThrowBadInput({table.HeaderPosition(columns[k]), table.DescribeColumn(columns[k]),
+                     "a second column for the " + RoleName(role) + ", which " + table.DescribeColumn(first_column) +
+                         " already is",
+                     "each of x, y and z (or h1, h2, v) at most once", "Rename the columns."});
     }
     out.roles.push_back(role);
   }
@@ -104,9 +115,15 @@ GroundMotionComponents ReadGroundMotionCsv(const std::filesystem::path& path, co
       }
     }
   } else {
-    if (!options.dt_s || !(*options.dt_s > 0.0)) {
+    if (!options.dt_s) {
       ThrowBadInput({table.HeaderPosition(0), "header", "no time column", "a column named time (s), or --dt",
                      "Add a time column or give the step with --dt SECONDS."});
+    }
+    if (!(*options.dt_s > 0.0) || !std::isfinite(*options.dt_s)) {
+      ThrowBadInput({table.HeaderPosition(0), "header",
+                     "no time column, and the step given is " + std::to_string(*options.dt_s) + " s",
+                     "a positive step (--dt SECONDS) for a record without a time column",
+                     "Give the record's step with --dt, or add a time column."});
     }
     out.dt_s = *options.dt_s;
   }

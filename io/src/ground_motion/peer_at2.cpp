@@ -4,13 +4,19 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string_view>
 
+#include <fmt/format.h>
+
 #include "rockfit/core/errors.hpp"
+#include "rockfit/core/ground_motion.hpp"
+#include "rockfit/io/input_limits.hpp"
 #include "text/input_problem.hpp"
 #include "text/number_parsing.hpp"
+#include "text/text_file.hpp"
 
 namespace rockfit::io {
 namespace {
@@ -99,6 +105,11 @@ Header ParseHeaderLine(const std::string& name, std::size_t index, std::string_v
     h.dt_s = d.value;
   }
   if (h.npts < 2) FailHeader(name, index + 1, npts_col, "NPTS = " + std::to_string(h.npts), "at least 2 points");
+  if (static_cast<unsigned long long>(h.npts) > kMaxRecordSamples) {
+    FailHeader(name, index + 1, npts_col, "NPTS = " + std::to_string(h.npts),
+               "at most " + std::to_string(kMaxRecordSamples) + " points, the largest record rockfit reads "
+               "(docs/file-formats.md, \"Limits\")");
+  }
   if (!(h.dt_s > 0.0)) FailHeader(name, index + 1, dt_col, "DT = " + std::string(dt_text), "a positive time step");
   return h;
 }
@@ -174,6 +185,11 @@ PeerRecord ParsePeerAt2(const std::string& text, const std::string& display_name
                        QuoteCell(cell), "a number in units of g such as -.6490293E-04 or 0.00630",
                        "Repair or re-download the record; values must be plain numbers separated by spaces."});
       }
+      if (!std::isfinite(value.value * core::kRecordGravity)) {
+        ThrowBadInput({{display_name, i + 1, column + 1}, "acceleration value " + std::to_string(record.accel_g.size() + 1),
+                       QuoteCell(cell), "a ground acceleration in g that is finite in m/s² as well",
+                       "Check the value on this line; the record may be damaged."});
+      }
       if (record.accel_g.size() == record.npts) {
         ThrowBadInput({{display_name, i + 1, column + 1}, "", "more values than NPTS = " + std::to_string(record.npts),
                        "exactly NPTS values",
@@ -211,13 +227,25 @@ std::string PeerNumber(double value) {
   return std::string(text.size() < 15 ? 15 - text.size() : 0, ' ') + text;
 }
 
-// DT as ".00500": at least five decimals, no leading zero.
+// DT as ".00500": at least five decimals, as many more as it takes to read back the step to 1e-9 of it, no
+// leading zero. InvalidArgument for a step that no DT field can hold.
 std::string PeerStep(double dt_s) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.5f", dt_s);
-  std::string text(buffer);
-  if (text.rfind("0.", 0) == 0) text.erase(0, 1);
-  return text;
+  constexpr double kStepRelTol = 1e-9;
+  constexpr int kMaxDecimals = 15;
+  if (!(dt_s > 0.0) || !std::isfinite(dt_s) || dt_s >= 1e9) {
+    throw InvalidArgument("cannot write DT = " + std::to_string(dt_s) + " s in an AT2 file: the step must be positive "
+                          "and below 1e9 s");
+  }
+  for (int decimals = 5; decimals <= kMaxDecimals; ++decimals) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, dt_s);
+    if (std::abs(std::strtod(buffer, nullptr) - dt_s) > kStepRelTol * dt_s) continue;
+    std::string text(buffer);
+    if (text.rfind("0.", 0) == 0) text.erase(0, 1);
+    return text;
+  }
+  throw InvalidArgument(fmt::format("cannot write DT = {} s in an AT2 file with up to {} decimals; use a step of at "
+                                    "least 1e-9 s", dt_s, kMaxDecimals));
 }
 
 }  // namespace
@@ -225,6 +253,16 @@ std::string PeerStep(double dt_s) {
 std::string FormatPeerAt2(const PeerRecord& record) {
   std::string out;
   for (std::size_t i = 0; i < 3; ++i) out += (i < record.header_lines.size() ? record.header_lines[i] : std::string()) + "\n";
+  if (record.accel_g.size() < 2 || record.accel_g.size() > kMaxRecordSamples) {
+    throw InvalidArgument(fmt::format("cannot write an AT2 record of {} values: a record has 2 to {} (the reader's "
+                                      "limits)", record.accel_g.size(), kMaxRecordSamples));
+  }
+  for (std::size_t k = 0; k < record.accel_g.size(); ++k) {
+    if (!std::isfinite(record.accel_g[k] * core::kRecordGravity)) {
+      throw InvalidArgument(fmt::format("cannot write value {} ({} g) of an AT2 record: not a finite acceleration",
+                                        k + 1, record.accel_g[k]));
+    }
+  }
   out += "NPTS=  " + std::to_string(record.accel_g.size()) + ", DT= " + PeerStep(record.dt_s) + " SEC\n";
   for (std::size_t k = 0; k < record.accel_g.size(); ++k) {
     out += PeerNumber(record.accel_g[k]);
@@ -234,14 +272,7 @@ std::string FormatPeerAt2(const PeerRecord& record) {
 }
 
 PeerRecord ReadPeerAt2(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    ThrowBadInput({{path.string()}, "", "a file that cannot be opened", "a readable PEER AT2 file",
-                   "Check the path and the permissions."});
-  }
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return ParsePeerAt2(buffer.str(), path.string());
+  return ParsePeerAt2(ReadRegularFile(path, "a PEER AT2 file", kMaxRecordFileBytes), path.string());
 }
 
 }  // namespace rockfit::io

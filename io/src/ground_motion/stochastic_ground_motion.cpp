@@ -5,15 +5,37 @@
 #include <cmath>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "rockfit/core/checks.hpp"
 #include "rockfit/core/errors.hpp"
+#include "rockfit/io/input_limits.hpp"
 #include "rockfit/io/synth_random.hpp"
 
 namespace rockfit::io {
 namespace {
 
-// More samples than this are refused (a day at 1 kHz is below it).
-constexpr double kMaxSamples = 1e8;
+// Classical RK4 integrates a linear filter stably while every eigenvalue λ of it has |λ|·dt inside its stability
+// region, which holds the half disc of radius 2.78 left of the imaginary axis; 2 keeps a margin (the records are
+// then also smooth: at least π sample steps per period of the fastest mode).
+constexpr double kMaxRk4StepTimesRate = 2.0;
+
+// The largest |λ| [rad/s] of ẍ + 2ζω ẋ + ω² x = f: ω when underdamped, ω(ζ + √(ζ² − 1)) otherwise.
+double FastestRate_rad_s(double omega_rad_s, double zeta) {
+  if (zeta <= 1.0) return omega_rad_s;
+  return omega_rad_s * (zeta + std::sqrt((zeta - 1.0) * (zeta + 1.0)));
+}
+
+void RequireStableStep(double omega_rad_s, double zeta, double dt_s, const char* omega_name, const char* zeta_name) {
+  const double rate_rad_s = FastestRate_rad_s(omega_rad_s, zeta);
+  if (!(rate_rad_s * dt_s <= kMaxRk4StepTimesRate)) {
+    throw InvalidArgument(fmt::format(
+        "{} = {} rad/s with {} = {} and a step dt = {} s: the filter's fastest rate {:.4g} rad/s times dt is {:.4g}, "
+        "above {}, where the record's integration becomes unstable; lower {} or {}, or the step dt", omega_name,
+        omega_rad_s, zeta_name, zeta, dt_s, rate_rad_s, rate_rad_s * dt_s, kMaxRk4StepTimesRate, omega_name,
+        zeta_name));
+  }
+}
 
 // State (x_g, ẋ_g, x_f, ẋ_f) of the two filters.
 using FilterState = std::array<double, 4>;
@@ -52,7 +74,17 @@ void CloughPenzienOptions::Validate() const {
   if (!(t_strong_end_s >= t_rise_s) || !std::isfinite(t_strong_end_s)) {
     throw InvalidArgument("the end of the strong phase t_2 must not come before the rise time t_1");
   }
-  if (duration_s / dt_s > kMaxSamples) throw InvalidArgument("duration/dt asks for more than 1e8 samples");
+  if (!(duration_s / dt_s <= static_cast<double>(kMaxRecordSamples - 1))) {
+    throw InvalidArgument(fmt::format("duration {} s at a step dt = {} s asks for {:.4g} samples, more than the {} of "
+                                      "the largest record (docs/file-formats.md, \"Limits\"); shorten the duration "
+                                      "or raise dt", duration_s, dt_s, duration_s / dt_s + 1.0, kMaxRecordSamples));
+  }
+  if (!(duration_s >= dt_s)) {
+    throw InvalidArgument(fmt::format("duration {} s is shorter than the step dt = {} s: a record needs at least two "
+                                      "samples", duration_s, dt_s));
+  }
+  RequireStableStep(omega_g_rad_s, zeta_g, dt_s, "omega_g", "zeta_g");
+  RequireStableStep(omega_f_rad_s, zeta_f, dt_s, "omega_f", "zeta_f");
 }
 
 std::vector<double> CloughPenzienRecord(const CloughPenzienOptions& o) {
@@ -75,6 +107,10 @@ std::vector<double> CloughPenzienRecord(const CloughPenzienOptions& o) {
   }
   double peak = 0.0;
   for (double v : a) peak = std::max(peak, std::abs(v));
+  if (!std::isfinite(peak)) {
+    throw NumericalFailure("the Clough–Penzien filters overflowed; choose milder parameters (smaller omega_g, "
+                           "omega_f, zeta_g, zeta_f, or a smaller dt)");
+  }
   if (peak > 0.0) {
     for (double& v : a) v *= o.pga_m_s2 / peak;
   }

@@ -1,6 +1,7 @@
 #include "rockfit/io/hdf5_file.hpp"
 
 #include <hdf5.h>
+#include <sys/stat.h>
 
 #include <cstring>
 #include <type_traits>
@@ -8,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "rockfit/core/errors.hpp"
+#include "text/text_file.hpp"
 
 namespace rockfit::io::hdf5 {
 
@@ -123,6 +125,11 @@ File File::Open(const std::filesystem::path& path, bool writable) {
   SilenceHdf5();
   if (!std::filesystem::exists(path)) {
     throw BadInput(fmt::format("{}: no such file; check the path", path.string()));
+  }
+  struct stat info {};
+  if (::stat(path.c_str(), &info) == 0 && !S_ISREG(info.st_mode)) {
+    throw BadInput(fmt::format("{}: found {}, expected an HDF5 file; give the path of a regular file", path.string(),
+                               DescribeFileType(info.st_mode)));
   }
   if (!IsHdf5(path)) {
     throw BadInput(fmt::format("{}: not an HDF5 file (no HDF5 signature); give a file written by rockfit", path.string()));

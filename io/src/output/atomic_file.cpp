@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -16,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "rockfit/core/errors.hpp"
+#include "text/text_file.hpp"
 
 namespace rockfit::io {
 
@@ -47,6 +49,21 @@ void FlushOrThrow(const std::filesystem::path& temporary, const std::filesystem:
   }
 }
 
+// The followed path (target) of a symbolic link or chain of links, else `path` itself. A link to a missing file
+// gives the path it names, where the new file is then written.
+std::filesystem::path FollowSymlinks(std::filesystem::path path) {
+  constexpr int kMaxLinks = 40;  // as the kernel's own limit on a path's symbolic links (ELOOP)
+  for (int links = 0; links < kMaxLinks; ++links) {
+    std::error_code ec;
+    if (!std::filesystem::is_symlink(std::filesystem::symlink_status(path, ec))) return path;
+    const std::filesystem::path next = std::filesystem::read_symlink(path, ec);
+    if (ec) throw OutputError(fmt::format("cannot follow the symbolic link {}: {}", path.string(), ec.message()));
+    path = next.is_absolute() ? next : DirectoryOf(path) / next;
+  }
+  throw OutputError(fmt::format("{}: more than {} symbolic links in a chain (a loop?); give the path of a file",
+                                path.string(), kMaxLinks));
+}
+
 }  // namespace
 
 std::filesystem::path TemporaryPathFor(const std::filesystem::path& target, long pid, unsigned serial) {
@@ -70,11 +87,16 @@ void RemoveStaleTemporaries(const std::filesystem::path& target) {
   }
 }
 
-AtomicReplacement::AtomicReplacement(std::filesystem::path target) : target_(std::move(target)) {
+AtomicReplacement::AtomicReplacement(std::filesystem::path target) : target_(FollowSymlinks(std::move(target))) {
   if (target_.filename().empty()) throw OutputError(fmt::format("'{}' is not a file name", target_.string()));
-  std::error_code ec;
-  if (std::filesystem::is_directory(target_, ec)) {
-    throw OutputError(fmt::format("{} is a directory; give a file name", target_.string()));
+  struct stat info {};
+  if (::lstat(target_.c_str(), &info) == 0) {  // else a new file
+    if (S_ISDIR(info.st_mode)) throw OutputError(fmt::format("{} is a directory; give a file name", target_.string()));
+    if (!S_ISREG(info.st_mode)) {
+      throw OutputError(fmt::format("{} is {}, not a regular file: rockfit writes a file by renaming a new one over "
+                                    "the old, which would replace it; give the path of a regular file or a new one",
+                                    target_.string(), DescribeFileType(info.st_mode)));
+    }
   }
   RemoveStaleTemporaries(target_);
   temporary_ = TemporaryPathFor(target_, static_cast<long>(::getpid()), g_serial++);

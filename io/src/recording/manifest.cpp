@@ -15,6 +15,10 @@
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/load_options.hpp"
 #include "rockfit/io/mounting.hpp"
+#include "rockfit/io/input_limits.hpp"
+#include "recording/toml_key_depth.hpp"
+#include "text/input_problem.hpp"
+#include "text/text_file.hpp"
 
 namespace rockfit::io {
 
@@ -82,6 +86,16 @@ void CheckKeys(const Reporter& report, const toml::table& table, const std::stri
 
 const toml::node* Find(const toml::table& table, const char* key) { return table.get(key); }
 
+// A NUL byte would cut the string short wherever it is used as a C string (a path, a message).
+const std::string& WithoutNul(const Reporter& report, const std::string& value, const char* key,
+                              const std::string& what, SourcePosition where) {
+  if (value.find('\0') != std::string::npos) {
+    report.Fail(where,
+                fmt::format("'{}' in {} holds a NUL byte (\\u0000): {}; remove it", key, what, QuoteCell(value)));
+  }
+  return value;
+}
+
 std::string ReadRequiredString(const Reporter& report, const toml::table& table, const char* key,
                                const std::string& what, SourcePosition table_where) {
   const toml::node* node = Find(table, key);
@@ -90,7 +104,7 @@ std::string ReadRequiredString(const Reporter& report, const toml::table& table,
   if (!value) {
     report.Fail(PositionOf(node->source()), fmt::format("'{}' in {} must be a string in quotes", key, what));
   }
-  return value->get();
+  return WithoutNul(report, value->get(), key, what, PositionOf(node->source()));
 }
 
 std::string ReadOptionalString(const Reporter& report, const toml::table& table, const char* key,
@@ -101,7 +115,7 @@ std::string ReadOptionalString(const Reporter& report, const toml::table& table,
   if (!value) {
     report.Fail(PositionOf(node->source()), fmt::format("'{}' in {} must be a string in quotes", key, what));
   }
-  return value->get();
+  return WithoutNul(report, value->get(), key, what, PositionOf(node->source()));
 }
 
 std::optional<double> ReadOptionalPositive(const Reporter& report, const toml::table& table, const char* key,
@@ -135,12 +149,12 @@ void CheckId(const Reporter& report, const std::string& id, const std::string& w
     return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
   });
   if (!ok) {
-    report.Fail(where, fmt::format("{} id '{}' may only contain letters, digits, '-', '_' and '.' (it names groups "
-                                   "in HDF5 files)", what, id));
+    report.Fail(where, fmt::format("{} id {} may only contain letters, digits, '-', '_' and '.' (it names groups "
+                                   "in HDF5 files)", what, QuoteCell(id)));
   }
 }
 
-// The array of tables `key` (may be absent); anything else there is an error.
+// The array of tables `key` (may be absent); anything else there, or more than kMaxManifestEntries, is an error.
 const toml::array* TableArray(const Reporter& report, const toml::table& root, const char* key) {
   const toml::node* node = root.get(key);
   if (!node) return nullptr;
@@ -148,6 +162,12 @@ const toml::array* TableArray(const Reporter& report, const toml::table& root, c
   if (!array || !array->is_array_of_tables()) {
     report.Fail(PositionOf(node->source()),
                 fmt::format("'{}' must be an array of tables: write each entry as [[{}]]", key, key));
+  }
+  if (array->size() > kMaxManifestEntries) {
+    report.Fail(PositionOf((*array)[kMaxManifestEntries].source()),
+                fmt::format("{} [[{}]] entries, more than the {} a manifest may have (docs/file-formats.md, "
+                            "\"Limits\"); split the campaign into several manifests",
+                            array->size(), key, kMaxManifestEntries));
   }
   return array;
 }
@@ -217,6 +237,13 @@ TrialSpec ParseTrial(const Reporter& report, const toml::table& table, std::size
 
 Manifest ParseManifest(std::string_view text, const std::filesystem::path& path) {
   const Reporter report(path.string());
+  if (const DottedKeyDepth deep = FindDeepDottedKey(text, kMaxManifestKeyParts); deep.line > 0) {
+    report.Fail({deep.line, deep.column},
+                fmt::format("a dotted key or table name of more than {} parts; rockfit reads keys of up to {} parts "
+                            "(a manifest needs at most two, such as [[blocks]] and id): check that this is a "
+                            "manifest, or shorten the key",
+                            kMaxManifestKeyParts, kMaxManifestKeyParts));
+  }
   toml::table root;
   try {
     root = toml::parse(text, path.string());
@@ -276,14 +303,7 @@ Manifest ParseManifest(std::string_view text, const std::filesystem::path& path)
 }
 
 Manifest ReadManifest(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw BadInput(fmt::format("cannot open the manifest '{}': {}; check the path", path.string(),
-                               std::filesystem::exists(path) ? "not readable" : "no such file"));
-  }
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return ParseManifest(buffer.str(), path);
+  return ParseManifest(ReadRegularFile(path, "a manifest (TOML)", kMaxManifestFileBytes), path);
 }
 
 const BlockSpec& Manifest::FindBlock(const std::string& id) const {
@@ -292,7 +312,7 @@ const BlockSpec& Manifest::FindBlock(const std::string& id) const {
   }
   std::vector<std::string> known;
   for (const auto& block : blocks) known.push_back(block.id);
-  throw BadInput(fmt::format("{}: no block '{}'; known blocks: {}", path.string(), id,
+  throw BadInput(fmt::format("{}: no block {}; known blocks: {}", path.string(), QuoteCell(id),
                              known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
 }
 
@@ -302,7 +322,7 @@ const TrialSpec& Manifest::FindTrial(const std::string& id) const {
   }
   std::vector<std::string> known;
   for (const auto& trial : trials) known.push_back(trial.id);
-  throw BadInput(fmt::format("{}: no trial '{}'; known trials: {}", path.string(), id,
+  throw BadInput(fmt::format("{}: no trial {}; known trials: {}", path.string(), QuoteCell(id),
                              known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
 }
 

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "rockfit/core/errors.hpp"
+#include "text/text_file.hpp"
 
 namespace rockfit::io {
 namespace {
@@ -75,24 +76,10 @@ std::optional<std::size_t> FindDecimalComma(std::string_view line) {
 
 }  // namespace
 
-CsvTable CsvTable::ReadFile(const std::filesystem::path& path, std::vector<std::string>& warnings) {
-  const std::string name = path.string();
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    ThrowBadInput({{name}, "", "a directory", "a CSV file", "Give the path of a file."});
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    const std::string reason = std::strerror(errno);
-    ThrowBadInput({{name}, "", "a file that cannot be opened (" + reason + ")", "a readable CSV file",
-                   "Check the path and the file's permissions."});
-  }
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) {
-    ThrowBadInput({{name}, "", "a read error", "a readable CSV file", "Copy the file again and retry."});
-  }
-  return FromText(std::move(buffer).str(), name, warnings);
+CsvTable CsvTable::ReadFile(const std::filesystem::path& path, std::vector<std::string>& warnings,
+                            std::uint64_t max_bytes) {
+  std::string text = ReadRegularFile(path, "a CSV file", max_bytes);
+  return FromText(std::move(text), path.string(), warnings);
 }
 
 namespace {

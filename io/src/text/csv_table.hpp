@@ -23,6 +23,7 @@
 #include <string_view>
 #include <vector>
 
+#include "rockfit/io/input_limits.hpp"
 #include "text/input_problem.hpp"
 #include "text/number_parsing.hpp"
 
@@ -30,9 +31,11 @@ namespace rockfit::io {
 
 class CsvTable {
  public:
-  // Reads the file at `path`; messages name it as `path.string()`. Throws BadInput when the file
-  // cannot be read or used (see above); documented repairs are appended to `warnings`.
-  static CsvTable ReadFile(const std::filesystem::path& path, std::vector<std::string>& warnings);
+  // Reads the regular file at `path` of at most `max_bytes` (text_file.hpp); messages name it as `path.string()`.
+  // Throws BadInput when the file cannot be read or used (see above); documented repairs are appended to
+  // `warnings`.
+  static CsvTable ReadFile(const std::filesystem::path& path, std::vector<std::string>& warnings,
+                           std::uint64_t max_bytes = kMaxRecordingFileBytes);
   // The same for text already in memory; `display_name` stands for the file in messages.
   static CsvTable FromText(std::string text, std::string display_name, std::vector<std::string>& warnings);
 

@@ -1,6 +1,7 @@
 #include "rockfit/io/peer_at2.hpp"
 
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include <gtest/gtest.h>
@@ -70,6 +71,32 @@ TEST(PeerAt2, BadValuesAndHeadersNameFileLineAndColumn) {
   EXPECT_NE(Message("a\nb\nc\nNPTS=  x2, DT= .01 SEC\n  1  0.2\n").find("rec.AT2:4"), std::string::npos);
   EXPECT_NE(Message("a\nb\nc\nNPTS=  2, DT= -.01 SEC\n  1  0.2\n").find("positive time step"), std::string::npos);
   EXPECT_NE(Message("just\nsome\nnumbers\n1 2 3\n").find("NPTS"), std::string::npos);
+}
+
+TEST(PeerAt2, ValueThatOverflowsInSiAndNptsAboveTheLimitNameFileAndLine) {
+  const std::string big = Message("a\nb\nc\nNPTS=  2, DT= .01 SEC\n  0.1  1e308\n");
+  EXPECT_NE(big.find("rec.AT2:5:8: acceleration value 2"), std::string::npos) << big;
+  const std::string npts = Message("a\nb\nc\nNPTS=  10000001, DT= .01 SEC\n  0.1  0.2\n");
+  EXPECT_NE(npts.find("rec.AT2:4"), std::string::npos) << npts;
+  EXPECT_NE(npts.find("at most 10000000 points"), std::string::npos) << npts;
+}
+
+TEST(PeerAt2, WriterRefusesWhatItCannotReadBackAndWritesFineStepsInFull) {
+  PeerRecord r;
+  r.dt_s = 0.005;
+  r.accel_g = {0.0, std::nan("")};
+  EXPECT_THROW(FormatPeerAt2(r), InvalidArgument);
+  r.accel_g = {0.0, 1e308};
+  EXPECT_THROW(FormatPeerAt2(r), InvalidArgument);
+  r.accel_g = {0.0};
+  EXPECT_THROW(FormatPeerAt2(r), InvalidArgument);
+  r.accel_g = {0.0, 0.1};
+  r.dt_s = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(FormatPeerAt2(r), InvalidArgument);
+  r.dt_s = 1.25e-7;
+  EXPECT_DOUBLE_EQ(ParsePeerAt2(FormatPeerAt2(r), "w.AT2").dt_s, 1.25e-7);
+  r.dt_s = 0.005;
+  EXPECT_NE(FormatPeerAt2(r).find("DT= .00500 SEC"), std::string::npos);
 }
 
 TEST(PeerAt2, WrittenRecordsReadBackExactlyToSevenDigits) {

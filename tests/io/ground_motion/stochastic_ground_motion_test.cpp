@@ -75,5 +75,29 @@ TEST(StochasticGroundMotion, RejectsBadOptions) {
   EXPECT_THROW(o.Validate(), InvalidArgument);
 }
 
+TEST(StochasticGroundMotion, ParametersThatWouldGiveAnUnstableOrTooShortRecordAreRefused) {
+  for (auto change : {+[](CloughPenzienOptions& o) { o.omega_f_rad_s = 1000.0; },
+                      +[](CloughPenzienOptions& o) { o.omega_g_rad_s = 1000.0; },
+                      +[](CloughPenzienOptions& o) { o.zeta_g = 1e300; },
+                      +[](CloughPenzienOptions& o) { o.dt_s = 100.0; },
+                      +[](CloughPenzienOptions& o) { o.duration_s = 1e9; }}) {
+    CloughPenzienOptions o;
+    change(o);
+    EXPECT_THROW(o.Validate(), InvalidArgument);
+  }
+  CloughPenzienOptions o;
+  o.omega_g_rad_s = 1000.0;
+  try {
+    o.Validate();
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("omega_g = 1000 rad/s"), std::string::npos) << e.what();
+  }
+  // At the edge of the stable region the record is finite.
+  o = CloughPenzienOptions{};
+  o.omega_g_rad_s = 2.0 / o.dt_s;
+  o.zeta_g = 1.0;
+  for (double v : CloughPenzienRecord(o)) ASSERT_TRUE(std::isfinite(v));
+}
+
 }  // namespace
 }  // namespace rockfit::io

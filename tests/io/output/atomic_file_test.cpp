@@ -8,6 +8,7 @@
 
 #include "rockfit/core/errors.hpp"
 #include "scratch_dir.hpp"
+#include "special_files.hpp"
 
 namespace rockfit::io {
 namespace {
@@ -56,6 +57,50 @@ TEST(AtomicFile, MissingDirectoryOrDirectoryTargetIsAnOutputError) {
     EXPECT_NE(std::string(e.what()).find((dir / "no/such/dir/a.csv").string()), std::string::npos) << e.what();
   }
   EXPECT_THROW(WriteFileAtomically(dir.path(), [](std::ostream&) {}), OutputError);
+}
+
+TEST(AtomicFile, DeviceFifoOrSocketTargetIsRefusedAndLeftInPlace) {
+  const testing::ScratchDir dir("atomic_special");
+  if (!testing::MakeCharacterDevice(dir / "null", testing::kNullDeviceMajor, testing::kNullDeviceMinor) ||
+      !testing::MakeCharacterDevice(dir / "full", testing::kFullDeviceMajor, testing::kFullDeviceMinor)) {
+    GTEST_SKIP() << "mknod needs root";
+  }
+  ASSERT_TRUE(testing::MakeFifo(dir / "fifo"));
+  ASSERT_TRUE(testing::MakeSocketFile(dir / "socket"));
+  for (const char* name : {"null", "full", "fifo", "socket"}) {
+    const mode_t type = testing::FileTypeOf(dir / name);
+    try {
+      WriteFileAtomically(dir / name, [](std::ostream& out) { out << "data\n"; });
+      ADD_FAILURE() << name << " was written";
+    } catch (const OutputError& e) {
+      EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(testing::FileTypeOf(dir / name), type) << name << " was replaced";
+  }
+  EXPECT_EQ(EntriesIn(dir.path()), 4u);  // no temporary left
+}
+
+TEST(AtomicFile, SymlinkIsFollowedTheFileItNamesIsReplacedAndTheLinkStays) {
+  const testing::ScratchDir dir("atomic_link");
+  WriteFileAtomically(dir / "real.csv", [](std::ostream& out) { out << "old\n"; });
+  std::filesystem::create_symlink("real.csv", dir / "link.csv");
+  WriteFileAtomically(dir / "link.csv", [](std::ostream& out) { out << "new\n"; });
+  EXPECT_TRUE(std::filesystem::is_symlink(dir / "link.csv"));
+  EXPECT_EQ(Read(dir / "real.csv"), "new\n");
+  // A link to a missing file: the file is created where the link points.
+  std::filesystem::create_symlink("sub/later.csv", dir / "dangling.csv");
+  std::filesystem::create_directory(dir / "sub");
+  WriteFileAtomically(dir / "dangling.csv", [](std::ostream& out) { out << "later\n"; });
+  EXPECT_TRUE(std::filesystem::is_symlink(dir / "dangling.csv"));
+  EXPECT_EQ(Read(dir / "sub" / "later.csv"), "later\n");
+  // A link to a device is refused like the device.
+  if (testing::MakeCharacterDevice(dir / "null", testing::kNullDeviceMajor, testing::kNullDeviceMinor)) {
+    std::filesystem::create_symlink("null", dir / "to-null");
+    EXPECT_THROW(WriteFileAtomically(dir / "to-null", [](std::ostream& out) { out << "x"; }), OutputError);
+    EXPECT_EQ(testing::FileTypeOf(dir / "null"), static_cast<mode_t>(S_IFCHR));
+  }
+  std::filesystem::create_symlink("loop", dir / "loop");
+  EXPECT_THROW(WriteFileAtomically(dir / "loop", [](std::ostream& out) { out << "x"; }), OutputError);
 }
 
 TEST(AtomicReplacement, TargetIsUntouchedUntilCommitAndTheTemporaryLivesBesideIt) {

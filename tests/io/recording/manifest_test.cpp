@@ -7,7 +7,9 @@
 #include <gtest/gtest.h>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/io/input_limits.hpp"
 #include "scratch_dir.hpp"
+#include "special_files.hpp"
 
 namespace rockfit::io {
 namespace {
@@ -180,6 +182,59 @@ TEST(Manifest, CsvIsAcceptedAsTheGenericCsvFormat) {
 TEST(Manifest, EmptyManifestAndMissingFileAreBadInput) {
   EXPECT_NE(ErrorOf("# nothing\n").find("defines no [[blocks]] and no [[trials]]"), std::string::npos);
   EXPECT_THROW(ReadManifest("/nonexistent/campaign.toml"), BadInput);
+}
+
+TEST(Manifest, DottedKeyOfFortyThousandPartsIsRefusedWithoutParsing) {
+  std::string key = "a";
+  for (int k = 1; k < 40000; ++k) key += ".a";
+  const std::string message = ErrorOf(key + " = 1\n");
+  EXPECT_NE(message.find("/campaign/m.toml:1:128: a dotted key or table name of more than 64 parts"),
+            std::string::npos) << message;
+  // Dots inside strings, comments and numbers are no key parts.
+  std::string text = kGood;
+  text += "# " + key + "\n";
+  text.replace(text.find("files = \"raw/B3-B-1\""), 20, "files = \"" + key + "\"");
+  EXPECT_EQ(ParseManifest(text, "/campaign/m.toml").trials.size(), 3u);
+  EXPECT_NE(ErrorOf("[" + key + "]\n").find("more than 64 parts"), std::string::npos);
+}
+
+TEST(Manifest, MoreTrialsThanTheLimitAreRefusedAtTheFirstOneTooMany) {
+  std::string text = "[[blocks]]\nid = \"b\"\nb1 = 0.05\nb2 = 0.03\nh = 0.2\ndensity = 2692\n";
+  for (std::size_t k = 0; k <= kMaxManifestEntries; ++k) text += "[[trials]]\n";
+  const std::string message = ErrorOf(text);
+  EXPECT_NE(message.find(":100007:1: 100001 [[trials]] entries, more than the 100000"), std::string::npos) << message;
+}
+
+TEST(Manifest, NulInAStringIsRefusedAtItsPositionAndQuotedEscaped) {
+  std::string text = kGood;
+  text.replace(text.find("id = \"B3-B-1\""), 13, "id = \"B3\\u0000x\"");
+  const std::string message = ErrorOf(text);
+  EXPECT_NE(message.find("'id' in [[trials]] number 2 holds a NUL byte"), std::string::npos) << message;
+  EXPECT_NE(message.find("'B3\\x00x'"), std::string::npos) << message;
+}
+
+TEST(Manifest, UnknownIdWithANulByteIsQuotedWhole) {
+  const Manifest m = ParseManifest(kGood, "/campaign/m.toml");
+  try {
+    m.FindTrial(std::string("B3-A-1\0x", 8));
+    FAIL();
+  } catch (const BadInput& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("no trial 'B3-A-1\\x00x'; known trials: B3-A-1"), std::string::npos) << what;
+  }
+}
+
+TEST(Manifest, DirectoryOrFifoIsBadInputNamingWhatItIs) {
+  const testing::ScratchDir dir("manifest_special");
+  try {
+    ReadManifest(dir.path());
+    FAIL();
+  } catch (const BadInput& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("found a directory, expected a manifest (TOML)"), std::string::npos) << what;
+  }
+  ASSERT_TRUE(testing::MakeFifo(dir / "m.toml"));
+  EXPECT_THROW(ReadManifest(dir / "m.toml"), BadInput);
 }
 
 TEST(Manifest, FindReportsKnownIds) {

@@ -88,7 +88,8 @@ struct SampleInputs {
 };
 SampleInputs DrawSample(const FragilityStudyOptions& study, std::int64_t index);
 // The ground motion of a sample: the record rotated by the angle, then scaled to the level (for kPga: by
-// level·9.80665 / its peak horizontal resultant, exactly as `rockfit respond --pga --angle` assembles it).
+// level·9.80665 / its peak horizontal resultant, exactly as `rockfit respond --pga --angle` assembles it); a view
+// that shares the record's samples (core::GroundMotion::RotatedAndScaled), so threads hold no copies of it.
 core::GroundMotion SampleGroundMotion(const FragilityStudyOptions& study, const SampleInputs& inputs, double* scale);
 
 // End reason code of a sample whose parameters Respond() refused (it is not simulated).

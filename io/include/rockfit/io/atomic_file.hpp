@@ -24,7 +24,9 @@ std::filesystem::path TemporaryPathFor(const std::filesystem::path& target, long
 // every writer before it starts, so a kill -9 leaves at most one stale file until the next write.
 void RemoveStaleTemporaries(const std::filesystem::path& target);
 
-// One file being replaced. The constructor refuses a target that is a directory or has no file name, removes
+// One file being replaced. A target that is a symbolic link is followed: the file it points to is replaced (or
+// created) and the link stays. The constructor refuses a target that is a directory, a device, a FIFO or a
+// socket (the rename would put a regular file in its place) or has no file name, removes
 // the stale temporaries of the target and picks a fresh temporary name beside it; the caller (or a program it
 // runs) writes the temporary; Commit() flushes it to disk, renames it over the target and flushes the
 // directory. Until Commit() the target is untouched, and a replacement that is never committed removes its

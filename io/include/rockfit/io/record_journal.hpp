@@ -10,7 +10,7 @@
 //   journal.Append({bytes_of_record_1, bytes_of_record_2});
 //   journal.Sync();  // now and then
 //   ...
-//   if (auto old = ReadJournal(path, "fragility", sizeof(Record))) { /* old->key, old->records */ }
+//   if (auto old = ReadJournal(path, "fragility", sizeof(Record), max_records)) { /* old->key, old->records */ }
 #pragma once
 
 #include <cstdint>
@@ -29,10 +29,10 @@ struct JournalContents {
 };
 
 // None when `path` does not exist or holds no complete header line (a kill while the journal was created).
-// BadInput (naming the file, what was found and what to do) when it is not a journal of this kind and record
-// size.
+// BadInput (naming the file, what was found and what to do) when it is not a regular file, is longer than a
+// journal of `max_records` records, or is not a journal of this kind and record size.
 std::optional<JournalContents> ReadJournal(const std::filesystem::path& path, const std::string& kind,
-                                           std::size_t record_bytes);
+                                           std::size_t record_bytes, std::uint64_t max_records);
 
 class JournalWriter {
  public:
