@@ -65,6 +65,18 @@ const char* ToString(FacetTauRule rule) {
   return "unknown";
 }
 
+bool FromString(const std::string& text, FacetTauRule* rule) {
+  for (const FacetTauRule r : {FacetTauRule::kNoSpin, FacetTauRule::kFixed}) {
+    if (text == ToString(r)) {
+      *rule = r;
+      return true;
+    }
+  }
+  if (text != "zero") return false;
+  *rule = FacetTauRule::kFixed;
+  return true;
+}
+
 void FacetImpactParameters::Validate() const {
   if (!std::isfinite(lambda_lat)) throw InvalidArgument("facet impact: λ_lat must be finite, got " + std::to_string(lambda_lat));
   if (!std::isfinite(lambda_lon)) throw InvalidArgument("facet impact: λ_lon must be finite, got " + std::to_string(lambda_lon));

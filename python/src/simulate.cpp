@@ -19,10 +19,10 @@ core::StopCondition ParseStop(const std::string& text) {
 }
 
 core::FacetTauRule ParseFacetTau(const std::string& text) {
-  if (text == "no-spin") return core::FacetTauRule::kNoSpin;
-  if (text == "zero") return core::FacetTauRule::kFixed;
-  throw InvalidArgument("facet_tau must be 'no-spin' (τ from (24)) or 'zero' (τ = 0, the paper's Sect. 5), got '" +
-                        text + "'");
+  core::FacetTauRule rule = core::FacetTauRule::kNoSpin;
+  if (core::FromString(text, &rule)) return rule;
+  throw InvalidArgument("facet_tau must be 'no-spin' (τ from (24)) or 'fixed' (τ = 0, the paper's Sect. 5; also "
+                        "written 'zero'), got '" + text + "'");
 }
 
 py::list ImpactRecords(const std::vector<core::ImpactRecord>& impacts) {

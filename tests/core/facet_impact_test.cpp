@@ -44,6 +44,19 @@ ImpactGeometry GeometryOf(const Block& block, int b, int a, double lambda_lat, d
 // Grid values k·step for k = −n..n (exact zero in the middle).
 double GridValue(int k, int n, double half_width) { return half_width * k / n; }
 
+TEST(FacetTauRule, EveryNameThatToStringWritesReadsBackAndZeroMeansFixed) {
+  for (const FacetTauRule rule : {FacetTauRule::kNoSpin, FacetTauRule::kFixed}) {
+    FacetTauRule read = rule == FacetTauRule::kNoSpin ? FacetTauRule::kFixed : FacetTauRule::kNoSpin;
+    ASSERT_TRUE(FromString(ToString(rule), &read)) << ToString(rule);
+    EXPECT_EQ(read, rule);
+  }
+  FacetTauRule zero = FacetTauRule::kNoSpin;
+  EXPECT_TRUE(FromString("zero", &zero));
+  EXPECT_EQ(zero, FacetTauRule::kFixed);
+  EXPECT_FALSE(FromString("Fixed", &zero));
+  EXPECT_FALSE(FromString("", &zero));
+}
+
 TEST(FacetImpact, ResultantPointForPivotTwoIsLambdaLonB1LambdaLatB2) {
   const Block block = Fig11Block();
   EXPECT_LE((FacetResultantPoint(block, 2, 0.3, -0.7) - Eigen::Vector3d(-0.7 * 0.05, 0.3 * 0.03, 0.0)).norm(), 1e-17);

@@ -98,6 +98,24 @@ TEST(CliRespond, RunsThatOnceFailedInAFragilityCensusEndWithAStatus) {
                 "a 3D micro-chatter");
 }
 
+TEST(CliRespond, FacetTauWrittenToJsonIsAcceptedBackByRespondSimulateAndFragility) {
+  const CommandResult written = RunRockfit(Respond({"--synthetic", "4", "--pga", "0.3", "--facet-tau", "zero", "--json"}));
+  ASSERT_EQ(written.exit_code, 0) << written.err;
+  const std::string name = nlohmann::json::parse(written.out)["parameters"]["facet_tau"].get<std::string>();
+  EXPECT_EQ(name, "fixed");
+  const CommandResult again = RunRockfit(Respond({"--synthetic", "4", "--pga", "0.3", "--facet-tau", name, "--json"}));
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(nlohmann::json::parse(again.out)["summary"]["num_impacts"], nlohmann::json::parse(written.out)["summary"]["num_impacts"]);
+  std::vector<std::string> simulate{"simulate", "--alpha", "0.1", "--lambda-lat", "0.3", "--facet-tau", name, "--json"};
+  for (const auto& a : Block()) simulate.push_back(a);
+  EXPECT_EQ(RunRockfit(simulate).exit_code, 0);
+  const ScratchDir dir("cli_respond_facet_tau");
+  std::vector<std::string> fragility{"fragility", "--synthetic-records", "1", "--synthetic-duration", "2", "--pga", "0.2",
+                                     "--samples", "1", "--facet-tau", name, "-o", (dir / "f.h5").string()};
+  for (const auto& a : Block()) fragility.push_back(a);
+  EXPECT_EQ(RunRockfit(fragility).exit_code, 0);
+}
+
 TEST(CliRespond, OverturnSideCarriesTheMotionPastTheSupportUntilTheBlockLiesOnASide) {
   // A strong record overturns the block under both rules; under `side` later, with the block's z axis horizontal.
   const auto run = [](const char* rule) {

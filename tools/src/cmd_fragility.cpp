@@ -127,7 +127,7 @@ std::vector<fitting::FragilityBlock> MakeBlocks(const FragilityCommand& cmd) {
     fitting::FragilityBlock b;
     b.id = id.empty() ? "block" : id;
     b.block = MakeBlock(args);
-    b.facet_tau_rule = cmd.facet_tau == "zero" ? core::FacetTauRule::kFixed : core::FacetTauRule::kNoSpin;
+    core::FromString(cmd.facet_tau, &b.facet_tau_rule);  // one of the names the option accepts
     if (!cmd.fits.empty()) {
       const std::string fit_block = group_block.empty() ? b.id : group_block;
       const FittedGroupRanges r = ReadFittedGroupRanges(cmd.fits, fit_block, group_position);
@@ -385,8 +385,8 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   app->add_option("--lambda-lat-sd", cmd->lambda_lat_sd, "Standard deviation of λ_lat")->capture_default_str()->group(model);
   app->add_option("--lambda-lon-sd", cmd->lambda_lon_sd, "Standard deviation of λ_lon")->capture_default_str()->group(model);
   app->add_option("--tau-edge", cmd->tau_edge, "τ of edge impacts [N·m·s]")->capture_default_str()->group(model);
-  app->add_option("--facet-tau", cmd->facet_tau, "τ of facet impacts: no-spin (24) or zero")
-      ->check(CLI::IsMember({"no-spin", "zero"}))->capture_default_str()->group(model);
+  app->add_option("--facet-tau", cmd->facet_tau, "τ of facet impacts: no-spin (24) or fixed (τ = 0, Sect. 5; also zero)")
+      ->check(CLI::IsMember({"no-spin", "fixed", "zero"}))->capture_default_str()->group(model);
   auto* fits = app->add_option("--fits", cmd->fits,
                   "Take the distribution from the HDF5 file of rockfit batch: per parameter the pooled estimate (else the "
                   "mean) with sd = √(its standard error² + between-trial spread²)")

@@ -212,7 +212,7 @@ int RunRespond(RespondCommand& cmd) {
   } else if (!cmd.trial.empty() || !cmd.group.empty()) {
     throw InvalidArgument("--trial and --group need --fits FILE");
   }
-  cmd.params.facet_tau_rule = cmd.facet_tau == "zero" ? core::FacetTauRule::kFixed : core::FacetTauRule::kNoSpin;
+  core::FromString(cmd.facet_tau, &cmd.params.facet_tau_rule);  // one of the names the option accepts
   cmd.options.start = cmd.start == "flat" ? core::GroundStart::kFlatAtRest : core::GroundStart::kAsOptions;
   cmd.options.end_at_rest = cmd.until == "rest";
   core::FromString(cmd.overturn, &cmd.options.simulation.overturn);  // (checked by the option)
@@ -272,8 +272,8 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   app->add_option("--lambda-lat", p.lambda_lat, "λ_lat of facet impacts (21)")->capture_default_str()->group("Model");
   app->add_option("--lambda-lon", p.lambda_lon, "λ_lon of facet impacts (21)")->capture_default_str()->group("Model");
   app->add_option("--tau-edge", p.tau_edge, "τ of edge impacts [N·m·s]")->capture_default_str()->group("Model");
-  app->add_option("--facet-tau", cmd->facet_tau, "τ of facet impacts: no-spin (24) or zero")
-      ->check(CLI::IsMember({"no-spin", "zero"}))->capture_default_str()->group("Model");
+  app->add_option("--facet-tau", cmd->facet_tau, "τ of facet impacts: no-spin (24) or fixed (τ = 0, Sect. 5; also zero)")
+      ->check(CLI::IsMember({"no-spin", "fixed", "zero"}))->capture_default_str()->group("Model");
   app->add_option("--fits", cmd->fits, "Take λ, λ_lat, λ_lon, τ_edge from this fit file (rockfit fit -o / batch)")
       ->group("Model");
   app->add_option("--trial", cmd->trial, "With --fits: the fitted values of this trial")->group("Model");

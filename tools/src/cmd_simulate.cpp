@@ -152,7 +152,7 @@ std::string TrajectoryCsv(const core::Trajectory& trajectory) {
 int RunSimulate(SimulateCommand& cmd) {
   const core::Block block = MakeBlock(cmd.block);
   if (cmd.json) cmd.format = "json";
-  cmd.params.facet_tau_rule = cmd.facet_tau == "zero" ? core::FacetTauRule::kFixed : core::FacetTauRule::kNoSpin;
+  core::FromString(cmd.facet_tau, &cmd.params.facet_tau_rule);  // one of the names the option accepts
   const auto [first, second] = ParseEdge(cmd.release_edge);
   cmd.options.release_edge_first = first;
   cmd.options.release_edge_second = second;
@@ -208,8 +208,8 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       ->capture_default_str()->group("Model");
   app->add_option("--lambda-lon", p.lambda_lon, "λ_lon of facet impacts (21); (27) is −1 ≤ λ_lon ≤ 1")
       ->capture_default_str()->group("Model");
-  app->add_option("--facet-tau", cmd->facet_tau, "τ of facet impacts: no-spin (postulate (24)) or zero (τ = 0, Sect. 5)")
-      ->check(CLI::IsMember({"no-spin", "zero"}))->capture_default_str()->group("Model");
+  app->add_option("--facet-tau", cmd->facet_tau, "τ of facet impacts: no-spin (postulate (24)) or fixed (τ = 0, Sect. 5; also zero)")
+      ->check(CLI::IsMember({"no-spin", "fixed", "zero"}))->capture_default_str()->group("Model");
   app->add_option("--release-edge", cmd->release_edge, "Release edge I,J (neighbouring base vertices)")
       ->capture_default_str()->group("Model");
   app->add_option("--rate", o.rate_hz, "Output sample rate [Hz]; samples at t_k = k/rate")

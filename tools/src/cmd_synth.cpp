@@ -58,10 +58,10 @@ struct SynthCommand {
 };
 
 core::FacetTauRule ParseFacetTau(const std::string& text) {
-  if (text == "no-spin") return core::FacetTauRule::kNoSpin;
-  if (text == "fixed" || text == "zero") return core::FacetTauRule::kFixed;
-  throw InvalidArgument("--facet-tau expects no-spin (τ from (24), the default) or zero (τ = 0, the paper's Sect. 5), got '" +
-                        text + "'");
+  core::FacetTauRule rule = core::FacetTauRule::kNoSpin;
+  if (core::FromString(text, &rule)) return rule;
+  throw InvalidArgument("--facet-tau expects no-spin (τ from (24), the default) or fixed (τ = 0, the paper's Sect. 5; "
+                        "also written zero), got '" + text + "'");
 }
 
 std::string Vector3Text(const Eigen::Vector3d& v) { return fmt::format("{},{},{}", v.x(), v.y(), v.z()); }

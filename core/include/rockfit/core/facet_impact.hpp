@@ -3,6 +3,8 @@
 // takes τ from the no-spin postulate (24). The errata of docs/design.md §3 apply.
 #pragma once
 
+#include <string>
+
 #include <Eigen/Core>
 
 #include "rockfit/core/block.hpp"
@@ -13,6 +15,8 @@ namespace rockfit::core {
 enum class FacetTauRule { kNoSpin, kFixed };
 // "no-spin" or "fixed".
 const char* ToString(FacetTauRule rule);
+// The names of ToString, and "zero" for kFixed (τ = 0, the spelling of earlier command lines); false for any other.
+bool FromString(const std::string& text, FacetTauRule* rule);
 
 struct FacetImpactParameters {
   double lambda_lat = 0.0;  // (21)
