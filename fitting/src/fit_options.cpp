@@ -138,6 +138,7 @@ void FitOptions::Validate() const {
   identifiability.Validate();
   intervals.Validate();
   lateral_motion.Validate();
+  model_error.Validate();
   lateral_rescan.Validate();
   RequireAtLeast(num_threads, 0, "num_threads");
   if (!(at_bound_fraction >= 0.0 && at_bound_fraction < 0.5)) {

@@ -15,6 +15,7 @@
 #include "rockfit/fitting/local_optimizer.hpp"
 #include "rockfit/fitting/lateral_motion_check.hpp"
 #include "rockfit/fitting/lateral_rescan.hpp"
+#include "rockfit/fitting/model_error.hpp"
 #include "rockfit/fitting/uncertainty.hpp"
 
 namespace rockfit::fitting {
@@ -292,6 +293,21 @@ void ApplyLateralMotionCheck(const Objective& objective, const FitOptions& optio
   }
 }
 
+void AddModelErrorStatement(const Objective& objective, const FitOptions& options, FitSummary* summary) {
+  // How much of ε the noise at rest explains; a warning when the rest is model error and dominates.
+  if (!summary->feasible) return;
+  summary->model_error = AssessModelError(objective, summary->parameters, summary->epsilon_rad_s, options.model_error);
+  const ModelErrorStatement& m = summary->model_error;
+  if (!m.dominates) return;
+  summary->warnings.push_back(
+      {WarningKind::kModelErrorDominates, "",
+       fmt::format("model error dominates the fit: ε = {:.4g} rad/s is {:.2f} × the noise floor at rest ({:.4g} rad/s), "
+                   "so the noise explains {:.0f} % of ε² and {:.4g} rad/s is structure the model does not reproduce "
+                   "(a body, base or contact other than the rigid cuboid, sensor scale, axes, clock or ringing, or a "
+                   "missed minimum)",
+                   m.epsilon_rad_s, m.ratio, m.noise_floor_rad_s, 100.0 * m.noise_share, m.model_error_rad_s)});
+}
+
 void AddNotDeterminedWarnings(const Objective& objective, FitSummary* summary) {
   for (ParameterId id : objective.free_ids()) {
     const auto& d = summary->uncertainty.determined[static_cast<std::size_t>(id)];
@@ -366,6 +382,7 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
   AssessKeptPoint(objective, options, global_candidates, &summary);
   AddSecondSolutionWarning(objective, &summary);
   ApplyLateralMotionCheck(objective, options, &summary);
+  AddModelErrorStatement(objective, options, &summary);
   AddNotDeterminedWarnings(objective, &summary);
   AddFailureWarning(objective, failures_before, &summary);
   AddPoorFitAndConvergenceWarnings(objective, &summary);

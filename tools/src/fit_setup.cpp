@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
+#include "recording_input.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/fitting/simulator_model.hpp"
 
@@ -154,7 +155,9 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   // values of fixed parameters are part of the settings.
   // v4: 68 % / 95 % intervals (--intervals); their profiles can move the fit to a lower (28).
   // v5: the 68 % intervals at the bulk noise level of the standard errors.
-  std::string settings = fmt::format("rockfit-fit v6; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
+  // v6: the lateral rescan.
+  // v7: the model-error statement is stored with each fit (the fitted values are those of v6).
+  std::string settings = fmt::format("rockfit-fit v7; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
                                      "global={}; keep_bias={}; block=({:.17g},{:.17g},{:.17g},{:.17g})",
                                      fitting::ToString(fitting::ParseFitMethod(args.method)),
                                      fitting::ToString(fitting::ParseIntervalMethod(args.intervals)), args.bounds,
@@ -172,11 +175,31 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   return settings;
 }
 
+fitting::CampaignTrial MakeCampaignTrial(const io::Manifest& manifest, const io::TrialSpec& spec, const FitArgs& fit_args,
+                                         std::function<void(const io::Recording&)> on_loaded) {
+  fitting::CampaignTrial trial;
+  trial.id = TrialNameFrom(spec.id);
+  trial.labels = {spec.block_id, spec.position, spec.notes};
+  trial.settings = [&manifest, &spec, fit_args] {
+    const core::Block block = manifest.FindBlock(spec.block_id).ToBlock();
+    return FitSettingsText(block, fit_args) + "; mounting=" + (spec.mounting.empty() ? "identity" : spec.mounting);
+  };
+  trial.prepare = [&manifest, &spec, fit_args, on_loaded] {
+    const core::Block block = manifest.FindBlock(spec.block_id).ToBlock();
+    auto recording = std::make_shared<const io::Recording>(LoadManifestTrial(spec));
+    if (on_loaded) on_loaded(*recording);
+    PreparedFit prepared = PrepareFit(*recording, block, fit_args);
+    return fitting::PreparedTrial{std::move(prepared.objective), std::move(prepared.start), prepared.options,
+                                  std::move(recording)};
+  };
+  return trial;
+}
+
 nlohmann::json FitResultJson(const std::string& trial, const fitting::FitSummary& s) {
   // The fit's own JSON (FitSummary::ToJson), narrowed to the keys `fit --json` documents (fitting/README.md,
   // "rockfit fit"): one JSON writer for the library, the command line and Python.
   static const char* const kKeys[] = {"trial", "parameters", "correlation", "uncertainty_method", "uncertainty",
-                                      "lateral_motion", "epsilon", "epsilon_initial", "t_end", "simulations",
+                                      "lateral_motion", "model_error", "epsilon", "epsilon_initial", "t_end", "simulations",
                                       "wall_s", "termination", "warnings"};
   static const char* const kParameterKeys[] = {"value",       "lower",       "upper",      "fixed",
                                                "std_error",   "interval_68", "interval_95", "determined"};
@@ -213,6 +236,7 @@ std::string FitResultTable(const std::string& trial, const fitting::FitSummary& 
   }
   out += fmt::format("ε (28)       {:.6g} rad/s (start {:.6g} rad/s), window ends at {:.4f} s\n", s.epsilon_rad_s,
                      s.epsilon_initial_rad_s, s.t_end_s);
+  out += "model error  " + fitting::ModelErrorText(s.model_error) + "\n";
   out += fmt::format("effort       {} simulations in {:.2f} s; {}\n", s.simulations, s.wall_time_s, s.termination);
   out += fmt::format("intervals    {} ({} of the simulations, {:.2f} s)\n", s.uncertainty.description,
                      s.uncertainty.evaluations, s.uncertainty.wall_time_s);

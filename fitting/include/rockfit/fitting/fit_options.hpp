@@ -8,6 +8,7 @@
 
 #include "rockfit/fitting/lateral_motion_check.hpp"
 #include "rockfit/fitting/lateral_rescan.hpp"
+#include "rockfit/fitting/model_error.hpp"
 #include "rockfit/fitting/parameters.hpp"
 
 namespace rockfit::fitting {
@@ -171,6 +172,8 @@ struct FitOptions {
   // When that check flags the kept point: a rescan of λ_lat over growing windows (lateral_rescan.hpp); the fit
   // moves to its result when (28) is lower there.
   LateralRescanOptions lateral_rescan;
+  // How much of ε the noise at rest explains, and a warning when model error dominates (model_error.hpp).
+  ModelErrorOptions model_error;
   // Worker threads for the global stage; 0 = all cores (TBB default). Batches set 1 per trial.
   int num_threads = 0;
   // A value closer than this fraction of its range to a bound is reported "at bound".
