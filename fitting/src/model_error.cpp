@@ -17,12 +17,14 @@ void ModelErrorOptions::Validate() const {
   }
 }
 
-ModelErrorStatement AssessModelError(const Objective& objective, const ParameterSet& fitted, double epsilon_rad_s,
-                                     const ModelErrorOptions& options) {
+ModelErrorStatement AssessModelError(const Objective& objective, double epsilon_rad_s, const ModelErrorOptions& options) {
   options.Validate();
   ModelErrorStatement s;
   if (!options.enabled || !std::isfinite(epsilon_rad_s) || !(epsilon_rad_s > 0.0)) return s;
-  const RestNoise rest = MeasureRestNoise(objective.signal(), fitted.value(ParameterId::kT0), options.rest);
+  // The rest ends before the data estimate of the release (the objective's start value of t0, as for the gyro
+  // bias), not before the fitted t0: a fit that model error drove far from the release would otherwise leave no rest.
+  const RestNoise rest =
+      MeasureRestNoise(objective.signal(), objective.parameters().value(ParameterId::kT0), options.rest);
   s.rest_duration_s = std::max(0.0, rest.duration_s);
   s.rest_samples = rest.samples;
   if (!rest.available || !std::isfinite(rest.epsilon_floor_rad_s)) return s;

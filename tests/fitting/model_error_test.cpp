@@ -31,7 +31,7 @@ ModelErrorStatement AtTruth(const testing::AnalyticTrial& trial) {
   const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
   const Evaluation e = objective.Evaluate(trial.truth);
   EXPECT_TRUE(e.feasible);
-  return AssessModelError(objective, trial.truth, e.epsilon_rad_s);
+  return AssessModelError(objective, e.epsilon_rad_s);
 }
 
 TEST(ModelError, NoiseAloneAtTheTruthIsExplainedByTheFloorMeasuredAtRest) {

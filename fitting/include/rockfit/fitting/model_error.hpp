@@ -2,7 +2,7 @@
 // (fitting/README.md, "Model error").
 //
 // The noise floor ε_noise is the error (28) that the gyro noise alone makes: the mean of ‖ω_k − bias‖ over the
-// samples at rest before the release (rest_noise.hpp). A model that reproduced the motion exactly would reach
+// samples at rest before the estimated release (rest_noise.hpp). A model that reproduced the motion exactly would reach
 // about this ε. Noise and model error are independent and add in quadrature, ε² ≈ ε_noise² + ε_model² (exact
 // for isotropic Gaussian errors, whose mean norm is proportional to their RMS), so
 //
@@ -26,8 +26,8 @@ namespace rockfit::fitting {
 
 struct ModelErrorOptions {
   bool enabled = true;
-  // The rest before the release (as the gyro bias is measured): from the start of the recording to the fitted
-  // t0 − margin, at least min_duration long.
+  // The rest before the release (as the gyro bias is measured): from the start of the recording to the data
+  // estimate of t0 − margin, at least min_duration long.
   RestSegmentOptions rest;
   // Model error dominates when it explains more than this share of ε² (0.5: ε_model > ε_noise).
   double dominance_share = 0.5;
@@ -46,9 +46,11 @@ struct ModelErrorStatement {
   std::size_t rest_samples = 0;
 };
 
-// The statement for a fit at `fitted` with error `epsilon_rad_s` on the objective's signal. Never throws for
-// numerical trouble (available = false instead).
-ModelErrorStatement AssessModelError(const Objective& objective, const ParameterSet& fitted, double epsilon_rad_s,
+// The statement for a fit with error `epsilon_rad_s` on the objective's signal. The rest ends before the
+// objective's start value of t0 — the data estimate of the release, as for the gyro bias (trial_problem.hpp) —,
+// not before the fitted t0: a fit that model error drove far from the release would otherwise leave no rest.
+// Never throws for numerical trouble (available = false instead).
+ModelErrorStatement AssessModelError(const Objective& objective, double epsilon_rad_s,
                                      const ModelErrorOptions& options = {});
 
 // {"available", "epsilon_rad_s", "noise_floor_rad_s", "ratio", "noise_share", "model_error_rad_s",
