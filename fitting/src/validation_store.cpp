@@ -13,81 +13,73 @@ namespace {
 
 constexpr const char* kValidation = "validation";
 
+// One column of a table from a value of each row.
+template <class Row, class Get>
+void DoubleColumn(const io::hdf5::Group& g, const std::string& name, const std::vector<Row>& rows, Get get,
+                  const std::string& units) {
+  std::vector<double> column;
+  for (const Row& r : rows) column.push_back(get(r));
+  g.WriteDoubles(name, column, units);
+}
+template <class Row, class Get>
+void IntColumn(const io::hdf5::Group& g, const std::string& name, const std::vector<Row>& rows, Get get,
+               const std::string& units) {
+  std::vector<std::int64_t> column;
+  for (const Row& r : rows) column.push_back(get(r));
+  g.WriteInts(name, column, units);
+}
+template <class Row, class Get>
+void StringColumn(const io::hdf5::Group& g, const std::string& name, const std::vector<Row>& rows, Get get) {
+  std::vector<std::string> column;
+  for (const Row& r : rows) column.push_back(get(r));
+  g.WriteStrings(name, column);
+}
+
 void WritePerTrial(const io::hdf5::Group& v, const ValidationSummary& s) {
   const io::hdf5::Group t = v.CreateGroup("per_trial");
-  std::vector<std::string> trial, block, position, message;
-  std::vector<double> eps_own, eps_pred, ratio, t0, alpha;
-  std::vector<std::int64_t> predicted, n_others, transfers, overlaps_all;
-  for (const TrialPrediction& p : s.trials) {
-    trial.push_back(p.trial);
-    block.push_back(p.block);
-    position.push_back(p.position);
-    message.push_back(p.message);
-    eps_own.push_back(p.epsilon_own_rad_s);
-    eps_pred.push_back(p.epsilon_pred_rad_s);
-    ratio.push_back(p.ratio);
-    t0.push_back(p.t0_s);
-    alpha.push_back(p.alpha_rad);
-    predicted.push_back(p.predicted ? 1 : 0);
-    n_others.push_back(p.n_others);
-    transfers.push_back(p.predicted ? (p.transfers ? 1 : 0) : -1);
-    overlaps_all.push_back(p.overlaps_all ? 1 : 0);
-  }
-  t.WriteStrings("trial", trial);
-  t.WriteStrings("block", block);
-  t.WriteStrings("position", position);
-  t.WriteInts("predicted", predicted, "1");
-  t.WriteStrings("message", message);
-  t.WriteInts("n_others", n_others, "1");
-  t.WriteDoubles("epsilon_own_rad_s", eps_own, "rad/s");
-  t.WriteDoubles("epsilon_pred_rad_s", eps_pred, "rad/s; NaN: not predicted");
-  t.WriteDoubles("ratio", ratio, "1; ε_pred/ε_own, NaN: not predicted");
-  t.WriteInts("transfers", transfers, "1; ratio ≤ ratio_warning, -1: not predicted");
-  t.WriteInts("overlaps_all", overlaps_all, "1; the own 95 % intervals of λ, λ_lat, λ_lon overlap the pooled ones");
-  t.WriteDoubles("t0_s", t0, "s; fitted with the pooled impact parameters held");
-  t.WriteDoubles("alpha_rad", alpha, "rad; fitted with the pooled impact parameters held");
+  using P = TrialPrediction;
+  const std::vector<P>& rows = s.trials;
+  StringColumn(t, "trial", rows, [](const P& p) { return p.trial; });
+  StringColumn(t, "block", rows, [](const P& p) { return p.block; });
+  StringColumn(t, "position", rows, [](const P& p) { return p.position; });
+  IntColumn(t, "predicted", rows, [](const P& p) { return p.predicted ? 1 : 0; }, "1");
+  StringColumn(t, "message", rows, [](const P& p) { return p.message; });
+  IntColumn(t, "n_others", rows, [](const P& p) { return p.n_others; }, "1");
+  DoubleColumn(t, "epsilon_own_rad_s", rows, [](const P& p) { return p.epsilon_own_rad_s; }, "rad/s");
+  DoubleColumn(t, "epsilon_pred_rad_s", rows, [](const P& p) { return p.epsilon_pred_rad_s; }, "rad/s; NaN: not predicted");
+  DoubleColumn(t, "ratio", rows, [](const P& p) { return p.ratio; }, "1; ε_pred/ε_own, NaN: not predicted");
+  IntColumn(t, "transfers", rows, [](const P& p) { return p.predicted ? (p.transfers ? 1 : 0) : -1; },
+            "1; ratio ≤ ratio_warning, -1: not predicted");
+  IntColumn(t, "overlaps_all", rows, [](const P& p) { return p.overlaps_all ? 1 : 0; },
+            "1; the own 95 % intervals of λ, λ_lat, λ_lon overlap the pooled ones");
+  DoubleColumn(t, "t0_s", rows, [](const P& p) { return p.t0_s; }, "s; fitted with the pooled impact parameters held");
+  DoubleColumn(t, "alpha_rad", rows, [](const P& p) { return p.alpha_rad; },
+               "rad; fitted with the pooled impact parameters held");
   for (std::size_t k = 0; k < kPooledImpactParameters.size(); ++k) {
     const std::string name = Name(kPooledImpactParameters[k]);
-    std::vector<double> held, lo, hi;
-    std::vector<std::int64_t> overlaps, n_pooled;
-    for (const TrialPrediction& p : s.trials) {
-      held.push_back(p.held[k]);
-      lo.push_back(p.pooled[k].interval_95[0]);
-      hi.push_back(p.pooled[k].interval_95[1]);
-      overlaps.push_back(p.overlaps[k] ? 1 : 0);
-      n_pooled.push_back(p.pooled[k].n_pooled);
-    }
-    t.WriteDoubles(name + "_held", held, "1; the others' pooled estimate (their mean where none determines it)");
-    t.WriteDoubles(name + "_pooled_95_lower", lo, "1; NaN: no other trial determines it");
-    t.WriteDoubles(name + "_pooled_95_upper", hi, "1; NaN: no other trial determines it");
-    t.WriteInts(name + "_n_pooled", n_pooled, "1");
-    t.WriteInts(name + "_overlaps", overlaps, "1");
+    DoubleColumn(t, name + "_held", rows, [k](const P& p) { return p.held[k]; },
+                 "1; the others' pooled estimate (their mean where none determines it)");
+    DoubleColumn(t, name + "_pooled_95_lower", rows, [k](const P& p) { return p.pooled[k].interval_95[0]; },
+                 "1; NaN: no other trial determines it");
+    DoubleColumn(t, name + "_pooled_95_upper", rows, [k](const P& p) { return p.pooled[k].interval_95[1]; },
+                 "1; NaN: no other trial determines it");
+    IntColumn(t, name + "_n_pooled", rows, [k](const P& p) { return p.pooled[k].n_pooled; }, "1");
+    IntColumn(t, name + "_overlaps", rows, [k](const P& p) { return p.overlaps[k] ? 1 : 0; }, "1");
   }
 }
 
 void WritePerGroup(const io::hdf5::Group& v, const ValidationSummary& s) {
   const io::hdf5::Group g = v.CreateGroup("per_group");
-  std::vector<std::string> block, position;
-  std::vector<std::int64_t> n, n_predicted, n_transfer, n_overlap_all;
-  std::vector<double> median_ratio, max_ratio;
-  for (const GroupValidation& r : s.groups) {
-    block.push_back(r.block);
-    position.push_back(r.position);
-    n.push_back(r.n);
-    n_predicted.push_back(r.n_predicted);
-    n_transfer.push_back(r.n_transfer);
-    n_overlap_all.push_back(r.n_overlap_all);
-    median_ratio.push_back(r.median_ratio);
-    max_ratio.push_back(r.max_ratio);
-  }
-  g.WriteStrings("block", block);
-  g.WriteStrings("position", position);
-  g.WriteInts("n", n, "1");
-  g.WriteInts("n_predicted", n_predicted, "1");
-  g.WriteDoubles("median_ratio", median_ratio, "1; NaN: none predicted");
-  g.WriteDoubles("max_ratio", max_ratio, "1; NaN: none predicted");
-  g.WriteInts("n_transfer", n_transfer, "1");
-  g.WriteInts("n_overlap_all", n_overlap_all, "1");
+  using G = GroupValidation;
+  const std::vector<G>& rows = s.groups;
+  StringColumn(g, "block", rows, [](const G& r) { return r.block; });
+  StringColumn(g, "position", rows, [](const G& r) { return r.position; });
+  IntColumn(g, "n", rows, [](const G& r) { return r.n; }, "1");
+  IntColumn(g, "n_predicted", rows, [](const G& r) { return r.n_predicted; }, "1");
+  DoubleColumn(g, "median_ratio", rows, [](const G& r) { return r.median_ratio; }, "1; NaN: none predicted");
+  DoubleColumn(g, "max_ratio", rows, [](const G& r) { return r.max_ratio; }, "1; NaN: none predicted");
+  IntColumn(g, "n_transfer", rows, [](const G& r) { return r.n_transfer; }, "1");
+  IntColumn(g, "n_overlap_all", rows, [](const G& r) { return r.n_overlap_all; }, "1");
 }
 
 }  // namespace
