@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "build_type.hpp"
 #include "cli_runner.hpp"
 #include "png_header.hpp"
 #include "python_h5py.hpp"
@@ -50,6 +51,7 @@ nlohmann::json Validate(const std::string& manifest, std::vector<std::string> ex
 }
 
 TEST(CliValidate, ReleasesSharingTheirImpactParametersHaveEveryRatioAtMostOnePointFive) {
+  ROCKFIT_REQUIRE_OPTIMISED_BUILD();  // whole fits with the global stage
   const ScratchDir dir("cli_validate_shared");
   const nlohmann::json j = Validate(WriteCampaign(dir, 0.197));
   ASSERT_EQ(j["trials"].size(), 3u);
@@ -65,6 +67,7 @@ TEST(CliValidate, ReleasesSharingTheirImpactParametersHaveEveryRatioAtMostOnePoi
 }
 
 TEST(CliValidate, AReleaseWhoseLambdaLonIsFiftyPercentOffHasARatioOfAtLeastTwo) {
+  ROCKFIT_REQUIRE_OPTIMISED_BUILD();  // whole fits with the global stage
   const ScratchDir dir("cli_validate_off");
   const nlohmann::json j = Validate(WriteCampaign(dir, 1.5 * 0.197));
   const auto& off = j["trials"][2];
@@ -76,6 +79,7 @@ TEST(CliValidate, AReleaseWhoseLambdaLonIsFiftyPercentOffHasARatioOfAtLeastTwo) 
 }
 
 TEST(CliValidate, ReadsOwnFitsFromABatchFileAndWritesValidationHdf5TableAndFigure) {
+  ROCKFIT_REQUIRE_OPTIMISED_BUILD();  // whole fits with the global stage
   if (!HaveH5py()) GTEST_SKIP() << "/usr/bin/python3 with h5py is missing";
   const ScratchDir dir("cli_validate_files");
   const std::string manifest = WriteCampaign(dir, 0.197);
@@ -116,7 +120,7 @@ TEST(CliValidate, AFitsFileWithoutATrialOfTheManifestIsBadInput) {
   const std::string manifest = WriteCampaign(dir, 0.197);
   const std::string fits = (dir / "fits.h5").string();
   const CommandResult b = RunRockfit({"fit", manifest, "--trial", "t1", "-o", fits, "--intervals", "fast",
-                                      "--threads", "1"});
+                                      "--threads", "1", "--no-global", "--max-evaluations", "15"});
   ASSERT_EQ(b.exit_code, 0) << b.err;
   const CommandResult r = RunRockfit({"validate", manifest, "--fits", fits});
   EXPECT_EQ(r.exit_code, 2) << r.out;
