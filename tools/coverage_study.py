@@ -128,8 +128,8 @@ def study_trial(args, t, workdir):
     rows = []
     for method in args.methods:
         started = time.time()
-        code, out, err = run([args.rockfit, "fit", prefix, "--json", "--threads", "1", "--intervals", method]
-                             + block_args(t))
+        code, out, err = run([args.rockfit, "fit", prefix, "--json", "--threads", "1", "--intervals", method,
+                              "--model-error-widening", repr(args.model_error_widening)] + block_args(t))
         wall = time.time() - started
         if code != 0:
             rows.append({"trial": t, "method": method, "error": f"fit exit {code}: {err.strip()}"})
@@ -277,6 +277,8 @@ def main():
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--methods", default="fast,thorough")
     parser.add_argument("--ringing-scale", type=float, default=1.0)
+    parser.add_argument("--model-error-widening", type=float, default=0.0,
+                        help="rockfit fit --model-error-widening K (0: off, the default)")
     parser.add_argument("--sensor-family", default=None, choices=["gyro-scale", "non-orthogonal", "dropped-samples"])
     parser.add_argument("--out", required=True)
     parser.add_argument("--report-only", action="store_true")

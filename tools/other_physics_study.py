@@ -58,7 +58,8 @@ def run_trial(args, trial, out_dir):
                     "--com-offset-y", repr(trial["com_offset_y"]), "--proud-vertex", str(trial["proud_vertex"]),
                     "--seed", str(trial["seed"])], check=True, capture_output=True)
     fit = subprocess.run([args.rockfit, "fit", prefix, "--rate", "256", "--b1", repr(B1), "--b2", repr(trial["b2"]),
-                          "--h", repr(H), "--density", repr(DENSITY), "--threads", "1", "--json"],
+                          "--h", repr(H), "--density", repr(DENSITY), "--threads", "1", "--json",
+                          "--model-error-widening", repr(args.model_error_widening)],
                          capture_output=True, text=True)
     trial["exit_code"] = fit.returncode
     trial["fit"] = json.loads(fit.stdout) if fit.stdout.strip() else None
@@ -124,6 +125,8 @@ def main():
     parser.add_argument("--generator", default="build/tests/rockfit_mujoco_synth")
     parser.add_argument("--family", default="mujoco", choices=["mujoco", "mujoco-perturbed", "mujoco-planar"])
     parser.add_argument("--trials", type=int, default=30)
+    parser.add_argument("--model-error-widening", type=float, default=0.0,
+                        help="rockfit fit --model-error-widening K (0: off, the default)")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--out", required=True)
     parser.add_argument("--report-only", action="store_true")
@@ -139,7 +142,7 @@ def main():
                 f.flush()
                 print(f"[{i + 1}/{args.trials}]", file=sys.stderr)
     trials = [json.loads(line) for line in open(path)]
-    text = f"family {args.family}, seed {args.seed}\n" + report(trials)
+    text = f"family {args.family}, seed {args.seed}, model-error widening {args.model_error_widening:g}\n" + report(trials)
     open(os.path.join(args.out, "report.md"), "w").write(text + "\n")
     print(text)
 

@@ -77,6 +77,10 @@ void AddFitOptions(CLI::App& app, FitArgs& args) {
                  "the fit costs about 1.5 times as much; 68 %: linearised), fast (both linearised, nearly free) or none "
                  "(standard errors only)")
       ->capture_default_str();
+  app.add_option("--model-error-widening", args.model_error_widening,
+                 "Widen every 95 % interval by max(1, K·ε/ε_noise), ε_noise the noise floor at rest (0: off; measured, "
+                 "not calibrated: fitting/README.md, \"Recordings made by other physics\")")
+      ->capture_default_str();
 }
 
 std::vector<FixEntry> ParseFixEntries(const FitArgs& args) {
@@ -124,6 +128,7 @@ PreparedFit PrepareFit(const io::Recording& recording, const core::Block& block,
   if (args.threads < 0) throw InvalidArgument("--threads must be ≥ 0");
   options.num_threads = args.threads;
   options.intervals.method = fitting::ParseIntervalMethod(args.intervals);
+  options.intervals.model_error_widening = args.model_error_widening;
   options.Validate();
 
   fitting::ParameterSet set = MakeParameterSet(args);
@@ -172,6 +177,7 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   for (const FixEntry& fix : ParseFixEntries(args)) {
     if (!fix.value) settings += fmt::format("; {}:fixed at the data estimate", fitting::Name(fix.id));
   }
+  if (args.model_error_widening != 0.0) settings += fmt::format("; model_error_widening={:.17g}", args.model_error_widening);
   return settings;
 }
 

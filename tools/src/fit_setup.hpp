@@ -37,10 +37,11 @@ struct FitArgs {
   bool keep_bias = false;  // do not subtract the gyro bias measured at rest
   int threads = 0;
   std::string intervals = "thorough";  // none | fast | thorough (fitting::IntervalMethod)
+  double model_error_widening = 0.0;   // fitting::IntervalOptions::model_error_widening (0: off)
 };
 
 // --method, --bounds, --free, --fix, --lower, --upper, --t-end, --max-evaluations, --no-global, --keep-bias,
-// --threads, --intervals.
+// --threads, --intervals, --model-error-widening.
 void AddFitOptions(CLI::App& app, FitArgs& args);
 
 struct PreparedFit {

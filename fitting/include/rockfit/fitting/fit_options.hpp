@@ -140,6 +140,11 @@ struct IntervalOptions {
   // intervals are 1.2–1.9 times wider than the linearised ones (medians) and held the truth of t0 and λ_lon
   // in 82–84 % of the trials, the linearised ones in 66–83 %.
   bool profile_68 = false;
+  // Widening for model error (0: off, the default): every 95 % interval's half-widths are multiplied by
+  // max(1, model_error_widening · ε/ε_noise), ε_noise the noise floor at rest (model_error.hpp), clipped to the
+  // bounds. A model-error variance proportional to (ε/ε_noise)²; measured but not calibrated (fitting/README.md,
+  // "Recordings made by other physics").
+  double model_error_widening = 0.0;
   // Nelder–Mead evaluations per profile point (the other parameters re-fitted, warm-started).
   int profile_evaluations = 120;
   // Evaluations of the least-squares refinement of the optimum that the profiles start from.
