@@ -18,7 +18,7 @@ jobs="${JOBS:-$(nproc)}"
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libceres-dev libnlopt-cxx-dev libgsl-dev libhdf5-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libmujoco-dev
   libcli11-dev libfmt-dev libtomlplusplus-dev nlohmann-json3-dev libtbb-dev
   libopenmpi-dev openmpi-bin
   gnuplot-nox python3 python3-h5py python3-numpy ccache

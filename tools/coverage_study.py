@@ -21,6 +21,14 @@ lateral motion), 0.5–3 otherwise; t0 = 0.8–1.6 s; a gyro bias of up to 0.3 d
 `--ringing-scale F` multiplies the ringing frequency, gain and decay time of `synth`'s default measurement model
 (38 Hz, 0.25, 0.03 s) by F, because real ringing will not match the generator.
 
+`--sensor-family NAME` changes the gyroscope columns of each recording after `synth` wrote it (the truth stays
+that of the motion), for sensor errors the measurement model does not make:
+  gyro-scale       each axis scaled by 1 ± 1–2 % (random sign and size per axis)
+  non-orthogonal   each sensor axis tilted by 0.5° towards another (ω_x += s·ω_y, ω_y += s·ω_z, ω_z += s·ω_x,
+                   s = ±sin 0.5°, random signs)
+  dropped-samples  0.5 % of the inertial rows removed at random (the x-IMU's files carry no time: a reader that
+                   trusts the rate shifts everything after a drop by one sample)
+
 Usage (from the repository root, after building):
 
   nice tools/coverage_study.py --rockfit build/tools/rockfit --trials 100 --seed 1 \\
@@ -73,6 +81,36 @@ def block_args(t):
     return ["--b1", repr(t["b1"]), "--b2", repr(t["b2"]), "--h", repr(t["h"]), "--density", "2692"]
 
 
+def perturb_gyro(prefix, family, rng):
+    """Rewrites <prefix>_CalInertialAndMag.csv with the sensor error of `family` (see the module's help)."""
+    path = prefix + "_CalInertialAndMag.csv"
+    with open(path) as f:
+        header, *rows = f.read().splitlines()
+    columns = [c.strip() for c in header.split(",")]
+    gyro = [columns.index(f"Gyroscope {axis} (deg/s)") for axis in "XYZ"]
+    if family == "dropped-samples":
+        rows = [r for r in rows if rng.random() >= 0.005]
+    else:
+        if family == "gyro-scale":
+            scale = [1.0 + rng.uniform(0.01, 0.02) * rng.choice([-1.0, 1.0]) for _ in range(3)]
+            mix = [[scale[0], 0, 0], [0, scale[1], 0], [0, 0, scale[2]]]
+        elif family == "non-orthogonal":
+            s = [math.sin(math.radians(0.5)) * rng.choice([-1.0, 1.0]) for _ in range(3)]
+            mix = [[1, s[0], 0], [0, 1, s[1]], [s[2], 0, 1]]
+        else:
+            raise ValueError(f"unknown sensor family {family}")
+        out = []
+        for r in rows:
+            cells = r.split(",")
+            w = [float(cells[i]) for i in gyro]
+            for k, i in enumerate(gyro):
+                cells[i] = repr(sum(mix[k][j] * w[j] for j in range(3)))
+            out.append(",".join(cells))
+        rows = out
+    with open(path, "w") as f:
+        f.write("\n".join([header] + rows) + "\n")
+
+
 def study_trial(args, t, workdir):
     prefix = os.path.join(workdir, f"trial{t['index']:03d}")
     synth = [args.rockfit, "synth", "-o", prefix, "--t0", repr(t["t0"]), "--duration", repr(t["t0"] + 2.5),
@@ -85,11 +123,13 @@ def study_trial(args, t, workdir):
     code, _, err = run(synth)
     if code != 0:
         return [{"trial": t, "error": "synth: " + err.strip()}]
+    if args.sensor_family:
+        perturb_gyro(prefix, args.sensor_family, random.Random(t["seed"]))
     rows = []
     for method in args.methods:
         started = time.time()
-        code, out, err = run([args.rockfit, "fit", prefix, "--json", "--threads", "1", "--intervals", method]
-                             + block_args(t))
+        code, out, err = run([args.rockfit, "fit", prefix, "--json", "--threads", "1", "--intervals", method,
+                              "--model-error-widening", repr(args.model_error_widening)] + block_args(t))
         wall = time.time() - started
         if code != 0:
             rows.append({"trial": t, "method": method, "error": f"fit exit {code}: {err.strip()}"})
@@ -198,6 +238,14 @@ def report(rows, ringing_scale):
         held, total = pooled_coverage_68(rows, method)
         if total:
             lines.append(f"| all (68 % pooled) | {total} | {held}/{total} ({100.0 * held / total:.0f} %) | | | | | |")
+        statements = [r["fit"]["model_error"] for r in mine if r["fit"].get("model_error", {}).get("available")]
+        if statements:
+            ratios = [m["ratio"] for m in statements]
+            lines.append("")
+            lines.append(f"ε / noise floor at rest: median {statistics.median(ratios):.2f} (range {min(ratios):.2f}–"
+                         f"{max(ratios):.2f}); model error flagged dominant in "
+                         f"{sum(bool(m['dominates']) for m in statements)}/{len(statements)}, ε > 2 × floor in "
+                         f"{sum(q > 2 for q in ratios)}")
         ratios = [(r["fit"]["epsilon"] / r["epsilon_truth"], r) for r in mine if r.get("epsilon_truth")]
         ok = sum(q <= EPSILON_RATIO_TARGET for q, _ in ratios)
         lines.append("")
@@ -229,6 +277,9 @@ def main():
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--methods", default="fast,thorough")
     parser.add_argument("--ringing-scale", type=float, default=1.0)
+    parser.add_argument("--model-error-widening", type=float, default=0.0,
+                        help="rockfit fit --model-error-widening K (0: off, the default)")
+    parser.add_argument("--sensor-family", default=None, choices=["gyro-scale", "non-orthogonal", "dropped-samples"])
     parser.add_argument("--out", required=True)
     parser.add_argument("--report-only", action="store_true")
     parser.add_argument("--check-coverage-95", type=float, default=None,
@@ -253,7 +304,7 @@ def main():
                     out.flush()
     with open(path) as f:
         rows = [json.loads(line) for line in f if line.strip()]
-    text = report(rows, args.ringing_scale)
+    text = (f"sensor family {args.sensor_family}\n" if args.sensor_family else "") + report(rows, args.ringing_scale)
     with open(os.path.join(args.out, "report.md"), "w") as f:
         f.write(text + "\n")
     print(text)

@@ -57,6 +57,7 @@ void FitOne(CampaignRun& run, const CampaignTrial& trial, TrialOutcome& o) {
   const FitSummary summary = Fit(prepared.objective, prepared.start, prepared.options);
   o.epsilon_rad_s = summary.epsilon_rad_s;
   o.fit_wall_s = summary.wall_time_s;
+  o.model_error = summary.model_error;
   o.status = summary.feasible ? TrialStatus::kFitted : TrialStatus::kInfeasible;
   if (!summary.feasible) o.message = "no feasible parameters: " + summary.termination;
   std::lock_guard<std::mutex> lock(run.mutex);

@@ -108,6 +108,10 @@ IntervalMethod ParseIntervalMethod(const std::string& name) {
 }
 
 void IntervalOptions::Validate() const {
+  if (!(std::isfinite(model_error_widening) && model_error_widening >= 0.0)) {
+    throw InvalidArgument(fmt::format("intervals: model_error_widening must be a finite factor ≥ 0, got {}",
+                                      model_error_widening));
+  }
   RequirePositive(noise_correlation_window_s, "intervals.noise_correlation_window_s");
   if (!(model_error_allowance >= 1.0 && std::isfinite(model_error_allowance))) {
     throw InvalidArgument(fmt::format("fit option intervals.model_error_allowance must be at least 1, got {}",
@@ -138,6 +142,7 @@ void FitOptions::Validate() const {
   identifiability.Validate();
   intervals.Validate();
   lateral_motion.Validate();
+  model_error.Validate();
   lateral_rescan.Validate();
   RequireAtLeast(num_threads, 0, "num_threads");
   if (!(at_bound_fraction >= 0.0 && at_bound_fraction < 0.5)) {

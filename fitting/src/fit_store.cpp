@@ -73,6 +73,16 @@ void WriteParameterTable(const io::hdf5::Group& fit, const FitSummary& s) {
   table.WriteMatrix("correlation", CorrelationRowMajor(s), kNumParameters, kNumParameters, "1");
 }
 
+// The model-error statement (model_error.hpp): NaN numbers and dominates = -1 when it was not measured.
+void WriteModelErrorAttributes(const io::hdf5::Group& g, const ModelErrorStatement& m) {
+  const double nan = std::nan("");
+  g.SetDouble("noise_floor_rad_s", m.available ? m.noise_floor_rad_s : nan);
+  g.SetDouble("model_error_rad_s", m.available ? m.model_error_rad_s : nan);
+  g.SetDouble("noise_share", m.available ? m.noise_share : nan);
+  g.SetInt("model_error_dominates", m.available ? (m.dominates ? 1 : 0) : -1);
+  g.SetDouble("rest_duration_s", m.rest_duration_s);
+}
+
 void WriteFitAttributes(const io::hdf5::Group& g, const std::string& settings, const FitSummary& s) {
   g.SetDouble("epsilon_rad_s", s.epsilon_rad_s);
   g.SetDouble("epsilon_initial_rad_s", s.epsilon_initial_rad_s);
@@ -87,6 +97,7 @@ void WriteFitAttributes(const io::hdf5::Group& g, const std::string& settings, c
   g.SetDouble("noise_correlation_factor", s.uncertainty.correlation_factor);
   g.SetDouble("noise_inflation_68", s.uncertainty.bulk_inflation);
   g.SetInt("feasible", s.feasible ? 1 : 0);
+  WriteModelErrorAttributes(g, s.model_error);
   g.SetString("settings", settings);
   g.SetString("settings_hash", SettingsHash(settings));
   g.SetString("model", s.model_description);
@@ -150,7 +161,8 @@ struct PerTrialColumns {
   std::map<std::string, std::vector<double>> value, lo68, hi68, lo95, hi95;
   std::map<std::string, std::vector<std::string>> determined;
   std::vector<double> epsilon_rad_s, wall_s, mounting_x_deg, mounting_y_deg, mounting_z_deg;
-  std::vector<std::int64_t> simulations;
+  std::vector<double> noise_floor_rad_s, model_error_rad_s, noise_share;
+  std::vector<std::int64_t> simulations, model_error_dominates;
 };
 
 void AppendParameters(const StoredParameters& stored, PerTrialColumns* c) {
@@ -175,6 +187,10 @@ void AppendTrial(const std::string& id, const io::hdf5::Group& g, PerTrialColumn
   c->epsilon_rad_s.push_back(g.GetDouble("epsilon_rad_s").value_or(std::nan("")));
   c->wall_s.push_back(g.GetDouble("wall_s").value_or(std::nan("")));
   c->simulations.push_back(labels.simulations);
+  c->noise_floor_rad_s.push_back(labels.noise_floor_rad_s);
+  c->model_error_rad_s.push_back(labels.model_error_rad_s);
+  c->noise_share.push_back(labels.noise_share);
+  c->model_error_dominates.push_back(labels.model_error_dominates);
   c->mounting.push_back(labels.mounting);
   const std::vector<double> angles =
       g.Exists("mounting_angles_deg") ? g.ReadDoubles("mounting_angles_deg") : std::vector<double>{};
@@ -208,6 +224,10 @@ void WritePerTrialTable(const io::hdf5::Group& root, PerTrialColumns& c) {
   t.WriteDoubles("epsilon_rad_s", c.epsilon_rad_s, "rad/s");
   t.WriteDoubles("wall_s", c.wall_s, "s");
   t.WriteInts("simulations", c.simulations, "1");
+  t.WriteDoubles("noise_floor_rad_s", c.noise_floor_rad_s, "rad/s; NaN: not measured");
+  t.WriteDoubles("model_error_rad_s", c.model_error_rad_s, "rad/s; NaN: not measured");
+  t.WriteDoubles("noise_share", c.noise_share, "1; NaN: not measured");
+  t.WriteInts("model_error_dominates", c.model_error_dominates, "1; -1: not measured");
   t.WriteStrings("mounting", c.mounting);
   t.WriteDoubles("mounting_angle_x_deg", c.mounting_x_deg, "deg");
   t.WriteDoubles("mounting_angle_y_deg", c.mounting_y_deg, "deg");
@@ -396,6 +416,10 @@ StoredFitLabels ReadFitLabels(const io::hdf5::Group& fit) {
   l.epsilon_rad_s = fit.GetDouble("epsilon_rad_s").value_or(std::nan(""));
   l.wall_s = fit.GetDouble("wall_s").value_or(std::nan(""));
   l.simulations = fit.GetInt("simulations").value_or(0);
+  l.noise_floor_rad_s = fit.GetDouble("noise_floor_rad_s").value_or(std::nan(""));
+  l.model_error_rad_s = fit.GetDouble("model_error_rad_s").value_or(std::nan(""));
+  l.noise_share = fit.GetDouble("noise_share").value_or(std::nan(""));
+  l.model_error_dominates = fit.GetInt("model_error_dominates").value_or(-1);
   return l;
 }
 

@@ -27,6 +27,7 @@ const char* ToString(WarningKind kind) {
     case WarningKind::kMovedByIntervals: return "moved_by_intervals";
     case WarningKind::kLateralMotionUnexplained: return "lateral_motion_unexplained";
     case WarningKind::kMovedByLateralRescan: return "moved_by_lateral_rescan";
+    case WarningKind::kModelErrorDominates: return "model_error_dominates";
   }
   return "?";
 }
@@ -66,6 +67,7 @@ std::string FitSummary::FullReport() const {
   }
   out << fmt::format("ε (28)      {:.6g} rad/s (at the start {:.6g} rad/s), window ends at t_end = {:.4f} s\n",
                      epsilon_rad_s, epsilon_initial_rad_s, t_end_s);
+  out << "model error " << ModelErrorText(model_error) << "\n";
   out << fmt::format("effort      {} simulations in {:.3f} s ({:.0f} per second), method {}\n", simulations,
                      wall_time_s, simulations_per_second, ToString(method));
   for (const StageReport& s : stages) {
@@ -114,6 +116,7 @@ std::string FitSummary::ToJson(const std::string& trial) const {
                       {"simulations", uncertainty.evaluations},
                       {"wall_s", uncertainty.wall_time_s}};
   j["lateral_motion"] = nlohmann::json::parse(LateralMotionJson(lateral_motion));
+  j["model_error"] = nlohmann::json::parse(ModelErrorJson(model_error));
   j["epsilon"] = epsilon_rad_s;
   j["epsilon_initial"] = epsilon_initial_rad_s;
   j["feasible"] = feasible;

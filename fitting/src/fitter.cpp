@@ -1,5 +1,6 @@
 #include "rockfit/fitting/fitter.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -15,6 +16,7 @@
 #include "rockfit/fitting/local_optimizer.hpp"
 #include "rockfit/fitting/lateral_motion_check.hpp"
 #include "rockfit/fitting/lateral_rescan.hpp"
+#include "rockfit/fitting/model_error.hpp"
 #include "rockfit/fitting/uncertainty.hpp"
 
 namespace rockfit::fitting {
@@ -292,6 +294,44 @@ void ApplyLateralMotionCheck(const Objective& objective, const FitOptions& optio
   }
 }
 
+void AddModelErrorStatement(const Objective& objective, const FitOptions& options, FitSummary* summary) {
+  // How much of ε the noise at rest explains; a warning when the rest is model error and dominates.
+  if (!summary->feasible) return;
+  summary->model_error = AssessModelError(objective, summary->epsilon_rad_s, options.model_error);
+  const ModelErrorStatement& m = summary->model_error;
+  if (!m.dominates) return;
+  summary->warnings.push_back(
+      {WarningKind::kModelErrorDominates, "",
+       fmt::format("model error dominates the fit: ε = {:.4g} rad/s is {:.2f} × the noise floor at rest ({:.4g} rad/s), "
+                   "so the noise explains {:.0f} % of ε² and {:.4g} rad/s is structure the model does not reproduce "
+                   "(a body, base or contact other than the rigid cuboid, sensor scale, axes, clock or ringing, or a "
+                   "missed minimum)",
+                   m.epsilon_rad_s, m.ratio, m.noise_floor_rad_s, 100.0 * m.noise_share, m.model_error_rad_s)});
+}
+
+void WidenForModelError(const Objective& objective, const FitOptions& options, FitSummary* summary) {
+  // IntervalOptions::model_error_widening: the 95 % half-widths × max(1, k·ε/ε_noise), clipped to the bounds.
+  const double k = options.intervals.model_error_widening;
+  const ModelErrorStatement& m = summary->model_error;
+  if (!(k > 0.0) || !m.available || !std::isfinite(m.ratio)) return;
+  const double factor = std::max(1.0, k * m.ratio);
+  if (factor == 1.0) return;
+  UncertaintySummary& u = summary->uncertainty;
+  for (ParameterId id : objective.free_ids()) {
+    const std::size_t i = static_cast<std::size_t>(id);
+    if (!u.determined[i]) continue;
+    const Parameter& p = summary->parameters[id];
+    Interval& interval = u.interval_95[i];
+    if (!std::isnan(interval[0])) interval[0] = std::max(p.lower, p.value - factor * (p.value - interval[0]));
+    if (!std::isnan(interval[1])) interval[1] = std::min(p.upper, p.value + factor * (interval[1] - p.value));
+    const Determination widened = Determine(interval, p.lower, p.upper, options.intervals.undetermined_range_fraction);
+    if (static_cast<int>(widened) > static_cast<int>(*u.determined[i])) u.determined[i] = widened;
+  }
+  u.description += fmt::format("; 95 % intervals widened × {:.3g} for model error (ε = {:.3g} × the noise floor)",
+                               factor, m.ratio);
+  u.statements = DescribeUncertainty(u, summary->parameters);
+}
+
 void AddNotDeterminedWarnings(const Objective& objective, FitSummary* summary) {
   for (ParameterId id : objective.free_ids()) {
     const auto& d = summary->uncertainty.determined[static_cast<std::size_t>(id)];
@@ -366,6 +406,8 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
   AssessKeptPoint(objective, options, global_candidates, &summary);
   AddSecondSolutionWarning(objective, &summary);
   ApplyLateralMotionCheck(objective, options, &summary);
+  AddModelErrorStatement(objective, options, &summary);
+  WidenForModelError(objective, options, &summary);
   AddNotDeterminedWarnings(objective, &summary);
   AddFailureWarning(objective, failures_before, &summary);
   AddPoorFitAndConvergenceWarnings(objective, &summary);

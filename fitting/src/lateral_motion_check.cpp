@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/fitting/rest_noise.hpp"
 #include "rockfit/fitting/trajectory_error.hpp"
 
 namespace rockfit::fitting {
@@ -27,18 +28,9 @@ LateralMotionCheck CheckLateralMotion(const Objective& objective, const Paramete
   const double t0 = fitted.value(ParameterId::kT0);
 
   // The noise at rest: ω_x and ω_z about their means before the release.
-  const double rest_end = t0 - options.rest_margin_s;
-  if (signal.size() == 0 || rest_end - signal.t_s.front() < options.rest_min_duration_s) return check;
-  Eigen::Vector2d sum = Eigen::Vector2d::Zero(), sum_sq = Eigen::Vector2d::Zero();
-  std::size_t n = 0;
-  for (; n < signal.size() && signal.t_s[n] < rest_end; ++n) {
-    const Eigen::Vector2d xz(signal.w_B[n].x(), signal.w_B[n].z());
-    sum += xz;
-    sum_sq += xz.cwiseAbs2();
-  }
-  if (n < 2) return check;
-  const Eigen::Vector2d mean = sum / static_cast<double>(n);
-  const double noise_var = 0.5 * (sum_sq / static_cast<double>(n) - mean.cwiseAbs2()).sum();
+  const RestNoise rest = MeasureRestNoise(signal, t0, {options.rest_margin_s, options.rest_min_duration_s});
+  if (!rest.available) return check;
+  const double noise_var = 0.5 * (rest.variance_rad2_s2.x() + rest.variance_rad2_s2.z());
 
   // The window of (28): measured and residual out-of-plane components with the trapezoid weights.
   ErrorNodes nodes;

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/fitting/rest_noise.hpp"
 
 namespace rockfit::fitting {
 
@@ -32,18 +33,16 @@ TrialProblem PrepareTrialProblem(const MeasuredSignal& recorded, const core::Blo
   Eigen::Vector3d bias = Eigen::Vector3d::Zero();
   bool subtracted = false;
   if (options.subtract_rest_bias) {
-    const double rest_end = guess.parameters.value(ParameterId::kT0) - options.rest_margin_s;
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    std::size_t n = 0;
-    for (; n < signal.size() && signal.t_s[n] < rest_end; ++n) sum += signal.w_B[n];
-    if (n > 0 && rest_end - signal.t_s.front() >= options.rest_min_duration_s) {
-      bias = sum / static_cast<double>(n);
+    const RestNoise rest = MeasureRestNoise(signal, guess.parameters.value(ParameterId::kT0),
+                                            {options.rest_margin_s, options.rest_min_duration_s});
+    if (rest.available) {
+      bias = rest.mean_rad_s;
       for (Eigen::Vector3d& w : signal.w_B) w -= bias;
       subtracted = true;
       guess = EstimateInitialGuess(signal, block, parameters, options.guess);
       notes.push_back(fmt::format("gyro bias at rest over {:.2f} s before the release: ({:.4f}, {:.4f}, {:.4f}) rad/s, "
                                   "subtracted",
-                                  rest_end - signal.t_s.front(), bias.x(), bias.y(), bias.z()));
+                                  rest.duration_s, bias.x(), bias.y(), bias.z()));
     } else {
       notes.push_back("gyro bias not measured: the recording starts too close to the release");
     }

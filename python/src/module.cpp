@@ -27,4 +27,5 @@ PYBIND11_MODULE(rockfit, m) {
   rockfit::python::RegisterSimulate(m);
   rockfit::python::RegisterFit(m);
   rockfit::python::RegisterSynth(m);
+  rockfit::python::RegisterValidate(m);
 }

@@ -175,3 +175,39 @@ TEST(FitSummary, JsonCarriesTheDocumentedKeys) {
 
 }  // namespace
 }  // namespace rockfit::fitting
+
+namespace rockfit::fitting {
+namespace {
+
+TEST(Fit, ModelErrorWideningScalesThe95PercentHalfWidthsByTheRatioToTheNoiseFloor) {
+  // Strong ringing, which the analytic model lacks, puts ε well above the noise floor at rest.
+  testing::SyntheticSignalOptions disturbances = testing::RealisticDisturbances(5);
+  disturbances.ringing_fraction = 1.0;
+  const auto trial = testing::MakeAnalyticTrial(0.2, 0.8, -2.0, 0.6, disturbances);
+  const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
+  FitOptions options;
+  options.global.enabled = false;  // the same local search twice: only the widening differs
+  const FitSummary plain = Fit(objective, trial.truth, options);
+  options.intervals.model_error_widening = 0.5;
+  const FitSummary widened = Fit(objective, trial.truth, options);
+  ASSERT_TRUE(plain.model_error.available);
+  ASSERT_GT(0.5 * plain.model_error.ratio, 1.0) << "the premise: ε > 2 × the noise floor";
+  const double factor = 0.5 * plain.model_error.ratio;
+  for (ParameterId id : {ParameterId::kT0, ParameterId::kAlpha, ParameterId::kLambdaLon}) {
+    const std::size_t k = static_cast<std::size_t>(id);
+    const double v = plain.parameters.value(id);
+    ASSERT_EQ(widened.parameters.value(id), v);
+    const Interval& a = plain.uncertainty.interval_95[k];
+    const Interval& b = widened.uncertainty.interval_95[k];
+    const Parameter& p = plain.parameters[id];
+    EXPECT_NEAR(b[0], std::max(p.lower, v - factor * (v - a[0])), 1e-12) << Name(id);
+    EXPECT_NEAR(b[1], std::min(p.upper, v + factor * (a[1] - v)), 1e-12) << Name(id);
+    EXPECT_EQ(widened.uncertainty.interval_68[k], plain.uncertainty.interval_68[k]) << Name(id);
+  }
+  EXPECT_NE(widened.uncertainty.description.find("widened"), std::string::npos);
+  options.intervals.model_error_widening = -1.0;
+  EXPECT_THROW(options.Validate(), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace rockfit::fitting

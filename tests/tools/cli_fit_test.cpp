@@ -31,10 +31,14 @@ TEST(CliFit, JsonHasTheDocumentedKeysAndEpsilonNotAboveTheStart) {
   const nlohmann::json j = nlohmann::json::parse(r.out);
   for (const char* key : {"trial", "parameters", "correlation", "uncertainty_method", "uncertainty", "epsilon",
                           "epsilon_initial", "t_end", "simulations", "wall_s", "termination", "warnings", "mounting",
-                          "lateral_motion"}) {
+                          "lateral_motion", "model_error"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
-  EXPECT_EQ(j.size(), 14u) << "only the documented keys";
+  EXPECT_EQ(j.size(), 15u) << "only the documented keys";
+  // The model-error statement of the sample trial: its rest before the release is 2.3 s long.
+  EXPECT_TRUE(j["model_error"]["available"].get<bool>());
+  EXPECT_NEAR(j["model_error"]["noise_share"].get<double>() + j["model_error"]["model_error_share"].get<double>(), 1.0,
+              1e-12);
   EXPECT_EQ(j["trial"], "block2-A-1");
   for (const char* name : {"t0", "alpha", "lambda", "lambda_lat", "lambda_lon", "tau_edge"}) {
     ASSERT_TRUE(j["parameters"].contains(name)) << name;

@@ -60,30 +60,6 @@ std::string GroupRangeTable(const std::vector<GroupRange>& ranges) {
   return out;
 }
 
-// The library's trial: settings of the manifest block with the trial's mounting as the manifest gives it ("auto"
-// included, it changes what is fitted); the recording loaded on the worker, its mounting kept in `mounting`.
-fitting::CampaignTrial MakeCampaignTrial(const io::Manifest& manifest, const io::TrialSpec& spec,
-                                         const FitArgs& fit_args, TrialMounting* mounting) {
-  fitting::CampaignTrial trial;
-  trial.id = TrialNameFrom(spec.id);
-  trial.labels = {spec.block_id, spec.position, spec.notes};
-  trial.settings = [&manifest, &spec, fit_args] {
-    const core::Block block = manifest.FindBlock(spec.block_id).ToBlock();
-    return FitSettingsText(block, fit_args) + "; mounting=" + (spec.mounting.empty() ? "identity" : spec.mounting);
-  };
-  trial.prepare = [&manifest, &spec, fit_args, mounting] {
-    const core::Block block = manifest.FindBlock(spec.block_id).ToBlock();
-    auto recording = std::make_shared<const io::Recording>(LoadManifestTrial(spec));
-    mounting->applied = recording->mounting;
-    mounting->disagreement_deg = io::MountingDisagreementDeg(recording->mounting_check);
-    mounting->warning = recording->mounting_check.warning;
-    PreparedFit prepared = PrepareFit(*recording, block, fit_args);
-    return fitting::PreparedTrial{std::move(prepared.objective), std::move(prepared.start), prepared.options,
-                                  std::move(recording)};
-  };
-  return trial;
-}
-
 // The exit code of a trial that is not ok: the kind of its error (infeasible: numerical).
 int ExitCodeOf(const fitting::TrialOutcome& o) {
   if (!o.error) return kExitNumerical;
@@ -103,7 +79,13 @@ int ExitCodeOf(const fitting::TrialOutcome& o) {
 // The progress line of a finished trial.
 std::string ProgressText(const fitting::TrialOutcome& o) {
   if (o.status == fitting::TrialStatus::kSkipped) return o.trial + ": already fitted";
-  if (o.ok()) return o.trial + ": " + fmt::format("ε = {:.4g} rad/s in {:.1f} s", o.epsilon_rad_s, o.fit_wall_s);
+  if (o.ok()) {
+    const fitting::ModelErrorStatement& m = o.model_error;
+    return o.trial + ": " +
+           fmt::format("ε = {:.4g} rad/s in {:.1f} s{}", o.epsilon_rad_s, o.fit_wall_s,
+                       m.available ? fmt::format(", {:.2f} × noise floor{}", m.ratio, m.dominates ? " (model error dominates)" : "")
+                                   : "");
+  }
   return o.trial + ": FAILED: " + o.message;
 }
 
@@ -116,6 +98,7 @@ nlohmann::json TrialsJson(const fitting::CampaignSummary& s, const std::vector<T
                       {"skipped", o.status == fitting::TrialStatus::kSkipped},
                       {"epsilon", std::isfinite(o.epsilon_rad_s) ? nlohmann::json(o.epsilon_rad_s) : nlohmann::json()},
                       {"wall_s", o.fit_wall_s},
+                      {"model_error", nlohmann::json::parse(fitting::ModelErrorJson(o.model_error))},
                       {"mounting", mountings[i].applied},
                       {"mounting_disagreement_deg", OrNull(mountings[i].disagreement_deg)},
                       {"message", o.message}});
@@ -170,7 +153,12 @@ int RunBatch(const BatchCommand& cmd) {
   std::vector<TrialMounting> mountings(n);
   std::vector<fitting::CampaignTrial> trials;
   for (std::size_t i = 0; i < n; ++i) {
-    trials.push_back(MakeCampaignTrial(manifest, manifest.trials[i], fit_args, &mountings[i]));
+    TrialMounting* mounting = &mountings[i];
+    trials.push_back(MakeCampaignTrial(manifest, manifest.trials[i], fit_args, [mounting](const io::Recording& r) {
+      mounting->applied = r.mounting;
+      mounting->disagreement_deg = io::MountingDisagreementDeg(r.mounting_check);
+      mounting->warning = r.mounting_check.warning;
+    }));
   }
   fitting::CampaignOptions options;
   options.num_threads = cmd.jobs;

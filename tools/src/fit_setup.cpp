@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
+#include "recording_input.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/fitting/simulator_model.hpp"
 
@@ -76,6 +77,10 @@ void AddFitOptions(CLI::App& app, FitArgs& args) {
                  "the fit costs about 1.5 times as much; 68 %: linearised), fast (both linearised, nearly free) or none "
                  "(standard errors only)")
       ->capture_default_str();
+  app.add_option("--model-error-widening", args.model_error_widening,
+                 "Widen every 95 % interval by max(1, K·ε/ε_noise), ε_noise the noise floor at rest (0: off; measured, "
+                 "not calibrated: fitting/README.md, \"Recordings made by other physics\")")
+      ->capture_default_str();
 }
 
 std::vector<FixEntry> ParseFixEntries(const FitArgs& args) {
@@ -123,6 +128,7 @@ PreparedFit PrepareFit(const io::Recording& recording, const core::Block& block,
   if (args.threads < 0) throw InvalidArgument("--threads must be ≥ 0");
   options.num_threads = args.threads;
   options.intervals.method = fitting::ParseIntervalMethod(args.intervals);
+  options.intervals.model_error_widening = args.model_error_widening;
   options.Validate();
 
   fitting::ParameterSet set = MakeParameterSet(args);
@@ -154,7 +160,9 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   // values of fixed parameters are part of the settings.
   // v4: 68 % / 95 % intervals (--intervals); their profiles can move the fit to a lower (28).
   // v5: the 68 % intervals at the bulk noise level of the standard errors.
-  std::string settings = fmt::format("rockfit-fit v6; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
+  // v6: the lateral rescan.
+  // v7: the model-error statement is stored with each fit (the fitted values are those of v6).
+  std::string settings = fmt::format("rockfit-fit v7; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
                                      "global={}; keep_bias={}; block=({:.17g},{:.17g},{:.17g},{:.17g})",
                                      fitting::ToString(fitting::ParseFitMethod(args.method)),
                                      fitting::ToString(fitting::ParseIntervalMethod(args.intervals)), args.bounds,
@@ -169,14 +177,35 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   for (const FixEntry& fix : ParseFixEntries(args)) {
     if (!fix.value) settings += fmt::format("; {}:fixed at the data estimate", fitting::Name(fix.id));
   }
+  if (args.model_error_widening != 0.0) settings += fmt::format("; model_error_widening={:.17g}", args.model_error_widening);
   return settings;
+}
+
+fitting::CampaignTrial MakeCampaignTrial(const io::Manifest& manifest, const io::TrialSpec& spec, const FitArgs& fit_args,
+                                         std::function<void(const io::Recording&)> on_loaded) {
+  fitting::CampaignTrial trial;
+  trial.id = TrialNameFrom(spec.id);
+  trial.labels = {spec.block_id, spec.position, spec.notes};
+  trial.settings = [&manifest, &spec, fit_args] {
+    const core::Block block = manifest.FindBlock(spec.block_id).ToBlock();
+    return FitSettingsText(block, fit_args) + "; mounting=" + (spec.mounting.empty() ? "identity" : spec.mounting);
+  };
+  trial.prepare = [&manifest, &spec, fit_args, on_loaded] {
+    const core::Block block = manifest.FindBlock(spec.block_id).ToBlock();
+    auto recording = std::make_shared<const io::Recording>(LoadManifestTrial(spec));
+    if (on_loaded) on_loaded(*recording);
+    PreparedFit prepared = PrepareFit(*recording, block, fit_args);
+    return fitting::PreparedTrial{std::move(prepared.objective), std::move(prepared.start), prepared.options,
+                                  std::move(recording)};
+  };
+  return trial;
 }
 
 nlohmann::json FitResultJson(const std::string& trial, const fitting::FitSummary& s) {
   // The fit's own JSON (FitSummary::ToJson), narrowed to the keys `fit --json` documents (fitting/README.md,
   // "rockfit fit"): one JSON writer for the library, the command line and Python.
   static const char* const kKeys[] = {"trial", "parameters", "correlation", "uncertainty_method", "uncertainty",
-                                      "lateral_motion", "epsilon", "epsilon_initial", "t_end", "simulations",
+                                      "lateral_motion", "model_error", "epsilon", "epsilon_initial", "t_end", "simulations",
                                       "wall_s", "termination", "warnings"};
   static const char* const kParameterKeys[] = {"value",       "lower",       "upper",      "fixed",
                                                "std_error",   "interval_68", "interval_95", "determined"};
@@ -213,6 +242,7 @@ std::string FitResultTable(const std::string& trial, const fitting::FitSummary& 
   }
   out += fmt::format("ε (28)       {:.6g} rad/s (start {:.6g} rad/s), window ends at {:.4f} s\n", s.epsilon_rad_s,
                      s.epsilon_initial_rad_s, s.t_end_s);
+  out += "model error  " + fitting::ModelErrorText(s.model_error) + "\n";
   out += fmt::format("effort       {} simulations in {:.2f} s; {}\n", s.simulations, s.wall_time_s, s.termination);
   out += fmt::format("intervals    {} ({} of the simulations, {:.2f} s)\n", s.uncertainty.description,
                      s.uncertainty.evaluations, s.uncertainty.wall_time_s);

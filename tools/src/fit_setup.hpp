@@ -3,6 +3,7 @@
 // HDF5 group is the fitting library's (rockfit/fitting/fit_store.hpp).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -12,11 +13,13 @@
 #include <nlohmann/json.hpp>
 
 #include "rockfit/core/block.hpp"
+#include "rockfit/fitting/fit_campaign.hpp"
 #include "rockfit/fitting/fit_options.hpp"
 #include "rockfit/fitting/fit_summary.hpp"
 #include "rockfit/fitting/initial_guess.hpp"
 #include "rockfit/fitting/objective.hpp"
 #include "rockfit/fitting/trial_problem.hpp"
+#include "rockfit/io/manifest.hpp"
 #include "rockfit/io/recording.hpp"
 
 namespace rockfit::tools {
@@ -34,10 +37,11 @@ struct FitArgs {
   bool keep_bias = false;  // do not subtract the gyro bias measured at rest
   int threads = 0;
   std::string intervals = "thorough";  // none | fast | thorough (fitting::IntervalMethod)
+  double model_error_widening = 0.0;   // fitting::IntervalOptions::model_error_widening (0: off)
 };
 
 // --method, --bounds, --free, --fix, --lower, --upper, --t-end, --max-evaluations, --no-global, --keep-bias,
-// --threads, --intervals.
+// --threads, --intervals, --model-error-widening.
 void AddFitOptions(CLI::App& app, FitArgs& args);
 
 struct PreparedFit {
@@ -70,9 +74,16 @@ PreparedFit PrepareFit(const io::Recording& recording, const core::Block& block,
 // (fitting::SettingsHash).
 std::string FitSettingsText(const core::Block& block, const FitArgs& args);
 
+// One trial of a manifest as the fitting library's campaigns take it (fitting::CampaignTrial): the settings of its
+// block with the trial's mounting as the manifest gives it ("auto" included, it changes what is fitted), and a
+// problem prepared on the worker from the recording, which `on_loaded` sees first (the caller's report of its
+// mounting). `manifest` and `spec` must outlive the trial.
+fitting::CampaignTrial MakeCampaignTrial(const io::Manifest& manifest, const io::TrialSpec& spec, const FitArgs& fit_args,
+                                         std::function<void(const io::Recording&)> on_loaded = {});
+
 // The documented JSON of one fit: trial, parameters (value, lower, upper, fixed, std_error, interval_68,
-// interval_95, determined), correlation, uncertainty_method, uncertainty, epsilon, epsilon_initial, t_end,
-// simulations, wall_s, termination, warnings.
+// interval_95, determined), correlation, uncertainty_method, uncertainty, lateral_motion, model_error, epsilon,
+// epsilon_initial, t_end, simulations, wall_s, termination, warnings.
 nlohmann::json FitResultJson(const std::string& trial, const fitting::FitSummary& summary);
 
 // A table for terminals.

@@ -20,6 +20,7 @@
 
 #include "rockfit/fitting/fit_options.hpp"
 #include "rockfit/fitting/fit_store.hpp"
+#include "rockfit/fitting/model_error.hpp"
 #include "rockfit/fitting/objective.hpp"
 #include "rockfit/fitting/parameters.hpp"
 #include "rockfit/io/campaign_hdf5.hpp"
@@ -69,6 +70,7 @@ struct TrialOutcome {
   std::exception_ptr error;     // the exception that failed it (kFailed only), for callers that classify errors
   double epsilon_rad_s = std::numeric_limits<double>::quiet_NaN();  // ε (28) of the fit; NaN when not fitted
   double fit_wall_s = 0.0;      // the fitter's own wall time (FitSummary::wall_time_s); 0 when not fitted
+  ModelErrorStatement model_error;  // of the fit (not available when not fitted)
   bool ok() const { return status == TrialStatus::kFitted || status == TrialStatus::kSkipped; }
 };
 

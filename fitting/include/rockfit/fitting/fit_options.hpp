@@ -8,6 +8,7 @@
 
 #include "rockfit/fitting/lateral_motion_check.hpp"
 #include "rockfit/fitting/lateral_rescan.hpp"
+#include "rockfit/fitting/model_error.hpp"
 #include "rockfit/fitting/parameters.hpp"
 
 namespace rockfit::fitting {
@@ -139,6 +140,11 @@ struct IntervalOptions {
   // intervals are 1.2–1.9 times wider than the linearised ones (medians) and held the truth of t0 and λ_lon
   // in 82–84 % of the trials, the linearised ones in 66–83 %.
   bool profile_68 = false;
+  // Widening for model error (0: off, the default): every 95 % interval's half-widths are multiplied by
+  // max(1, model_error_widening · ε/ε_noise), ε_noise the noise floor at rest (model_error.hpp), clipped to the
+  // bounds. A model-error variance proportional to (ε/ε_noise)²; measured but not calibrated (fitting/README.md,
+  // "Recordings made by other physics").
+  double model_error_widening = 0.0;
   // Nelder–Mead evaluations per profile point (the other parameters re-fitted, warm-started).
   int profile_evaluations = 120;
   // Evaluations of the least-squares refinement of the optimum that the profiles start from.
@@ -171,6 +177,8 @@ struct FitOptions {
   // When that check flags the kept point: a rescan of λ_lat over growing windows (lateral_rescan.hpp); the fit
   // moves to its result when (28) is lower there.
   LateralRescanOptions lateral_rescan;
+  // How much of ε the noise at rest explains, and a warning when model error dominates (model_error.hpp).
+  ModelErrorOptions model_error;
   // Worker threads for the global stage; 0 = all cores (TBB default). Batches set 1 per trial.
   int num_threads = 0;
   // A value closer than this fraction of its range to a bound is reported "at bound".

@@ -45,12 +45,16 @@ struct StoredParameters {
 // `fit` is the group /fits/<trial>. BadInput when its columns have different lengths.
 StoredParameters ReadFitParameters(const io::hdf5::Group& fit);
 
-// The attributes of /fits/<trial> that campaigns use (absent ones: empty, NaN, 0; `feasible` true).
+// The attributes of /fits/<trial> that campaigns use (absent ones: empty, NaN, 0; `feasible` true;
+// model_error_dominates -1).
 struct StoredFitLabels {
   std::string block, position, settings_hash, mounting;
   bool feasible = true;
   double epsilon_rad_s = 0.0, wall_s = 0.0;
   std::int64_t simulations = 0;
+  // The model-error statement (model_error.hpp); NaN and -1 when not measured or written before it existed.
+  double noise_floor_rad_s = 0.0, model_error_rad_s = 0.0, noise_share = 0.0;
+  std::int64_t model_error_dominates = -1;  // 1 yes, 0 no, -1 not measured
 };
 StoredFitLabels ReadFitLabels(const io::hdf5::Group& fit);
 

@@ -12,6 +12,7 @@
 #include "rockfit/fitting/local_optimizer.hpp"
 #include "rockfit/fitting/parameters.hpp"
 #include "rockfit/fitting/lateral_motion_check.hpp"
+#include "rockfit/fitting/model_error.hpp"
 #include "rockfit/fitting/uncertainty.hpp"
 
 namespace rockfit::fitting {
@@ -30,6 +31,7 @@ enum class WarningKind {
   kMovedByIntervals,           // "moved_by_intervals"
   kLateralMotionUnexplained,   // "lateral_motion_unexplained"
   kMovedByLateralRescan,       // "moved_by_lateral_rescan"
+  kModelErrorDominates,        // "model_error_dominates"
 };
 const char* ToString(WarningKind kind);
 
@@ -61,6 +63,8 @@ struct FitSummary {
   UncertaintySummary uncertainty;
   // Whether the model at the fit reproduces the recorded out-of-plane motion (lateral_motion_check.hpp).
   LateralMotionCheck lateral_motion;
+  // How much of ε the sensor noise at rest explains and how much is model error (model_error.hpp).
+  ModelErrorStatement model_error;
 
   double epsilon_initial_rad_s = 0.0;  // (28) at `start`
   double epsilon_rad_s = 0.0;          // (28) at `parameters`

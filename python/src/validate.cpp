@@ -1,0 +1,50 @@
+// rockfit.validate: the predictive check of a campaign, as `rockfit validate MANIFEST --json` (the same code,
+// tools/src/validation_run.cpp, and the same keys).
+#include <fmt/format.h>
+
+#include "bindings.hpp"
+#include "rockfit/core/errors.hpp"
+#include "validation_run.hpp"
+
+namespace rockfit::python {
+namespace {
+
+py::object Validate(const std::string& manifest, const std::optional<std::string>& fits, int jobs,
+                    double ratio_warning, const std::string& method, const std::string& intervals) {
+  tools::ValidateArgs args;
+  args.manifest = manifest;
+  args.fits = fits.value_or("");
+  args.jobs = jobs;
+  args.ratio_warning = ratio_warning;
+  args.fit.method = method;
+  args.fit.intervals = intervals;
+  fitting::ValidationSummary summary;
+  {
+    py::gil_scoped_release release;
+    summary = tools::RunValidation(args);
+  }
+  nlohmann::json j = nlohmann::json::parse(fitting::ValidationJson(summary));
+  j["manifest"] = manifest;
+  j["fits"] = fits ? nlohmann::json(*fits) : nlohmann::json();
+  return MakeRecord("Validation", FromJson(j).cast<py::dict>());
+}
+
+}  // namespace
+
+void RegisterValidate(py::module_& m) {
+  m.def("validate", &Validate, py::arg("manifest"), py::kw_only(), py::arg("fits") = py::none(), py::arg("jobs") = 0,
+        py::arg("ratio_warning") = 1.5, py::arg("method") = "auto", py::arg("intervals") = "thorough",
+        "The predictive check of a campaign, as `rockfit validate MANIFEST --json`: every trial of a block and\n"
+        "position left out in turn, fitted only in t0 and α with the others' pooled λ, λ_lat, λ_lon, its error (28)\n"
+        "compared with its own fit's.\n\n"
+        "fits: a file of `rockfit batch` holding every trial's own fit (default: fit them now, with method and\n"
+        "intervals as `rockfit batch`); jobs: trials at once (0: all cores); ratio_warning: ε_pred/ε_own above it\n"
+        "is reported as not transferring.\n\n"
+        "Returns a Record 'Validation': trials (per trial: trial, block, position, predicted, message, n_others,\n"
+        "epsilon_own, epsilon_pred, ratio, transfers, overlaps_all, t0, alpha, parameters: per λ name held, pooled,\n"
+        "pooled_interval_95, n_pooled, overlaps), groups (block, position, n, n_predicted, median_ratio, max_ratio,\n"
+        "n_transfer, n_overlap_all), ratio_warning, simulations, wall_s, manifest, fits. The GIL is released while\n"
+        "it runs.");
+}
+
+}  // namespace rockfit::python

@@ -1,0 +1,118 @@
+// The predictive check (predictive_check.hpp) on trials of the analytic test model, own fits taken at the truth:
+// trials that share λ, λ_lat, λ_lon predict each other as well as their own fits do, a trial whose λ_lon is 50 %
+// off is predicted at least twice as badly, and the leave-one-out pooling uses exactly the other trials of the group.
+#include "rockfit/fitting/predictive_check.hpp"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "analytic_trial.hpp"
+#include "rockfit/core/errors.hpp"
+
+namespace rockfit::fitting {
+namespace {
+
+struct Campaign {
+  std::vector<testing::AnalyticTrial> trials;
+  std::vector<OwnFit> fits;
+};
+
+// Trials of one block and position with α, t0 and noise differing; own fits at the truth with intervals of ±1 %
+// (a stand-in for the fitter, whose recovery of the truth is tested elsewhere).
+Campaign MakeCampaign(const std::vector<double>& lambda_lon) {
+  Campaign c;
+  for (std::size_t i = 0; i < lambda_lon.size(); ++i) {
+    testing::SyntheticSignalOptions o = testing::RealisticDisturbances(40 + i);
+    o.t0_s = 0.5 + 0.02 * static_cast<double>(i);
+    c.trials.push_back(testing::MakeAnalyticTrial(0.19 + 0.007 * static_cast<double>(i), 0.8, -2.0, lambda_lon[i], o));
+    const testing::AnalyticTrial& t = c.trials.back();
+    OwnFit f;
+    f.trial = "T" + std::to_string(i + 1);
+    f.block = "B";
+    f.position = "A";
+    f.values = t.truth;
+    f.epsilon_rad_s = t.MakeObjective(t.Bounded(BoundsSet::kEmpirical)).Evaluate(t.truth).epsilon_rad_s;
+    for (ParameterId id : kAllParameters) {
+      const std::size_t k = static_cast<std::size_t>(id);
+      const double v = t.truth.value(id), half = 0.01 * std::max(std::abs(v), 0.01);
+      f.interval_95[k] = {v - half, v + half};
+      f.determined[k] = true;
+    }
+    c.fits.push_back(f);
+  }
+  return c;
+}
+
+ValidationSummary Check(const Campaign& c) {
+  return RunPredictiveCheck(c.fits, [&c](std::size_t i) {
+    const testing::AnalyticTrial& t = c.trials[i];
+    const ParameterSet bounded = t.Bounded(BoundsSet::kEmpirical);
+    return PreparedTrial{t.MakeObjective(bounded), bounded, FitOptions{}, nullptr};
+  });
+}
+
+TEST(PredictiveCheck, TrialsSharingTheirImpactParametersPredictEachOtherAsWellAsTheirOwnFits) {
+  const ValidationSummary s = Check(MakeCampaign({0.6, 0.6, 0.6}));
+  ASSERT_EQ(s.trials.size(), 3u);
+  for (const TrialPrediction& t : s.trials) {
+    ASSERT_TRUE(t.predicted) << t.message;
+    EXPECT_EQ(t.n_others, 2);
+    EXPECT_LE(t.ratio, 1.5) << t.trial;
+    EXPECT_TRUE(t.transfers);
+    EXPECT_TRUE(t.overlaps_all);
+    EXPECT_NEAR(t.held[2], 0.6, 1e-9);
+  }
+  ASSERT_EQ(s.groups.size(), 1u);
+  EXPECT_EQ(s.groups[0].n_predicted, 3);
+  EXPECT_EQ(s.groups[0].n_transfer, 3);
+  EXPECT_GT(s.simulations, 0);
+}
+
+TEST(PredictiveCheck, ATrialWhoseLambdaLonIsFiftyPercentOffIsPredictedAtLeastTwiceAsBadly) {
+  const ValidationSummary s = Check(MakeCampaign({0.6, 0.6, 0.6, 0.9}));
+  const TrialPrediction& off = s.trials.back();
+  ASSERT_TRUE(off.predicted) << off.message;
+  EXPECT_NEAR(off.held[2], 0.6, 1e-9);  // pooled from the three others only
+  EXPECT_GE(off.ratio, 2.0);
+  EXPECT_FALSE(off.transfers);
+  EXPECT_FALSE(off.overlaps[2]);  // λ_lon: 0.9 ± 0.009 against 0.6 ± …
+  EXPECT_TRUE(off.overlaps[0]);
+}
+
+TEST(PredictiveCheck, PoolingLeavesOutTheTrialAndOtherGroups) {
+  Campaign c = MakeCampaign({0.6, 0.7, 0.8});
+  c.fits[2].position = "B";  // alone in its group
+  int n_others = -1;
+  const auto pooled = PoolOthers(c.fits, 0, &n_others);
+  EXPECT_EQ(n_others, 1);
+  EXPECT_NEAR(pooled[2].pooled, 0.7, 1e-12);
+  EXPECT_EQ(pooled[2].n_pooled, 1);
+
+  const ValidationSummary s = Check(c);
+  EXPECT_FALSE(s.trials[2].predicted);
+  EXPECT_NE(s.trials[2].message.find("no other fitted trial"), std::string::npos);
+  const nlohmann::json j = nlohmann::json::parse(ValidationJson(s));
+  EXPECT_TRUE(j["trials"][2]["ratio"].is_null());
+  EXPECT_EQ(j["groups"].size(), 2u);
+}
+
+TEST(PredictiveCheck, AnInfeasibleOwnFitIsNotPredictedAndNotPooled) {
+  Campaign c = MakeCampaign({0.6, 0.6, 0.6});
+  c.fits[1].feasible = false;
+  c.fits[1].message = "unreadable";
+  const ValidationSummary s = Check(c);
+  EXPECT_FALSE(s.trials[1].predicted);
+  EXPECT_NE(s.trials[1].message.find("unreadable"), std::string::npos);
+  EXPECT_EQ(s.trials[0].n_others, 1);
+}
+
+TEST(PredictiveCheck, OptionsAreValidated) {
+  PredictiveCheckOptions o;
+  o.ratio_warning = 0.5;
+  EXPECT_THROW(o.Validate(), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace rockfit::fitting
