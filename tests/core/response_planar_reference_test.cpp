@@ -360,7 +360,7 @@ TEST(RespondAgainstPlanarReference, RandomRecordsAgreeEpisodeByEpisodeInsideTheR
 TEST(RespondAgainstPlanarReference, RealRecordsAlongXAgreeInsideTheRoundOffHorizon) {
   ROCKFIT_REQUIRE_OPTIMISED_BUILD();
   const std::filesystem::path dir = testing::GroundMotionsDir();
-  if (dir.empty()) GTEST_SKIP() << "../shared/ground-motions not present";
+  if (dir.empty()) GTEST_SKIP() << "the real PEER records beside the checkout are not present";
   std::size_t compared = 0;
   int records = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {

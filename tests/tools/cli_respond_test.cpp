@@ -82,7 +82,7 @@ TEST(CliRespond, RunsThatOnceFailedInAFragilityCensusEndWithAStatus) {
                  "1.2393593972199581", "--lambda-lat", "4.2398603250082525", "--lambda-lon", "1.0821387835895908"},
                 "a micro-chatter");
   const std::filesystem::path dir = GroundMotionsDir();
-  if (dir.empty()) GTEST_SKIP() << "../shared/ground-motions not present";
+  if (dir.empty()) GTEST_SKIP() << "the real PEER records beside the checkout are not present";
   // An end vertex of edge V4V1 lifted and landed at the same instant, over and over ("more than 16 impacts at
   // t = 2.01662 s without the contact resolving").
   expect_status(block2,
