@@ -17,6 +17,16 @@ PYBIND11_MODULE(rockfit, m) {
       "  synth(prefix, block, ...)              a synthetic x-IMU recording with known truth\n\n"
       "Errors: ValueError (bad arguments), rockfit.InputError (bad files, a ValueError with .path, .line,\n"
       ".column), rockfit.NumericalError, rockfit.OutputError (an OSError).";
+  // Every array the module returns is a numpy array: without numpy the first call would fail far from here.
+  try {
+    pybind11::module_::import("numpy");
+  } catch (const pybind11::error_already_set&) {
+    const std::string running = pybind11::str(pybind11::module_::import("sys").attr("executable"));
+    throw pybind11::import_error(
+        "rockfit needs numpy, which this interpreter (" + running + ") cannot import. Run rockfit with the "
+        "interpreter it was built for, " ROCKFIT_PYTHON_EXECUTABLE " (apt-get install python3-numpy gives it numpy), "
+        "or build it for this one with cmake -DPython3_EXECUTABLE=" + running + ".");
+  }
   m.attr("__version__") = ROCKFIT_VERSION;
   rockfit::python::RegisterErrors(m);
   rockfit::python::RegisterRecord(m);
