@@ -484,7 +484,7 @@ HybridRun::Next HybridRun::RestOnTable(double t, const Eigen::Quaterniond& q_fla
   rest_mode.kind = ModeKind::kRest;
   const EndState at_rest{rest_mode, q_flat, Eigen::Vector3d::Zero()};
   const double t_until = std::min(options_.t_max_s, t_lift_off_);
-  std::optional<Uplift> uplift = NextUplift(block_, *ground_, q_flat, gravity_, t, t_until);
+  const std::optional<Uplift> uplift = NextUplift(block_, *ground_, q_flat, gravity_, t, t_until);
   if (!uplift) {
     if (lift_off_before_t_max()) {
       return Stop(EndReason::kLiftOff, t_lift_off_, at_rest,
