@@ -7,8 +7,8 @@
 #
 #   tools/response_census.sh ROCKFIT OUT_DIR [SAMPLES_PER_LEVEL] [RECORD_DIR]
 #
-# 540 samples per level give 8 groups × 2 rules × 12 levels × 540 = 103,680 runs (about 5 CPU-minutes per
-# 10,000 runs here); CI runs none of it (the tests hold the cases it found).
+# 540 samples per level give 8 groups × 2 rules × 12 levels × 540 = 103,680 runs (3.5 min on two cores here);
+# CI runs none of it (the tests hold the cases it found).
 set -euo pipefail
 rockfit="${1:?usage: tools/response_census.sh ROCKFIT OUT_DIR [SAMPLES_PER_LEVEL] [RECORD_DIR]}"
 out="${2:?usage: tools/response_census.sh ROCKFIT OUT_DIR [SAMPLES_PER_LEVEL] [RECORD_DIR]}"

@@ -155,7 +155,7 @@ class ImpactSequence {
   int count_ = 0;
 };
 
-// The times of the last few impacts of any kind.
+// The times of the last kMicroChatterImpacts impacts of any kind.
 class RecentTimes {
  public:
   void Add(double t_s) {
@@ -163,17 +163,15 @@ class RecentTimes {
     next_ = (next_ + 1) % times_.size();
     count_ = std::min(count_ + 1, times_.size());
   }
-  // The last n (≤ capacity) times lie within span_s.
-  bool Spans(int n, double span_s) const {
-    const auto k = static_cast<std::size_t>(n);
-    if (count_ < k || k == 0 || k > times_.size()) return false;
+  // All of them lie within span_s.
+  bool Within(double span_s) const {
+    if (count_ < times_.size()) return false;
     const std::size_t newest = (next_ + times_.size() - 1) % times_.size();
-    const std::size_t oldest = (next_ + times_.size() - k) % times_.size();
-    return times_[newest] - times_[oldest] < span_s;
+    return times_[newest] - times_[next_] < span_s;  // next_ holds the oldest once the ring is full
   }
 
  private:
-  std::array<double, 16> times_{};
+  std::array<double, kMicroChatterImpacts> times_{};
   std::size_t next_ = 0;
   std::size_t count_ = 0;
 };
@@ -566,7 +564,7 @@ std::optional<HybridRun::Next> HybridRun::SettleOnTable(double t, const Eigen::Q
 }
 
 bool HybridRun::MicroChatter(const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B) const {
-  if (!recent_impacts_.Spans(kMicroChatterImpacts, kMicroChatterSpan_s)) return false;
+  if (!recent_impacts_.Within(kMicroChatterSpan_s)) return false;
   const Eigen::Matrix3d R_WB = q_WB.toRotationMatrix();
   const double sin_tilt = std::hypot(R_WB(0, 2), R_WB(1, 2));  // the body z axis off the vertical
   return sin_tilt <= kMicroChatterTilt_rad && w_B.norm() <= kMicroChatterRate_rad_s;
