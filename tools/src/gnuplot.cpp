@@ -19,7 +19,7 @@
 
 #include <fmt/format.h>
 
-#include "output_kind.hpp"
+#include "rockfit/app/output_kind.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/atomic_file.hpp"
 
@@ -86,7 +86,7 @@ bool IsCompleteImage(const std::filesystem::path& path, ImageFormat format) {
 }  // namespace
 
 ImageFormat ImageFormatFor(const std::filesystem::path& output) {
-  const std::string extension = LowerCaseExtension(output);
+  const std::string extension = app::LowerCaseExtension(output);
   if (extension == ".png") return ImageFormat::kPng;
   if (extension == ".svg") return ImageFormat::kSvg;
   throw InvalidArgument(fmt::format("-o {}: the picture must end in .png or .svg", output.string()));
