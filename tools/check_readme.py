@@ -10,7 +10,8 @@ How to write a README section that this script checks (docs/design.md §12, "The
   in `\\` continues it on the next line, as in a shell); the lines after it, up to the next `$ ` line, are its
   output: stdout and stderr together through one pipe, as a log shows them (stdout comes out when the program
   flushes it; on a pipe the program prints progress lines where a terminal shows a progress bar). A command
-  followed by no lines must print nothing. `$ echo $?` after a command shows its exit code; any other command must exit with 0.
+  followed by no lines must print nothing. `$ echo $?` after a command shows its exit code; any other command
+  must exit with 0.
 * A line that is only `...` (or `…`) stands for any number of output lines: the lines up to the first one equal
   to the next shown line (or up to the end).
 * The commands run in document order, in one scratch copy of the repository's files per README (files that git
@@ -36,7 +37,9 @@ import difflib
 import os
 import pathlib
 import re
+import shlex
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -48,7 +51,7 @@ ELLIPSIS = ("...", "…")
 SYSTEM_PYTHON = "/usr/bin/python3"
 # Separates the outputs of the commands of one block in the shell's combined output (with the exit code).
 SEPARATOR = "@@rockfit-readme-check-7f3a@@"
-BLOCK_TIMEOUT_S = 900  # the slowest block (a whole fit campaign) takes about a minute on two busy cores
+BLOCK_TIMEOUT_S = 600  # the slowest block (a whole fit campaign) takes about 20 s on two busy cores
 
 NUMBER = r"\d+(?:\.\d+)?"
 DURATION = NUMBER + r"\s*(?:ms|µs|us|s|min|h)\b"
@@ -78,8 +81,9 @@ class Command:
         self.shown_line = shown_line  # README line of the first output line
 
 
-def parse_readme(path):
-    """Every checked block of a README as a list of Commands; raises ReadmeError for a block that escapes."""
+def parse_readme(path, name):
+    """Every checked block of the README `path` (named `name` in messages) as a list of Commands; raises
+    ReadmeError for a block that escapes the check."""
     lines = path.read_text(encoding="utf-8").split("\n")
     blocks = []
     i = 0
@@ -99,7 +103,7 @@ def parse_readme(path):
             body.append(lines[i])
             i += 1
         if i == len(lines):
-            raise ReadmeError(f"{path}:{start + 1}: the block opened here is never closed")
+            raise ReadmeError(f"{name}:{start + 1}: the block opened here is never closed")
         i += 1
         skipped = SKIP_MARKER.match(previous) is not None
         previous = ""
@@ -107,17 +111,17 @@ def parse_readme(path):
         if language != "console":
             if shows_commands and not skipped:
                 raise ReadmeError(
-                    f"{path}:{start + 1}: a ```{language} block shows `$ ` commands; write it as ```console so that "
+                    f"{name}:{start + 1}: a ```{language} block shows `$ ` commands; write it as ```console so that "
                     "its output is checked, or put `<!-- readme-check: skip REASON -->` on the line before it")
             continue
         if skipped:
-            raise ReadmeError(f"{path}:{start + 1}: a ```console block is always checked; to skip it, give it "
+            raise ReadmeError(f"{name}:{start + 1}: a ```console block is always checked; to skip it, give it "
                               "another language (```sh) after the skip marker")
-        blocks.append(parse_console_block(path, start + 2, body))
+        blocks.append(parse_console_block(name, start + 2, body))
     return blocks
 
 
-def parse_console_block(path, first_line, body):
+def parse_console_block(name, first_line, body):
     commands = []
     k = 0
     while k < len(body):
@@ -126,7 +130,7 @@ def parse_console_block(path, first_line, body):
             if not line.strip() and not commands:
                 k += 1
                 continue
-            raise ReadmeError(f"{path}:{first_line + k}: output before the first `$ ` command of the block")
+            raise ReadmeError(f"{name}:{first_line + k}: output before the first `$ ` command of the block")
         line_number = first_line + k
         text = line[2:]
         while text.endswith("\\") and k + 1 < len(body):
@@ -138,7 +142,7 @@ def parse_console_block(path, first_line, body):
         while k < len(body) and not body[k].startswith("$ "):
             shown.append(body[k])
             k += 1
-        commands.append(Command(path, line_number, text, shown, shown_line))
+        commands.append(Command(name, line_number, text, shown, shown_line))
     return commands
 
 
@@ -223,7 +227,7 @@ def needs_module(command):
 
 def run_block(block, scratch, python, with_python):
     """Runs the commands of a block in one shell; returns (output lines, exit code, seconds) per command."""
-    script = ["cd " + shlex_quote(str(scratch))]
+    script = ["cd " + shlex.quote(str(scratch))]
     for command in block:
         text = command.text if with_python or not needs_module(command) else ":"
         if python != SYSTEM_PYTHON:
@@ -235,9 +239,17 @@ def run_block(block, scratch, python, with_python):
     env.update(LC_ALL="C.UTF-8", PYTHONIOENCODING="utf-8", PYTHONDONTWRITEBYTECODE="1",
                MPLCONFIGDIR=str(scratch / ".matplotlib"))
     started = time.time()
-    completed = subprocess.run(["bash", "-c", "\n".join(script)], stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                               stderr=subprocess.STDOUT, env=env, timeout=BLOCK_TIMEOUT_S)
-    output = completed.stdout.decode("utf-8", errors="replace")
+    # A session of its own, so that a command that hangs is killed with the shell (the commands after it report
+    # no exit code).
+    shell = subprocess.Popen(["bash", "-c", "\n".join(script)], stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                             stderr=subprocess.STDOUT, env=env, start_new_session=True)
+    try:
+        output, _ = shell.communicate(timeout=BLOCK_TIMEOUT_S)
+    except subprocess.TimeoutExpired:
+        os.killpg(shell.pid, signal.SIGKILL)
+        output, _ = shell.communicate()
+        output += f"\n[killed after {BLOCK_TIMEOUT_S} s]".encode()
+    output = output.decode("utf-8", errors="replace")
     parts = re.split(r"\n?" + re.escape(SEPARATOR) + r" (\d+) ([\d.]+)\n", output)
     results = []
     last = started
@@ -252,28 +264,27 @@ def run_block(block, scratch, python, with_python):
     return results
 
 
-def shlex_quote(text):
-    return "'" + text.replace("'", "'\"'\"'") + "'"
-
-
 def first_line(command):
     text = command.text.split("\n")[0]
     return text if len(text) <= 90 else text[:87] + "..."
 
 
-def check_readme(path, blocks, scratch, python, with_python, update):
-    """Runs every block of one README; returns (failures, replacements {line index: new output lines})."""
+def check_readme(path, name, blocks, scratch, python, with_python, update):
+    """Runs every block of one README (the file `path`, shown as `name`); returns the number of failures."""
     failures = 0
     replacements = {}
     for block in blocks:
         results = run_block(block, scratch, python, with_python)
         for n, (command, (actual, code, seconds)) in enumerate(zip(block, results)):
-            where = f"{path}:{command.line}"
+            where = f"{name}:{command.line}"
             if not with_python and needs_module(command):
                 print(f"skip {where} (--without-python) $ {first_line(command)}", flush=True)
                 continue
             if code is None:
-                print(f"FAIL {where}: the block's shell stopped before `{first_line(command)}`", flush=True)
+                print(f"FAIL {where}: no exit code (the block's shell was killed or stopped before it ended) "
+                      f"$ {first_line(command)}", flush=True)
+                if actual:
+                    print("     its output: " + "\n     ".join(actual[-20:]), flush=True)
                 failures += 1
                 continue
             shows_code = n + 1 < len(block) and block[n + 1].text.strip() == "echo $?"
@@ -296,7 +307,7 @@ def check_readme(path, blocks, scratch, python, with_python, update):
         for (start, count), raw in sorted(replacements.items(), reverse=True):
             lines[start - 1:start - 1 + count] = [r.rstrip() for r in raw]
         path.write_text("\n".join(lines), encoding="utf-8")
-        print(f"updated {path}: {len(replacements)} output(s) replaced by the real ones", flush=True)
+        print(f"updated {name}: {len(replacements)} output(s) replaced by the real ones", flush=True)
     return failures
 
 
@@ -325,7 +336,7 @@ def main():
         return 2
     module_dir = args.python_module_dir.resolve() if args.python_module_dir else None
     try:
-        parsed = [(source / readme, parse_readme(source / readme)) for readme in args.readmes]
+        parsed = [(source / readme, parse_readme(source / readme, readme)) for readme in args.readmes]
     except (OSError, ReadmeError) as error:
         print(f"check_readme.py: {error}", file=sys.stderr)
         return 2
@@ -336,7 +347,8 @@ def main():
     for path, blocks in parsed:
         scratch = make_scratch(source, rockfit, module_dir)
         try:
-            failures += check_readme_at(path, source, blocks, scratch, args)
+            failures += check_readme(path, path.relative_to(source), blocks, scratch, args.python,
+                                     not args.without_python, args.update)
             commands += sum(len(block) for block in blocks)
         finally:
             if args.keep:
@@ -346,19 +358,6 @@ def main():
     print(f"{commands} command(s) of {len(parsed)} README(s) in {time.time() - started:.0f} s: "
           f"{'all shown outputs match' if not failures else f'{failures} differ'}")
     return 1 if failures else 0
-
-
-def check_readme_at(path, source, blocks, scratch, args):
-    relative = path.relative_to(source)
-    for block in blocks:
-        for command in block:
-            command.path = relative
-    cwd = os.getcwd()
-    os.chdir(source)  # so that --update writes the README given relative to the source directory
-    try:
-        return check_readme(relative, blocks, scratch, args.python, not args.without_python, args.update)
-    finally:
-        os.chdir(cwd)
 
 
 if __name__ == "__main__":
