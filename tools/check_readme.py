@@ -14,8 +14,9 @@ How to write a README section that this script checks (docs/design.md §12, "The
   must exit with 0.
 * A line that is only `...` (or `…`) stands for any number of output lines: the lines up to the first one equal
   to the next shown line (or up to the end).
-* The commands run in document order, in one scratch copy of the repository's files per README (files that git
-  tracks or would add; no build tree), so a later block may use the files an earlier one wrote. The working
+* The commands run in document order, in one scratch copy of the repository's files per README (the files git
+  tracks, as they are in the work tree: `git add` a new data file first; no build tree), so a later block may use
+  the files an earlier one wrote. The working
   directory is the copy's root. `rockfit` is the built program (on PATH, and as `build/tools/rockfit`),
   `build/python` the built module, and `/usr/bin/python3` in a command is replaced by --python (the interpreter
   given to CMake). --without-python (a build without the module) skips the commands that name build/python.
@@ -192,11 +193,11 @@ def unified_diff(command, shown_masked, view):
 
 
 def repository_files(source):
-    """Paths (relative) of the files of the repository: tracked or not ignored by git; without git, every file
-    outside .git and the build trees."""
+    """Paths (relative) of the files of the repository: those git tracks (or has staged); without git (a source
+    archive), every file outside .git and the build trees."""
     try:
-        listed = subprocess.run(["git", "-C", str(source), "ls-files", "-z", "--cached", "--others",
-                                 "--exclude-standard"], capture_output=True, check=True).stdout
+        listed = subprocess.run(["git", "-C", str(source), "ls-files", "-z", "--cached"], capture_output=True,
+                                check=True).stdout
         return sorted({p for p in listed.decode().split("\0") if p})
     except (OSError, subprocess.CalledProcessError):
         files = []
