@@ -1,6 +1,7 @@
 #include "rockfit/core/general_impact_map.hpp"
 
 #include "detail/conditioned_solve.hpp"
+#include "rockfit/core/enum_names.hpp"
 
 namespace rockfit::core {
 
@@ -12,6 +13,11 @@ const char* ToString(ImpactStatus status) {
     case ImpactStatus::kSingular: return "singular";
   }
   return "unknown";
+}
+
+bool FromString(std::string_view text, ImpactStatus* value) {
+  static constexpr ImpactStatus kAll[] = {ImpactStatus::kOk, ImpactStatus::kInfeasible, ImpactStatus::kAmbiguous, ImpactStatus::kSingular};
+  return core::FromStringAmong(text, kAll, value);
 }
 
 Eigen::Matrix3d SkewOf(const Eigen::Vector3d& p_x, const Eigen::Vector3d& p_C) {

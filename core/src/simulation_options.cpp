@@ -6,6 +6,7 @@
 #include "rockfit/core/checks.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/simulator.hpp"
+#include "rockfit/core/enum_names.hpp"
 
 namespace rockfit::core {
 
@@ -76,6 +77,11 @@ const char* ToString(EndReason reason) {
   return "failed";
 }
 
+bool FromString(std::string_view text, EndReason* value) {
+  static constexpr EndReason kAll[] = {EndReason::kPhase4, EndReason::kRest, EndReason::kOverturned, EndReason::kTMax, EndReason::kFailed, EndReason::kLiftOff};
+  return core::FromStringAmong(text, kAll, value);
+}
+
 const char* ToString(ImpactKind kind) {
   switch (kind) {
     case ImpactKind::kFacet: return "facet";
@@ -109,6 +115,11 @@ const char* ToString(FailureReason reason) {
     case FailureReason::kEnergyBlowUp: return "energy_blow_up";
   }
   return "none";
+}
+
+bool FromString(std::string_view text, FailureReason* value) {
+  static constexpr FailureReason kAll[] = {FailureReason::kNone, FailureReason::kEdgeImpact, FailureReason::kFacetImpact, FailureReason::kIntegratorStep, FailureReason::kImpactCascade, FailureReason::kMaxImpacts, FailureReason::kEnergyBlowUp};
+  return core::FromStringAmong(text, kAll, value);
 }
 
 void ModelParameters::Validate(bool check_alpha) const {

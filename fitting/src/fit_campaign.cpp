@@ -14,6 +14,7 @@
 #include "rockfit/core/checks.hpp"
 #include "rockfit/fitting/fitter.hpp"
 #include "rockfit/io/hdf5_transaction.hpp"
+#include "rockfit/core/enum_names.hpp"
 
 namespace rockfit::fitting {
 namespace {
@@ -116,6 +117,11 @@ const char* ToString(TrialStatus status) {
     case TrialStatus::kFailed: return "failed";
   }
   return "?";
+}
+
+bool FromString(std::string_view text, TrialStatus* value) {
+  static constexpr TrialStatus kAll[] = {TrialStatus::kFitted, TrialStatus::kSkipped, TrialStatus::kInfeasible, TrialStatus::kFailed};
+  return core::FromStringAmong(text, kAll, value);
 }
 
 CampaignSummary FitCampaign(const std::vector<CampaignTrial>& trials, const std::filesystem::path& output,

@@ -1,4 +1,5 @@
 #include "rockfit/fitting/fit_summary.hpp"
+#include "rockfit/core/enum_names.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -30,6 +31,11 @@ const char* ToString(WarningKind kind) {
     case WarningKind::kModelErrorDominates: return "model_error_dominates";
   }
   return "?";
+}
+
+bool FromString(std::string_view text, WarningKind* value) {
+  static constexpr WarningKind kAll[] = {WarningKind::kAtBound, WarningKind::kNotIdentifiable, WarningKind::kSimulationFailures, WarningKind::kNotConverged, WarningKind::kStdErrorUnavailable, WarningKind::kInfeasible, WarningKind::kPoorFit, WarningKind::kSecondBasin, WarningKind::kNotDetermined, WarningKind::kMovedByIntervals, WarningKind::kLateralMotionUnexplained, WarningKind::kMovedByLateralRescan, WarningKind::kModelErrorDominates};
+  return core::FromStringAmong(text, kAll, value);
 }
 
 bool FitSummary::HasWarning(WarningKind kind, const std::string& parameter) const {

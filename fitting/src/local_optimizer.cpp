@@ -1,4 +1,5 @@
 #include "rockfit/fitting/local_optimizer.hpp"
+#include "rockfit/core/enum_names.hpp"
 
 namespace rockfit::fitting {
 
@@ -10,6 +11,11 @@ const char* ToString(TerminationType type) {
     case TerminationType::kNotASearch: return "not_a_search";
   }
   return "failure";
+}
+
+bool FromString(std::string_view text, TerminationType* value) {
+  static constexpr TerminationType kAll[] = {TerminationType::kConvergence, TerminationType::kNoConvergence, TerminationType::kFailure, TerminationType::kNotASearch};
+  return core::FromStringAmong(text, kAll, value);
 }
 
 }  // namespace rockfit::fitting

@@ -13,6 +13,7 @@
 #include <nlopt.hpp>
 
 #include "parallel_for.hpp"
+#include "rockfit/core/enum_names.hpp"
 
 namespace rockfit::fitting {
 namespace {
@@ -224,6 +225,11 @@ const char* ToString(Determination d) {
     case Determination::kNo: return "no";
   }
   return "?";
+}
+
+bool FromString(std::string_view text, Determination* value) {
+  static constexpr Determination kAll[] = {Determination::kYes, Determination::kSignOnly, Determination::kNo};
+  return core::FromStringAmong(text, kAll, value);
 }
 
 bool WeightedResiduals(const Objective& objective, const ParameterSet& at, std::vector<Eigen::Vector3d>* residuals,

@@ -14,6 +14,7 @@
 #include "rockfit/quake/binomial_interval.hpp"
 #include "rockfit/io/content_hash.hpp"
 #include "rockfit/io/synth_random.hpp"
+#include "rockfit/core/enum_names.hpp"
 
 namespace rockfit::quake {
 namespace {
@@ -34,6 +35,11 @@ std::string RecordHash(const core::GroundMotion& g) {
 }  // namespace
 
 const char* ToString(IntensityMeasure measure) { return measure == IntensityMeasure::kPga ? "pga_g" : "scale"; }
+
+bool FromString(std::string_view text, IntensityMeasure* value) {
+  static constexpr IntensityMeasure kAll[] = {IntensityMeasure::kPga, IntensityMeasure::kScale};
+  return core::FromStringAmong(text, kAll, value);
+}
 
 std::string TiltLimitStateName(double fraction) { return fmt::format("tilt_{}", fraction); }
 

@@ -9,6 +9,7 @@
 #include <gsl/gsl_sf_erf.h>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/core/enum_names.hpp"
 
 namespace rockfit::quake {
 namespace {
@@ -56,6 +57,11 @@ const char* ToString(LognormalFitStatus status) {
     case LognormalFitStatus::kNotConverged: return "not_converged";
   }
   return "?";
+}
+
+bool FromString(std::string_view text, LognormalFitStatus* value) {
+  static constexpr LognormalFitStatus kAll[] = {LognormalFitStatus::kOk, LognormalFitStatus::kNoExceedance, LognormalFitStatus::kAllExceeded, LognormalFitStatus::kSeparated, LognormalFitStatus::kTooFewLevels, LognormalFitStatus::kNotConverged};
+  return core::FromStringAmong(text, kAll, value);
 }
 
 double LognormalFragility(double intensity, double median, double beta) {

@@ -9,6 +9,7 @@
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/impact_maps.hpp"
 #include "rockfit/io/peak_finding.hpp"
+#include "rockfit/core/enum_names.hpp"
 
 namespace rockfit::io {
 
@@ -39,6 +40,11 @@ const char* ToString(AvrfStatus status) {
     case AvrfStatus::kNoBlock: return "no_block";
   }
   return "unknown";
+}
+
+bool FromString(std::string_view text, AvrfStatus* value) {
+  static constexpr AvrfStatus kAll[] = {AvrfStatus::kOk, AvrfStatus::kNoImpact, AvrfStatus::kTooFewPeaks, AvrfStatus::kInvalidUplift, AvrfStatus::kNoBlock};
+  return core::FromStringAmong(text, kAll, value);
 }
 
 void AvrfOptions::Validate() const {

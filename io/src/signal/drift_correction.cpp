@@ -12,6 +12,7 @@
 #include "rockfit/core/errors.hpp"
 #include "signal/euler_kinematics.hpp"
 #include "rockfit/io/impact_consistency.hpp"
+#include "rockfit/core/enum_names.hpp"
 
 namespace rockfit::io {
 
@@ -39,6 +40,11 @@ const char* ToString(AnchorSource source) {
     case AnchorSource::kOmegaX: return "omega_x";
   }
   return "unknown";
+}
+
+bool FromString(std::string_view text, AnchorSource* value) {
+  static constexpr AnchorSource kAll[] = {AnchorSource::kOmegaY, AnchorSource::kOmegaX};
+  return core::FromStringAmong(text, kAll, value);
 }
 
 void DriftCorrectionOptions::Validate() const {

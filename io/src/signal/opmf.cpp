@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/core/enum_names.hpp"
 
 namespace rockfit::io {
 
@@ -13,6 +14,11 @@ const char* ToString(OpmfStatus status) {
     case OpmfStatus::kNoInPlaneMotion: return "no_in_plane_motion";
   }
   return "unknown";
+}
+
+bool FromString(std::string_view text, OpmfStatus* value) {
+  static constexpr OpmfStatus kAll[] = {OpmfStatus::kOk, OpmfStatus::kNoImpact, OpmfStatus::kNoInPlaneMotion};
+  return core::FromStringAmong(text, kAll, value);
 }
 
 OpmfResult ComputeOpmf(const std::vector<double>& t_s, const std::vector<Eigen::Vector3d>& euler_corrected_zyx,

@@ -2,6 +2,8 @@
 // kinetic energy about a fixed point used by (26).
 #pragma once
 
+#include <string_view>
+
 #include <Eigen/Core>
 
 namespace rockfit::core {
@@ -9,6 +11,7 @@ namespace rockfit::core {
 enum class ImpactStatus { kOk, kInfeasible, kAmbiguous, kSingular };
 // "ok", "infeasible", "ambiguous", "singular".
 const char* ToString(ImpactStatus status);
+bool FromString(std::string_view text, ImpactStatus* value);  // the inverse of ToString
 
 // The matrix to invert in (18) (or the 3×3 system of the no-spin facet map) counts as singular when its
 // reciprocal condition number (1-norm estimate) is below this: fewer than ~4 significant digits of ω⁺

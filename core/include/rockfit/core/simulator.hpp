@@ -43,6 +43,7 @@ const char* ToString(StopCondition stop);  // "phase4", "rest", "overturned", "t
 // Reads a stop condition's name back (command line, Python); false (and *stop unchanged) for any other text.
 bool FromString(std::string_view text, StopCondition* stop);
 const char* ToString(EndReason reason);    // "phase4", "rest", "overturned", "t_max", "failed", "lift_off"
+bool FromString(std::string_view text, EndReason* value);  // the inverse of ToString
 
 // When a run under ground motion has overturned (core/README.md, "Overturning under ground motion").
 enum class OverturnRule {
@@ -164,6 +165,7 @@ enum class FailureReason {
   kEnergyBlowUp,    // "energy_blow_up": the kinetic energy after an impact grows without bound
 };
 const char* ToString(FailureReason reason);
+bool FromString(std::string_view text, FailureReason* value);  // the inverse of ToString
 
 // Samples (t_s, w_B, q_WB, euler_zyx, mode: one entry per sample time up to t_end_s), the impact log, one
 // SegmentDiagnostics per continuous segment, and how the run ended.

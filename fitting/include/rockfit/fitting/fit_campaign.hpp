@@ -10,6 +10,8 @@
 //       [](const fitting::TrialOutcome& o, double elapsed_s) { ... });
 #pragma once
 
+#include <string_view>
+
 #include <exception>
 #include <filesystem>
 #include <functional>
@@ -62,6 +64,7 @@ enum class TrialStatus {
   kFailed,      // not fitted or not committed: see `error`
 };
 const char* ToString(TrialStatus status);  // "fitted", "skipped", "infeasible", "failed"
+bool FromString(std::string_view text, TrialStatus* value);  // the inverse of ToString
 
 struct TrialOutcome {
   std::string trial;

@@ -2,6 +2,8 @@
 // the end, effort, termination and warnings (docs/design.md §7).
 #pragma once
 
+#include <string_view>
+
 #include <array>
 #include <cstdint>
 #include <map>
@@ -34,6 +36,7 @@ enum class WarningKind {
   kModelErrorDominates,        // "model_error_dominates"
 };
 const char* ToString(WarningKind kind);
+bool FromString(std::string_view text, WarningKind* value);  // the inverse of ToString
 
 struct FitWarning {
   WarningKind kind = WarningKind::kNotConverged;

@@ -3,6 +3,8 @@
 // parameters of an Objective within its bounds and report (28) at the point they return.
 #pragma once
 
+#include <string_view>
+
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -22,6 +24,7 @@ enum class TerminationType {
   kNotASearch,     // the start point and the global stage: evaluated points, not a convergence test
 };
 const char* ToString(TerminationType type);  // "convergence", "no_convergence", "failure", "not_a_search"
+bool FromString(std::string_view text, TerminationType* value);  // the inverse of ToString
 
 struct LocalResult {
   Eigen::VectorXd x;           // the best point found (free parameters, in the order of free_ids())

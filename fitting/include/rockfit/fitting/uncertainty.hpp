@@ -27,6 +27,8 @@
 // fraction of its range; "sign only" when the interval excludes 0 but is open or that wide; "no" otherwise.
 #pragma once
 
+#include <string_view>
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -44,6 +46,7 @@ namespace rockfit::fitting {
 
 enum class Determination { kYes, kSignOnly, kNo };
 const char* ToString(Determination d);  // "yes", "sign only", "no"
+bool FromString(std::string_view text, Determination* value);  // the inverse of ToString
 
 // [lower, upper]; NaN marks an open end.
 using Interval = std::array<double, 2>;

@@ -44,6 +44,7 @@ struct AvrfOptions {
 enum class AvrfStatus { kOk, kNoImpact, kTooFewPeaks, kInvalidUplift, kNoBlock };
 // "ok", "no_impact", "too_few_peaks", "invalid_uplift", "no_block".
 const char* ToString(AvrfStatus status);
+bool FromString(std::string_view text, AvrfStatus* value);  // the inverse of ToString
 
 struct AvrfResult {
   AvrfStatus status = AvrfStatus::kNoImpact;

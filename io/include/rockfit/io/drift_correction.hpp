@@ -55,6 +55,7 @@ struct DriftCorrectionOptions {
 enum class AnchorSource { kOmegaY, kOmegaX };
 // "omega_y", "omega_x".
 const char* ToString(AnchorSource source);
+bool FromString(std::string_view text, AnchorSource* value);  // the inverse of ToString
 
 struct Anchor {
   double t_s = 0.0;          // impact time [s] (sub-sample with kSubsample)

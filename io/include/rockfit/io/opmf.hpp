@@ -3,6 +3,8 @@
 // drift is no longer tied down (the correction is constant there) and the block is at rest or nearly so.
 #pragma once
 
+#include <string_view>
+
 #include <string>
 #include <vector>
 
@@ -13,6 +15,7 @@ namespace rockfit::io {
 enum class OpmfStatus { kOk, kNoImpact, kNoInPlaneMotion };
 // "ok", "no_impact", "no_in_plane_motion".
 const char* ToString(OpmfStatus status);
+bool FromString(std::string_view text, OpmfStatus* value);  // the inverse of ToString
 
 struct OpmfResult {
   OpmfStatus status = OpmfStatus::kNoImpact;

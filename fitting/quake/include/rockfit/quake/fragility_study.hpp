@@ -17,6 +17,8 @@
 //   quake::FragilitySummary summary = quake::SummariseFragility(study, outcomes);
 #pragma once
 
+#include <string_view>
+
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -35,6 +37,7 @@ enum class IntensityMeasure {
   kScale,  // level = factor multiplying the record as read
 };
 const char* ToString(IntensityMeasure measure);  // "pga_g", "scale"
+bool FromString(std::string_view text, IntensityMeasure* value);  // the inverse of ToString
 
 // A normal distribution of one impact parameter (sd = 0: fixed at the mean).
 struct ParameterDistribution {

@@ -4,6 +4,8 @@
 // the Hessian of −log L at the optimum), the median's by the delta method through ln θ.
 #pragma once
 
+#include <string_view>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -28,6 +30,7 @@ enum class LognormalFitStatus {
   kNotConverged,   // the optimiser did not converge or the information matrix is not positive definite
 };
 const char* ToString(LognormalFitStatus status);  // "ok", "no_exceedance", "all_exceeded", "separated", …
+bool FromString(std::string_view text, LognormalFitStatus* value);  // the inverse of ToString
 
 struct LognormalFragilityFit {
   LognormalFitStatus status = LognormalFitStatus::kTooFewLevels;
