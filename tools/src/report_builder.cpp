@@ -63,6 +63,12 @@ std::string NumCell(double v, int digits = 4) {
 }
 std::string NumCell(const std::optional<double>& v, int digits = 4) { return NumCell(v.value_or(std::nan("")), digits); }
 std::string TextCell(const std::string& text) { return "<td>" + Escape(text) + "</td>"; }
+// A cell sorted by `value` and showing `text` (a value with its interval).
+std::string ValueCell(double value, const std::string& text) {
+  return fmt::format("<td class=\"interval\" data-sort=\"{}\">{}</td>", std::isfinite(value) ? fmt::format("{}", value) : "",
+                     Escape(text));
+}
+std::string IntervalCell(const std::string& text) { return "<td class=\"interval\">" + Escape(text) + "</td>"; }
 
 // <table> with caption and header row; `sortable` adds the sort buttons (script below).
 std::string TableStart(const std::string& caption, const std::vector<std::string>& headers, bool sortable = true) {
@@ -108,13 +114,15 @@ h1 { font-size: 1.7rem; margin: 0.5rem 0 0.2rem; }
 h2 { font-size: 1.35rem; border-bottom: 2px solid var(--rule); padding-bottom: 0.2rem; margin-top: 2.2rem; }
 h3 { font-size: 1.1rem; margin-top: 1.6rem; }
 .meta { color: var(--muted); margin: 0; }
-nav ol { columns: 2; padding-left: 1.2rem; }
+nav > ol { padding-left: 1.2rem; }
+nav ol ol { display: flex; flex-wrap: wrap; gap: 0 1rem; list-style: none; padding-left: 0; }
 .table-wrap { overflow-x: auto; margin: 0.8rem 0 1.2rem; }
 table { border-collapse: collapse; font-size: 0.9rem; }
 caption { text-align: left; font-weight: 600; padding-bottom: 0.3rem; caption-side: top; }
 th, td { border-bottom: 1px solid var(--rule); padding: 0.25rem 0.6rem; text-align: left; vertical-align: top; }
 th { background: #f2f2f2; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+td.interval { white-space: nowrap; font-variant-numeric: tabular-nums; }
 th button { all: inherit; cursor: pointer; padding: 0; }
 th button::after { content: " ↕"; color: #999; }
 th[aria-sort="ascending"] button::after { content: " ↑"; color: var(--ink); }
@@ -137,7 +145,7 @@ section.trial { border-top: 1px solid var(--rule); }
   nav, th button::after { display: none; }
   h2, h3 { break-after: avoid; page-break-after: avoid; }
   section.trial { break-before: page; page-break-before: always; border-top: none; }
-  table { break-inside: auto; }
+  table { break-inside: auto; font-size: 8.5pt; }
   tr { break-inside: avoid; }
   .table-wrap { overflow: visible; }
   figure svg.plot { max-width: 100%; max-height: 230mm; }
@@ -260,23 +268,25 @@ void WriteOverview(Page& page, const ReportData& data) {
               "sample standard deviation per block and position; circles: single trials (the paper's Fig. 6).");
 
   if (!data.fit_groups.empty()) {
-    out << TableStart("Impact parameters per block and position: pooled estimate and its 95 % interval (else the mean "
-                      "of the trials), spread between the trials",
-                      {"block", "position", "fits", "λ [1]", "λ 95 %", "λ_lat [1]", "λ_lat 95 %", "λ_lon [1]",
-                       "λ_lon 95 %", "α mean [rad]", "α spread [rad]"});
+    out << TableStart("Impact parameters per block and position: pooled estimate [95 % interval] (else the mean of "
+                      "the trials, marked “mean”); α: mean ± spread between the trials",
+                      {"block", "position", "fits", "λ [1]", "λ_lat [1]", "λ_lon [1]", "α [rad]"});
     for (const fitting::GroupSummary& g : data.fit_groups) {
       out << "<tr>" << TextCell(g.block) << TextCell(g.position) << NumCell(static_cast<double>(g.n));
       for (const char* name : {"lambda", "lambda_lat", "lambda_lon"}) {
         const auto p = g.pooled.find(name);
         const bool pooled = p != g.pooled.end() && p->second.n_pooled > 0 && std::isfinite(p->second.pooled);
         const auto mean = g.mean.find(name);
-        out << NumCell(pooled ? p->second.pooled : (mean != g.mean.end() ? mean->second : std::nan("")))
-            << TextCell(pooled ? IntervalText(p->second.interval_95[0], p->second.interval_95[1]) : "not pooled");
+        const double value = pooled ? p->second.pooled : (mean != g.mean.end() ? mean->second : std::nan(""));
+        const std::string text = pooled ? Num(value) + " " + IntervalText(p->second.interval_95[0], p->second.interval_95[1])
+                                        : Num(value) + " (mean)";
+        out << ValueCell(value, text);
       }
       const auto alpha = g.mean.find("alpha");
       const auto alpha_sd = g.std_dev.find("alpha");
-      out << NumCell(alpha != g.mean.end() ? alpha->second : std::nan(""))
-          << NumCell(alpha_sd != g.std_dev.end() ? alpha_sd->second : std::nan("")) << "</tr>\n";
+      const double alpha_mean = alpha != g.mean.end() ? alpha->second : std::nan("");
+      out << ValueCell(alpha_mean, Num(alpha_mean) + " ± " + Num(alpha_sd != g.std_dev.end() ? alpha_sd->second : std::nan(""), 2))
+          << "</tr>\n";
     }
     out << kTableEnd;
     page.Figure("parameter-ranges", page.Draw([&] { return ParameterRangesFigure(data.fit_groups, page.NextId()); }),
@@ -452,8 +462,8 @@ void WriteTrial(Page& page, const ReportTrial& t) {
       const bool intervals = p.has_intervals && k < p.interval_95_lower.size();
       out << "<tr><th scope=\"row\">" << Escape(ParameterLabel(p.name[k])) << "</th>" << TextCell(p.unit[k])
           << NumCell(p.value[k], 5)
-          << TextCell(intervals ? IntervalText(p.interval_68_lower[k], p.interval_68_upper[k]) : "–")
-          << TextCell(intervals ? IntervalText(p.interval_95_lower[k], p.interval_95_upper[k]) : "–")
+          << IntervalCell(intervals ? IntervalText(p.interval_68_lower[k], p.interval_68_upper[k]) : "–")
+          << IntervalCell(intervals ? IntervalText(p.interval_95_lower[k], p.interval_95_upper[k]) : "–")
           << TextCell(k < p.determined.size() ? p.determined[k] : (k < p.fixed.size() && p.fixed[k] ? "fixed" : "–"))
           << "</tr>\n";
     }

@@ -59,7 +59,7 @@ ReportFigure Draw(const GnuplotFigure& figure, const std::string& body, int heig
   }
   const std::filesystem::path output = figure.directory() / "figure.svg";
   try {
-    figure.Render(body, output, kFigureWidth_px, height_px);
+    figure.Render("set termoption font 'Sans,12'\n" + body, output, kFigureWidth_px, height_px);
     std::ifstream in(output, std::ios::binary);
     const std::string svg((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     result.svg = InlineSvg(svg, id_prefix, label);
