@@ -90,7 +90,21 @@ std::string InlineSvg(const std::string& gnuplot_svg, const std::string& id_pref
   svg = std::regex_replace(svg, std::regex(R"(<title>[^<]*</title>)"), "<title>" + EscapeXml(label) + "</title>");
   svg = std::regex_replace(svg, std::regex(R"(<desc>[^<]*</desc>)"), "");
   // Unique ids: id='x' → id='P-x', href='#x' → href='#P-x', url(#x) → url(#P-x).
-  svg = std::regex_replace(svg, std::regex(R"(\bid=(['"]))"), "id=$1" + id_prefix + "-");
+  // gnuplot repeats the ids of its plot groups in every panel of a multiplot: a repeated id gets a suffix.
+  std::string renamed;
+  std::set<std::string> seen;
+  const std::regex id_attribute(R"(\bid=(['"])([^'"]*)(['"]))");
+  auto last = svg.cbegin();
+  for (auto it = std::sregex_iterator(svg.cbegin(), svg.cend(), id_attribute); it != std::sregex_iterator(); ++it) {
+    const std::smatch& m = *it;
+    renamed.append(last, m[0].first);
+    std::string id = id_prefix + "-" + m[2].str();
+    for (int n = 2; !seen.insert(id).second; ++n) id = fmt::format("{}-{}-{}", id_prefix, m[2].str(), n);
+    renamed += "id=" + m[1].str() + id + m[3].str();
+    last = m[0].second;
+  }
+  renamed.append(last, svg.cend());
+  svg = std::move(renamed);
   svg = std::regex_replace(svg, std::regex(R"(href=(['"])#)"), "href=$1#" + id_prefix + "-");
   svg = std::regex_replace(svg, std::regex(R"(url\(#)"), "url(#" + id_prefix + "-");
   return svg;
