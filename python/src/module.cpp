@@ -38,4 +38,5 @@ PYBIND11_MODULE(rockfit, m) {
   rockfit::python::RegisterFit(m);
   rockfit::python::RegisterSynth(m);
   rockfit::python::RegisterValidate(m);
+  rockfit::python::RegisterReport(m);
 }
