@@ -123,10 +123,10 @@ th, td { border-bottom: 1px solid var(--rule); padding: 0.25rem 0.6rem; text-ali
 th { background: #f2f2f2; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
 td.interval { white-space: nowrap; font-variant-numeric: tabular-nums; }
-th button { all: inherit; cursor: pointer; padding: 0; }
-th button::after { content: " ↕"; color: #999; }
-th[aria-sort="ascending"] button::after { content: " ↑"; color: var(--ink); }
-th[aria-sort="descending"] button::after { content: " ↓"; color: var(--ink); }
+th button { all: inherit; display: inline; border: 0; background: none; cursor: pointer; padding: 0; }
+th button::after { content: "\00a0↕"; color: #999; }
+th[aria-sort="ascending"] button::after { content: "\00a0↑"; color: var(--ink); }
+th[aria-sort="descending"] button::after { content: "\00a0↓"; color: var(--ink); }
 figure { margin: 1rem 0 1.4rem; break-inside: avoid; page-break-inside: avoid; }
 figure svg.plot { display: block; width: 100%; height: auto; max-width: 900px; }
 figcaption { color: var(--muted); font-size: 0.9rem; margin-top: 0.3rem; }
@@ -532,8 +532,9 @@ std::string BuildReportHtml(const ReportOptions& options, ReportSummary* summary
        << "<meta name=\"generator\" content=\"rockfit " << Escape(options.rockfit_version) << "\">\n"
        << "<title>" << Escape(options.title) << "</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n";
   html << "<header>\n<h1>" << Escape(options.title) << "</h1>\n<p class=\"meta\">Written " << Escape(date)
-       << " by rockfit " << Escape(options.rockfit_version) << " from " << Escape(options.inputs.summary.string())
-       << (options.inputs.fits.empty() ? "" : " and " + Escape(options.inputs.fits.string())) << ".</p>\n</header>\n";
+       << " by rockfit " << Escape(options.rockfit_version) << " from " << Escape(options.inputs.summary.filename().string())
+       << (options.inputs.fits.empty() ? "" : " and " + Escape(options.inputs.fits.filename().string()))
+       << " (all inputs under <a href=\"#provenance\">Provenance</a>).</p>\n</header>\n";
   html << "<nav aria-label=\"Contents\"><ol>\n<li><a href=\"#overview\">Overview</a></li>\n";
   if (page.out().str().find("id=\"model-error\"") != std::string::npos) html << "<li><a href=\"#model-error\">Model error</a></li>\n";
   if (data.validation) html << "<li><a href=\"#validation\">Predictive check</a></li>\n";
