@@ -253,18 +253,17 @@ ReportFigure FitFigure(const std::string& trial, const TrialFit& fit, const std:
   const std::string d = figure.AddData("omega", columns);
   std::string body = fmt::format("set xrange [{}:{}]\nset grid lc rgb '#dddddd'\nset key outside right top Left reverse\n",
                                  fit.t_s.front(), fit.t_s.back());
-  body += "set multiplot layout 3,1\nset lmargin 10\nset rmargin 22\n";
+  body += "set multiplot layout 3,1\nset lmargin 10\nset rmargin 22\nset xlabel 't [s]'\n";
   const char* const component[3] = {"ω_x", "ω_y", "ω_z"};
   for (int c = 0; c < 3; ++c) {
     body += fmt::format("set ylabel '{} [rad/s]'\n", component[c]);
-    body += c == 2 ? "set xlabel 't [s]'\n" : "unset xlabel\n";
     const std::string simulated =
         fit.w_simulated_B.empty() ? "" : fmt::format(", {} using 1:{} with lines lw 1.2 lc rgb '{}' title 'simulated'", d,
                                                      5 + c, kColours[c]);
     body += fmt::format("plot {} using 1:{} with lines lw 2.5 lc rgb '#bbbbbb' title 'measured'{}\n", d, 2 + c, simulated);
   }
   body += "unset multiplot\n";
-  return Draw(figure, body, 620, id_prefix, "Measured and simulated angular velocity of trial " + trial);
+  return Draw(figure, body, 680, id_prefix, "Measured and simulated angular velocity of trial " + trial);
 }
 
 ReportFigure FragilityFigure(const FragilityBlock& block, const std::string& id_prefix) {
