@@ -1,6 +1,7 @@
 // `rockfit report SUMMARY.h5 --fits FITS.h5 [--validation V.h5] [--fragility F.h5]… [--response R.h5]… -o
 // report.html`: one self-contained HTML page of a campaign (report_builder.hpp, which does the work).
 #include <iostream>
+#include <map>
 
 #include <fmt/format.h>
 
@@ -59,7 +60,16 @@ int RunReport(const ReportCommand& cmd) {
     return kExitOk;
   }
   for (const Gap& g : s.gaps) std::cerr << "rockfit: note: " << g.where << " " << g.what << "\n";
-  for (const std::string& f : s.figures_missing) std::cerr << "rockfit: figure not drawn: " << f << "\n";
+  // "name: reason" grouped by reason, so that a missing gnuplot is said once.
+  std::map<std::string, std::vector<std::string>> missing;
+  for (const std::string& f : s.figures_missing) {
+    const std::size_t colon = f.find(": ");
+    missing[colon == std::string::npos ? f : f.substr(colon + 2)].push_back(f.substr(0, colon));
+  }
+  for (const auto& [reason, names] : missing) {
+    std::cerr << fmt::format("rockfit: {} not drawn ({}{}): {}\n", names.size() == 1 ? "1 figure" : fmt::format("{} figures", names.size()),
+                             names.front(), names.size() > 1 ? ", …" : "", reason);
+  }
   std::cout << fmt::format("written  {} ({} trials, {} fitted; {} figures, {} not drawn; {:.1f} kB)\n", cmd.output,
                            s.trials, s.trials_fitted, s.figures, s.figures_missing.size(), s.bytes / 1000.0);
   return kExitOk;

@@ -483,17 +483,25 @@ void WriteProvenance(Page& page, const ReportData& data, const ReportOptions& op
   out << "<dt>rockfit</dt><dd>" << Escape(options.rockfit_version.empty() ? "unknown" : options.rockfit_version) << "</dd>\n";
   out << "<dt>command</dt><dd><code>" << Escape(options.command_line.empty() ? "(not given)" : options.command_line)
       << "</code></dd>\n";
-  std::string hashes;
-  for (const auto& [hash, n] : data.settings_hashes) hashes += (hashes.empty() ? "" : "; ") + fmt::format("{} ({} fits)", hash, n);
-  out << "<dt>fit settings hashes</dt><dd><code>" << Escape(hashes.empty() ? "no fits" : hashes) << "</code>"
-      << (data.settings_hashes.size() > 1 ? " — the fits were made with different settings" : "") << "</dd>\n";
   out << "</dl>\n";
+  if (!data.fit_settings.empty()) {
+    out << TableStart("Settings of the fits (the canonical text stored with each fit and its FNV-1a 64 hash)",
+                      {"settings hash", "fits", "settings"}, false);
+    for (const auto& [hash, settings] : data.fit_settings) {
+      std::string trials;
+      for (const std::string& t : settings.trials) trials += (trials.empty() ? "" : ", ") + t;
+      out << "<tr><td><code>" << Escape(hash) << "</code></td>" << TextCell(trials) << "<td><code>"
+          << Escape(settings.text) << "</code></td></tr>\n";
+    }
+    out << kTableEnd;
+  }
   out << TableStart("Input files (content hash: FNV-1a 64 of the bytes)",
-                    {"role", "file", "size [bytes]", "content hash", "written by rockfit"}, false);
+                    {"role", "file", "size [bytes]", "content hash", "written by rockfit", "study settings hash"}, false);
   for (const InputFile& f : data.files) {
     out << "<tr>" << TextCell(f.role) << "<td><code>" << Escape(f.path.string()) << "</code></td>"
         << NumCell(static_cast<double>(f.size_bytes), 12) << "<td><code>" << Escape(f.content_hash) << "</code></td>"
-        << TextCell(f.rockfit_version.empty() ? "–" : f.rockfit_version) << "</tr>\n";
+        << TextCell(f.rockfit_version.empty() ? "–" : f.rockfit_version) << "<td><code>"
+        << Escape(f.settings_hash.empty() ? "–" : f.settings_hash) << "</code></td></tr>\n";
   }
   out << kTableEnd << "</section>\n";
 }

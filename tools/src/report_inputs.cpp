@@ -37,6 +37,7 @@ InputFile DescribeFile(const std::string& role, const std::filesystem::path& pat
   try {
     const io::hdf5::File file = io::hdf5::File::Open(path);
     f.rockfit_version = file.Root().GetString("rockfit_version").value_or("");
+    if (file.Root().IsGroup("fragility")) f.settings_hash = file.Root().GetString("settings_hash", "fragility").value_or("");
   } catch (const std::exception&) {
     // Unreadable files are reported where their content is read.
   }
@@ -49,6 +50,7 @@ TrialFit ReadTrialFit(const io::hdf5::Group& g) {
   if (g.IsGroup("parameters")) fit.parameters = fitting::ReadFitParameters(g);
   if (g.IsDataset("warnings")) fit.warnings = g.ReadStrings("warnings");
   fit.termination = g.GetString("termination").value_or("");
+  fit.settings = g.GetString("settings").value_or("");
   if (g.IsDataset("time_s") && g.IsDataset("w_B_measured")) {
     fit.t_s = g.ReadDoubles("time_s");
     fit.w_measured_B = g.ReadVectors("w_B_measured");
@@ -84,7 +86,10 @@ void ReadFits(const std::filesystem::path& path, ReportData& data) {
     }
     try {
       t.fit = ReadTrialFit(fits.OpenGroup(t.row.trial_id));
-      ++data.settings_hashes[t.fit->labels.settings_hash.empty() ? "(none)" : t.fit->labels.settings_hash];
+      ReportData::FitSettings& settings =
+          data.fit_settings[t.fit->labels.settings_hash.empty() ? "(none)" : t.fit->labels.settings_hash];
+      settings.text = t.fit->settings;
+      settings.trials.push_back(t.row.trial_id);
     } catch (const std::exception& e) {
       data.gaps.push_back({"trial " + t.row.trial_id, "its fit cannot be read: " + ErrorText(e)});
     }

@@ -40,6 +40,7 @@ struct InputFile {
   std::uintmax_t size_bytes = 0;
   std::string content_hash;    // FNV-1a 64 of the bytes, 16 hex digits
   std::string rockfit_version; // root attribute rockfit_version (empty when absent)
+  std::string settings_hash;   // of a fragility study (/fragility attribute settings_hash), else empty
 };
 
 // The fit of one trial as `rockfit batch` stored it (/fits/<trial>).
@@ -51,6 +52,7 @@ struct TrialFit {
   std::vector<Eigen::Vector3d> w_measured_B, w_simulated_B;  // [rad/s]; simulated empty when the model failed
   std::vector<double> impact_t_s;
   std::string termination;
+  std::string settings;  // canonical text of every setting that changed the result (hash: labels.settings_hash)
 };
 
 // Drift-corrected angles of one trial (/trials/<id> of the summary file), for the paper's Fig. 5.
@@ -98,7 +100,11 @@ struct ReportData {
   std::vector<ResponseHistory> responses;
   std::vector<InputFile> files;
   std::vector<Gap> gaps;
-  std::map<std::string, int> settings_hashes;       // settings_hash of the fits → number of fits
+  struct FitSettings {
+    std::string text;                 // the canonical settings text
+    std::vector<std::string> trials;  // the fits made with it
+  };
+  std::map<std::string, FitSettings> fit_settings;  // settings_hash of the fits → its text and fits
   std::vector<std::string> fits_not_in_summary;     // /fits/<id> of trials the summary lacks
 };
 
