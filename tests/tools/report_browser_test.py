@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """The campaign report of `rockfit report` in a real browser: headless Chromium driven through Selenium.
 
-Builds the report of the bundled sample campaign (summary, batch, one earthquake response), opens it and checks
+Builds the report of the bundled sample campaign (summary, batch, one earthquake response, a small fragility
+study; in a Debug build the summary alone), opens it and checks
 
   * it loads without a console error or an uncaught script exception,
   * every figure is an inline SVG with a non-empty rendered size (none is reported missing),
@@ -175,6 +176,9 @@ def main():
     parser.add_argument("--source-dir", required=True)
     parser.add_argument("--work-dir", required=True)
     parser.add_argument("--screenshot", help="also save a PNG of the top of the page here")
+    parser.add_argument("--optimised", type=int, default=1,
+                        help="0 for a Debug build: the report of the summary alone (its simulator runs ~150x slower, "
+                             "too slow for the campaign's fits and the earthquake response)")
     args = parser.parse_args()
 
     for tool in (CHROMIUM, CHROMEDRIVER):
@@ -199,11 +203,19 @@ def main():
     report = os.path.join(work, "report.html")
     quiet = {"stdout": subprocess.DEVNULL}
     run([rockfit, "summary", manifest, "-o", campaign], **quiet)
-    run([rockfit, "batch", manifest, "-o", fits], **quiet)
-    run([rockfit, "respond", "--manifest", manifest, "--block", "block2", "--fits", fits, "--group", "block2,A",
-         "--record", os.path.join(args.source_dir, "data-samples", "ground-motions", "cp-seed2-0.45g.AT2"),
-         "--angle", "30", "--format", "hdf5", "-o", response], **quiet)
-    run([rockfit, "report", campaign, "--fits", fits, "--response", response, "-o", report])
+    fragility = os.path.join(work, "fragility.h5")
+    inputs = []
+    if args.optimised:
+        run([rockfit, "batch", manifest, "-o", fits], **quiet)
+        run([rockfit, "respond", "--manifest", manifest, "--block", "block2", "--fits", fits, "--group", "block2,A",
+             "--record", os.path.join(args.source_dir, "data-samples", "ground-motions", "cp-seed2-0.45g.AT2"),
+             "--angle", "30", "--format", "hdf5", "-o", response], **quiet)
+        # A small fragility study of block2 with its fitted parameters (two levels, two samples each).
+        run([rockfit, "fragility", "--manifest", manifest, "--block", "block2", "--fits", fits, "--group", "block2,A",
+             "--synthetic-records", "1", "--synthetic-duration", "3", "--tail", "1", "--pga", "0.3,0.6",
+             "--samples", "2", "--seed", "5", "-o", fragility], **quiet)
+        inputs = ["--fits", fits, "--response", response, "--fragility", fragility]
+    run([rockfit, "report", campaign, *inputs, "-o", report])
 
     # The checker's own check: a report whose script throws, and one written without gnuplot.
     throwing = os.path.join(work, "report-throws.html")
@@ -213,7 +225,7 @@ def main():
         f.write(html.replace("</body>", "<script>throw new Error('deliberate failure');</script>\n</body>"))
     no_gnuplot = os.path.join(work, "report-no-gnuplot.html")
     env = dict(os.environ, ROCKFIT_GNUPLOT=os.path.join(work, "no-such-gnuplot"))
-    run([rockfit, "report", campaign, "--fits", fits, "-o", no_gnuplot], env=env, stderr=subprocess.DEVNULL)
+    run([rockfit, "report", campaign, *inputs[:2], "-o", no_gnuplot], env=env, stderr=subprocess.DEVNULL)
 
     driver = make_driver()
     try:
@@ -228,11 +240,15 @@ def main():
             found = check_report(driver, broken, expected_trials)
             if not any(must_find in f for f in found):
                 failures.append(f"the check passed {broken}, which it must fail ({must_find}); it found: {found}")
-        # Without gnuplot the page still has its tables.
+        # Without gnuplot the page still has every table of the same inputs with gnuplot (the fragility and
+        # response files aside, which the run without gnuplot is not given).
+        count = "return document.querySelectorAll('table').length - document.querySelectorAll('#earthquake table').length;"
+        driver.get("file://" + os.path.abspath(report))
+        with_gnuplot = driver.execute_script(count)
         driver.get("file://" + os.path.abspath(no_gnuplot))
-        tables = driver.execute_script("return document.querySelectorAll('table').length;")
-        if tables < expected_trials:
-            failures.append(f"the report without gnuplot has {tables} tables, fewer than its {expected_trials} trials")
+        without = driver.execute_script(count)
+        if without != with_gnuplot or without == 0:
+            failures.append(f"the report without gnuplot has {without} tables, with gnuplot {with_gnuplot}")
     finally:
         driver.quit()
     for f in failures:
