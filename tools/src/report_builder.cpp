@@ -379,14 +379,16 @@ void WriteEarthquake(Page& page, const ReportData& data) {
          "side</h2>\n";
   for (const FragilityBlock& b : data.fragility) {
     out << "<h3>Fragility of " << Escape(b.block_id) << "</h3>\n";
-    out << TableStart("Fragility curves of " + b.block_id + " (" + b.file + ")",
-                      {"limit state", "curve", "median θ", "β [1]"});
+    out << TableStart("Lognormal fragility curves of " + b.block_id + " (" + b.file + ")",
+                      {"limit state", "curve", b.intensity_is_pga_g ? "median θ [g]" : "median θ [1]", "β [1]", "note"});
     for (const FragilityLimitState& s : b.limit_states) {
-      out << "<tr>" << TextCell(s.name) << TextCell(s.curve_status) << NumCell(s.median) << NumCell(s.beta) << "</tr>\n";
+      const bool ok = s.curve_status == "ok";
+      out << "<tr>" << TextCell(s.name) << TextCell(s.curve_status) << NumCell(ok ? s.median : std::nan(""))
+          << NumCell(ok ? s.beta : std::nan("")) << TextCell(s.curve_message) << "</tr>\n";
     }
     out << kTableEnd;
     page.Figure("fragility-" + Slug(b.block_id), page.Draw([&] { return FragilityFigure(b, page.NextId()); }),
-                "Fragility of block " + b.block_id + ": observed probabilities with their 95 % Clopper–Pearson band "
+                "Fragility of " + b.block_id + ": observed probabilities with their 95 % Clopper–Pearson band "
                 "and the fitted lognormal curves.");
   }
   for (const ResponseHistory& r : data.responses) {

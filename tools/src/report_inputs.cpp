@@ -167,6 +167,10 @@ void ReadFragility(const std::filesystem::path& path, ReportData& data) {
       }
       const std::vector<std::string> status = ls.ReadStrings("curve/status");
       s.curve_status = status.empty() ? "" : status.front();
+      if (ls.IsDataset("curve/message")) {
+        const std::vector<std::string> message = ls.ReadStrings("curve/message");
+        s.curve_message = message.empty() ? "" : message.front();
+      }
       const std::vector<double> median = ls.ReadDoubles("curve/median"), beta = ls.ReadDoubles("curve/beta");
       s.median = median.empty() ? std::nan("") : median.front();
       s.beta = beta.empty() ? std::nan("") : beta.front();

@@ -72,8 +72,8 @@ struct ReportTrial {
 struct FragilityLimitState {
   std::string name;
   std::vector<double> intensity, probability, lower_95, upper_95;  // Clopper–Pearson band
-  std::string curve_status;
-  double median = 0.0, beta = 0.0;
+  std::string curve_status, curve_message;  // of the lognormal fit ("ok", "separated", …)
+  double median = 0.0, beta = 0.0;           // the lognormal curve Φ(ln(x/θ)/β); meaningful when status is "ok"
 };
 struct FragilityBlock {
   std::string file, block_id;
