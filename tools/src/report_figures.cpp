@@ -149,9 +149,9 @@ ReportFigure SummaryFigure(const io::CampaignSummary& summary, const std::string
     const char* colour = kPalette[p % 6];
     const std::string title = GnuplotString("position " + positions[p]);
     opmf.push_back(fmt::format("{} using 1:2 with points pt 6 ps 0.5 lc rgb '{}' notitle", t, colour));
-    opmf.push_back(fmt::format("{} using 1:2:3 with yerrorlines pt 7 lc rgb '{}' title {}", g, colour, title));
+    opmf.push_back(fmt::format("{} using 1:2:3 with yerrorlines pt 7 lc rgb '{}' title {} noenhanced", g, colour, title));
     avrf.push_back(fmt::format("{} using 1:3 with points pt 6 ps 0.5 lc rgb '{}' notitle", t, colour));
-    avrf.push_back(fmt::format("{} using 1:4:5 with yerrorlines pt 7 lc rgb '{}' title {}", g, colour, title));
+    avrf.push_back(fmt::format("{} using 1:4:5 with yerrorlines pt 7 lc rgb '{}' title {} noenhanced", g, colour, title));
   }
   std::string body = "set multiplot layout 1,2\nset grid lc rgb '#dddddd'\nset xlabel 'b_2 [cm]'\n";
   body += fmt::format("set xrange [{}:{}]\nset key top right box opaque\nset offsets 0, 0, graph 0.05, graph 0.05\n",
@@ -187,7 +187,7 @@ ReportFigure ParameterRangesFigure(const std::vector<fitting::GroupSummary>& gro
   }
   const std::string data = figure.AddData("groups", columns);
   std::string body = "set multiplot layout 1,3\nset grid lc rgb '#dddddd'\nset key off\nset offsets 0.5, 0.5, 0, 0\n";
-  body += "set xtics (" + Join(tics, ", ") + ") rotate by 45 right\nset xlabel 'block and position'\n";
+  body += "set xtics noenhanced (" + Join(tics, ", ") + ") rotate by 45 right\nset xlabel 'block and position'\n";
   for (int k = 0; k < 3; ++k) {
     body += fmt::format("set title {}\nset ylabel {}\n", GnuplotString(std::string("pooled ") + labels[k] + ", 95 % interval"),
                         GnuplotString(labels[k]));
