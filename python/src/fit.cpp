@@ -16,10 +16,10 @@
 #include <tbb/task_arena.h>
 
 #include "bindings.hpp"
-#include "fit_setup.hpp"
+#include "rockfit/app/fit_setup.hpp"
 #include "path_argument.hpp"
-#include "mounting_report.hpp"
-#include "recording_input.hpp"
+#include "rockfit/app/mounting_report.hpp"
+#include "rockfit/app/recording_input.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/fitting/fitter.hpp"
 #include "rockfit/io/manifest.hpp"
@@ -134,11 +134,11 @@ std::vector<std::string> BoundEntries(const py::object& bounds, const char* what
 }
 
 // The program's FitArgs from the keyword arguments: the same parsing and validation as its options.
-tools::FitArgs MakeFitArgs(const std::string& method, const py::object& bounds, const py::object& free,
+app::FitArgs MakeFitArgs(const std::string& method, const py::object& bounds, const py::object& free,
                            const py::object& fix, const py::object& lower, const py::object& upper,
                            std::optional<double> t_end, int max_evaluations, bool global_stage, bool keep_bias,
                            int threads) {
-  tools::FitArgs args;
+  app::FitArgs args;
   args.method = method;
   if (py::isinstance<py::str>(bounds)) {
     args.bounds = bounds.cast<std::string>();
@@ -162,7 +162,7 @@ tools::FitArgs MakeFitArgs(const std::string& method, const py::object& bounds, 
   args.no_global = !global_stage;
   args.keep_bias = keep_bias;
   args.threads = threads;
-  tools::MakeParameterSet(args);  // bad names, values and bounds before any work
+  app::MakeParameterSet(args);  // bad names, values and bounds before any work
   fitting::ParseFitMethod(args.method);
   return args;
 }
@@ -171,7 +171,7 @@ tools::FitArgs MakeFitArgs(const std::string& method, const py::object& bounds, 
 
 struct FitOutcome {
   std::string trial;
-  std::unique_ptr<tools::PreparedFit> prepared;
+  std::unique_ptr<app::PreparedFit> prepared;
   fitting::FitSummary summary;
   fitting::ErrorNodes nodes;
   fitting::ModelOutput output;
@@ -182,11 +182,11 @@ struct FitOutcome {
 
 // One fit, all in C++ (runs on a worker thread).
 FitOutcome RunFit(const std::string& trial, const io::Recording& recording, const core::Block& block,
-                  const tools::FitArgs& args, const Flag& interrupted) {
+                  const app::FitArgs& args, const Flag& interrupted) {
   FitOutcome o;
-  o.trial = tools::TrialNameFrom(trial);
-  o.mounting = tools::MountingJson(recording);
-  o.prepared = std::make_unique<tools::PreparedFit>(tools::PrepareFit(recording, block, args));
+  o.trial = app::TrialNameFrom(trial);
+  o.mounting = app::MountingJson(recording);
+  o.prepared = std::make_unique<app::PreparedFit>(app::PrepareFit(recording, block, args));
   const fitting::Objective objective = Interruptible(o.prepared->objective, interrupted);
   o.summary = fitting::Fit(objective, o.prepared->start, o.prepared->options);
   // The nodes of (28) and the model at the result, for plots (one more simulation).
@@ -196,7 +196,7 @@ FitOutcome RunFit(const std::string& trial, const io::Recording& recording, cons
 
 py::object FitRecord(FitOutcome& o) {
   nlohmann::json merged = nlohmann::json::parse(o.summary.ToJson(o.trial));
-  const nlohmann::json cli = tools::FitResultJson(o.trial, o.summary);
+  const nlohmann::json cli = app::FitResultJson(o.trial, o.summary);
   for (const auto& [key, value] : cli.items()) {
     if (key == "parameters") {
       for (const auto& [name, fields] : value.items()) merged["parameters"][name].update(fields);
@@ -255,7 +255,7 @@ py::object Fit(const TrialRecording& r, const std::optional<core::Block>& given,
                const py::object& bounds, const py::object& free, const py::object& fix, const py::object& lower,
                const py::object& upper, std::optional<double> t_end, int max_evaluations, bool global_stage,
                bool keep_bias, int threads) {
-  const tools::FitArgs args =
+  const app::FitArgs args =
       MakeFitArgs(method, bounds, free, fix, lower, upper, t_end, max_evaluations, global_stage, keep_bias, threads);
   const core::Block block = BlockFor(given, r, "the fit");
   auto interrupted = std::make_shared<std::atomic<bool>>(false);
@@ -276,7 +276,7 @@ py::list FitCampaign(const PathArgument& manifest_argument, const py::object& tr
                      bool keep_bias) {
   if (jobs < 0) throw InvalidArgument("jobs must be ≥ 0 (0: all cores)");
   const std::string& manifest_path = manifest_argument.path;
-  tools::FitArgs args =
+  app::FitArgs args =
       MakeFitArgs(method, bounds, free, fix, lower, upper, t_end, max_evaluations, global_stage, keep_bias, 1);
   args.threads = 1;  // parallel over trials, not inside one fit (as `rockfit batch`)
   const io::Manifest manifest = io::ReadManifest(manifest_path);
@@ -298,7 +298,7 @@ py::list FitCampaign(const PathArgument& manifest_argument, const py::object& tr
         FitOutcome& o = (*outcomes)[i];
         try {
           const core::Block block = manifest.FindBlock(spec.block_id).ToBlock();
-          o = RunFit(spec.id, tools::LoadManifestTrial(spec), block, args, interrupted);
+          o = RunFit(spec.id, app::LoadManifestTrial(spec), block, args, interrupted);
         } catch (const InvalidArgument& e) {
           o.error_type = "ValueError";
           o.message = e.what();
@@ -309,7 +309,7 @@ py::list FitCampaign(const PathArgument& manifest_argument, const py::object& tr
           o.error_type = "NumericalError";
           o.message = e.what();
         }
-        o.trial = tools::TrialNameFrom(spec.id);
+        o.trial = app::TrialNameFrom(spec.id);
       }
     };
     // The TBB pool of the library and of `rockfit batch`: at most one trial per core (0: all cores).
@@ -342,7 +342,7 @@ py::object Evaluate(const TrialRecording& r, const std::optional<core::Block>& g
                     std::optional<double> alpha, std::optional<double> lambda, std::optional<double> lambda_lat,
                     std::optional<double> lambda_lon, const py::object& bounds, const py::object& fix,
                     std::optional<double> t_end, bool keep_bias) {
-  const tools::FitArgs args = MakeFitArgs("auto", bounds, py::none(), fix, py::none(), py::none(), t_end, 0, true,
+  const app::FitArgs args = MakeFitArgs("auto", bounds, py::none(), fix, py::none(), py::none(), t_end, 0, true,
                                           keep_bias, 1);
   const core::Block block = BlockFor(given, r, "evaluate");
   const std::pair<fitting::ParameterId, std::optional<double>> given_values[] = {
@@ -354,7 +354,7 @@ py::object Evaluate(const TrialRecording& r, const std::optional<core::Block>& g
   double window_end = 0.0;
   {
     py::gil_scoped_release release;
-    const tools::PreparedFit prepared = tools::PrepareFit(r.recording, block, args);
+    const app::PreparedFit prepared = app::PrepareFit(r.recording, block, args);
     values = prepared.start;
     for (const auto& [id, v] : given_values) {
       if (v) values[id].value = *v;

@@ -5,7 +5,9 @@
 #include <fmt/format.h>
 
 #include "bindings.hpp"
-#include "cli_common.hpp"
+#include "rockfit/app/block_args.hpp"
+#include "rockfit/app/json_values.hpp"
+#include "rockfit/app/option_grammar.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/impact_maps.hpp"
 
@@ -91,7 +93,7 @@ py::object EdgeImpact(const core::Block& block, int pivot, int landing, const py
 
 py::object FacetImpact(const core::Block& block, const py::object& omega_minus, std::pair<int, int> pivot_edge,
                        double lambda_lat, double lambda_lon, std::optional<double> tau) {
-  const int b = tools::ParsePivotEdge(fmt::format("{},{}", pivot_edge.first, pivot_edge.second));
+  const int b = app::ParsePivotEdge(fmt::format("{},{}", pivot_edge.first, pivot_edge.second));
   RequireFinite(lambda_lat, "lambda_lat", "(21)");
   RequireFinite(lambda_lon, "lambda_lon", "(21)");
   if (tau) RequireFinite(*tau, "tau", "N·m·s");

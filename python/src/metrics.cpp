@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "bindings.hpp"
-#include "mounting_report.hpp"
-#include "metrics_options.hpp"
+#include "rockfit/app/mounting_report.hpp"
+#include "rockfit/app/metrics_options.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/trial_metrics.hpp"
 
@@ -31,7 +31,7 @@ py::object Metrics(const TrialRecording& r, const std::optional<core::Block>& gi
                    double min_separation, const std::string& anchors, std::size_t peaks, std::size_t min_peaks,
                    const std::string& uplift) {
   const core::Block block = BlockFor(given, r, "the AVRF");
-  tools::MetricsArgs args;
+  app::MetricsArgs args;
   args.options.correction.impacts.min_prominence_rad_s = min_prominence;
   args.options.correction.impacts.min_separation_s = min_separation;
   args.options.avrf.max_peaks = peaks;
@@ -40,7 +40,7 @@ py::object Metrics(const TrialRecording& r, const std::optional<core::Block>& gi
   args.uplift = uplift;
   if (anchors != "subsample" && anchors != "sample") throw InvalidArgument("anchors must be 'subsample' or 'sample', got '" + anchors + "'");
   if (uplift != "com" && uplift != "paper") throw InvalidArgument("uplift must be 'com' or 'paper', got '" + uplift + "'");
-  const io::MetricsOptions options = tools::MakeMetricsOptions(args);
+  const io::MetricsOptions options = app::MakeMetricsOptions(args);
   io::MetricsSummary m;
   {
     py::gil_scoped_release release;
@@ -76,7 +76,7 @@ py::object Metrics(const TrialRecording& r, const std::optional<core::Block>& gi
   d["phi_x_anchor_times"] = OwnedArray(std::move(x_anchor_times));
   d["uplift_formula"] = io::ToString(options.avrf.uplift);
   d["anchor_method"] = io::ToString(options.correction.anchor_method);
-  d["mounting"] = FromJson(tools::MountingJson(rec));
+  d["mounting"] = FromJson(app::MountingJson(rec));
   d["block"] = BlockDict(block);
   d["warnings"] = m.correction.warnings;
   d["units"] = py::dict(py::arg("rate_hz") = "Hz", py::arg("max_abs_phi_x") = "rad", py::arg("max_abs_phi_y") = "rad",

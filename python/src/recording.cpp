@@ -6,7 +6,7 @@
 
 #include "bindings.hpp"
 #include "path_argument.hpp"
-#include "recording_input.hpp"
+#include "rockfit/app/recording_input.hpp"
 #include "rockfit/core/errors.hpp"
 
 namespace rockfit::python {
@@ -142,7 +142,7 @@ void RegisterRecording(py::module_& m) {
       [](const PathArgument& path, std::optional<std::string> trial, const std::string& format,
          std::optional<double> rate, std::optional<std::string> mounting, std::optional<std::string> columns,
          const std::string& orientation) {
-        tools::RecordingArgs args;
+        app::RecordingArgs args;
         args.path = path.path;
         args.trial_id = trial.value_or("");
         args.format = format;
@@ -150,10 +150,10 @@ void RegisterRecording(py::module_& m) {
         args.mounting = mounting.value_or("");
         args.columns = columns.value_or("");
         args.orientation = orientation;
-        tools::TrialInput input;
+        app::TrialInput input;
         {
           py::gil_scoped_release release;
-          input = tools::LoadTrialInput(args);
+          input = app::LoadTrialInput(args);
         }
         auto r = std::make_shared<TrialRecording>();
         r->recording = std::move(input.recording);

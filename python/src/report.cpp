@@ -4,7 +4,7 @@
 
 #include "bindings.hpp"
 #include "path_argument.hpp"
-#include "report_builder.hpp"
+#include "rockfit/app/report_builder.hpp"
 
 namespace rockfit::python {
 namespace {
@@ -19,7 +19,7 @@ std::vector<std::filesystem::path> Paths(const std::optional<std::vector<PathArg
 py::object Report(const PathArgument& summary, const PathArgument& output, const std::optional<PathArgument>& fits,
                   const std::optional<PathArgument>& validation, const std::optional<std::vector<PathArgument>>& fragility,
                   const std::optional<std::vector<PathArgument>>& responses, const std::string& title, bool figures) {
-  tools::ReportOptions options;
+  app::ReportOptions options;
   options.inputs.summary = summary.path;
   if (fits) options.inputs.fits = fits->path;
   if (validation) options.inputs.validation = validation->path;
@@ -29,13 +29,13 @@ py::object Report(const PathArgument& summary, const PathArgument& output, const
   options.figures = figures;
   options.rockfit_version = ROCKFIT_VERSION;
   options.command_line = fmt::format("rockfit.report('{}', '{}', ...) from Python", summary.path, output.path);
-  tools::ReportSummary s;
+  app::ReportSummary s;
   {
     py::gil_scoped_release release;
-    s = tools::WriteReport(options, output.path);
+    s = app::WriteReport(options, output.path);
   }
   nlohmann::json gaps = nlohmann::json::array();
-  for (const tools::Gap& g : s.gaps) gaps.push_back({{"where", g.where}, {"what", g.what}});
+  for (const app::Gap& g : s.gaps) gaps.push_back({{"where", g.where}, {"what", g.what}});
   const nlohmann::json j = {{"output", output.path},   {"trials", s.trials},
                             {"trials_fitted", s.trials_fitted}, {"figures", s.figures},
                             {"figures_missing", s.figures_missing}, {"gaps", gaps}, {"bytes", s.bytes}};

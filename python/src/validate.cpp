@@ -4,14 +4,14 @@
 
 #include "bindings.hpp"
 #include "rockfit/core/errors.hpp"
-#include "validation_run.hpp"
+#include "rockfit/app/validation_run.hpp"
 
 namespace rockfit::python {
 namespace {
 
 py::object Validate(const std::string& manifest, const std::optional<std::string>& fits, int jobs,
                     double ratio_warning, const std::string& method, const std::string& intervals) {
-  tools::ValidateArgs args;
+  app::ValidateArgs args;
   args.manifest = manifest;
   args.fits = fits.value_or("");
   args.jobs = jobs;
@@ -21,7 +21,7 @@ py::object Validate(const std::string& manifest, const std::optional<std::string
   fitting::ValidationSummary summary;
   {
     py::gil_scoped_release release;
-    summary = tools::RunValidation(args);
+    summary = app::RunValidation(args);
   }
   nlohmann::json j = nlohmann::json::parse(fitting::ValidationJson(summary));
   j["manifest"] = manifest;

@@ -6,7 +6,7 @@
 
 #include <numeric>
 
-#include "rockfit/fitting/fragility_study.hpp"
+#include "rockfit/quake/fragility_study.hpp"
 #include "generated_records.hpp"
 #include "rockfit/io/stochastic_ground_motion.hpp"
 
@@ -14,9 +14,9 @@ namespace {
 
 using namespace rockfit;
 
-fitting::FragilityStudyOptions Study() {
-  fitting::FragilityStudyOptions s;
-  fitting::FragilityBlock b;
+quake::FragilityStudyOptions Study() {
+  quake::FragilityStudyOptions s;
+  quake::FragilityBlock b;
   b.id = "block2";
   b.block = core::Block::FromDensity(0.05000453, 0.035, 0.2, 2692);
   b.lambda = {2.2, 0.1};
@@ -33,12 +33,12 @@ fitting::FragilityStudyOptions Study() {
 }
 
 void BM_FragilitySamples30sRecords(benchmark::State& state) {
-  const fitting::FragilityStudyOptions study = Study();
+  const quake::FragilityStudyOptions study = Study();
   std::vector<std::int64_t> all(static_cast<std::size_t>(study.num_samples()));
   std::iota(all.begin(), all.end(), 0);
-  std::vector<fitting::SampleOutcome> out;
+  std::vector<quake::SampleOutcome> out;
   for (auto _ : state) {
-    out = fitting::RunSamples(study, all, 1);
+    out = quake::RunSamples(study, all, 1);
     benchmark::DoNotOptimize(out.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(all.size()));

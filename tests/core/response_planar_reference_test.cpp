@@ -16,7 +16,7 @@
 #include "build_type.hpp"
 #include "planar_base_rocking.hpp"
 #include "rockfit/core/response.hpp"
-#include "rockfit/fitting/lognormal_fragility.hpp"
+#include "rockfit/quake/lognormal_fragility.hpp"
 #include "rockfit/io/peer_at2.hpp"
 #include "test_paths.hpp"
 
@@ -460,8 +460,8 @@ TEST(RespondAgainstPlanarReference, PlanarFragilityStudyGivesTheSameVerdictsAndM
   const PlanarStudy study;
   const Block& block = study.block();
   const std::vector<double>& levels = study.levels();
-  std::vector<fitting::LevelCount> counts_rockfit(levels.size());
-  std::vector<fitting::LevelCount> counts_reference(levels.size());
+  std::vector<quake::LevelCount> counts_rockfit(levels.size());
+  std::vector<quake::LevelCount> counts_reference(levels.size());
   int differ = 0;
   int differ_by_round_off = 0;
   for (int i = 0; i < samples; ++i) {
@@ -487,14 +487,14 @@ TEST(RespondAgainstPlanarReference, PlanarFragilityStudyGivesTheSameVerdictsAndM
                               << "): rockfit " << r.summary.overturned << ", reference " << ref.overturned
                               << ", and " << spread.overturned << " of " << spread.runs << " runs at round-off overturn";
   }
-  const fitting::LognormalFragilityFit a = fitting::FitLognormalFragility(counts_rockfit);
-  const fitting::LognormalFragilityFit b = fitting::FitLognormalFragility(counts_reference);
+  const quake::LognormalFragilityFit a = quake::FitLognormalFragility(counts_rockfit);
+  const quake::LognormalFragilityFit b = quake::FitLognormalFragility(counts_reference);
   std::printf("%d samples: %d verdicts differ (%d shown to depend on round-off); median %.4f ± %.4f (rockfit) and "
               "%.4f ± %.4f (reference) × g·b1/h, β %.3f and %.3f\n",
               samples, differ, differ_by_round_off, a.median, a.median_std_error, b.median, b.median_std_error, a.beta,
               b.beta);
-  ASSERT_EQ(a.status, fitting::LognormalFitStatus::kOk) << a.message;
-  ASSERT_EQ(b.status, fitting::LognormalFitStatus::kOk) << b.message;
+  ASSERT_EQ(a.status, quake::LognormalFitStatus::kOk) << a.message;
+  ASSERT_EQ(b.status, quake::LognormalFitStatus::kOk) << b.message;
   EXPECT_LE(std::abs(a.median - b.median), std::hypot(a.median_std_error, b.median_std_error));
 }
 

@@ -21,7 +21,7 @@
 #include "build_type.hpp"
 #include "cli_runner.hpp"
 #include "process_control.hpp"
-#include "rockfit/fitting/fragility_study.hpp"
+#include "rockfit/quake/fragility_study.hpp"
 #include "rockfit/io/hdf5_file.hpp"
 #include "rockfit/io/record_journal.hpp"
 #include "scratch_dir.hpp"
@@ -289,7 +289,7 @@ TEST(CliFragility, KilledAtRandomInstantsAndResumedGivesTheUninterruptedResult) 
     std::this_thread::sleep_for(std::chrono::duration<double>(instant_s));
     killed += ::kill(pid, SIGKILL) == 0 ? 1 : 0;
     WaitForExit(pid);
-    const auto journal = io::ReadJournal(h5 + ".journal", "fragility", sizeof(fitting::SampleOutcome), 1000000);
+    const auto journal = io::ReadJournal(h5 + ".journal", "fragility", sizeof(quake::SampleOutcome), 1000000);
     finished = !journal && std::filesystem::exists(h5);
     const std::size_t now = journal ? journal->records.size() : finished ? kTotal : 0;
     EXPECT_GE(now, journaled_before) << "a kill lost journaled samples";
@@ -310,7 +310,7 @@ TEST(CliFragility, KilledAtRandomInstantsAndResumedGivesTheUninterruptedResult) 
 TEST(CliFragility, ResumeRefusesTheJournalOfAnotherStudy) {
   const ScratchDir dir("cli_fragility_other");
   const std::string h5 = (dir / "f.h5").string();
-  { io::JournalWriter::Create(h5 + ".journal", "fragility", sizeof(fitting::SampleOutcome), "0123456789abcdef"); }
+  { io::JournalWriter::Create(h5 + ".journal", "fragility", sizeof(quake::SampleOutcome), "0123456789abcdef"); }
   const CommandResult r = RunRockfit(Study(h5, {"--resume"}, 2, 3.0));
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("other settings"), std::string::npos) << r.err;

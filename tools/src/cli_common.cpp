@@ -1,14 +1,5 @@
 #include "cli_common.hpp"
 
-#include <cmath>
-#include <cstdlib>
-#include <iostream>
-#include <sstream>
-#include <vector>
-
-#include "rockfit/core/errors.hpp"
-#include "rockfit/io/manifest.hpp"
-
 namespace rockfit::tools {
 
 void AddBlockOptions(CLI::App& app, BlockArgs& args) {
@@ -23,93 +14,109 @@ void AddBlockOptions(CLI::App& app, BlockArgs& args) {
   app.add_option("--block", args.block_id, "Block id in the manifest")->group("Block");
 }
 
-core::Block MakeBlock(const BlockArgs& args) {
-  if (!args.manifest_path.empty() || !args.block_id.empty()) {
-    if (args.manifest_path.empty() || args.block_id.empty()) {
-      throw InvalidArgument("--manifest FILE and --block ID go together: give both to take the block from a manifest");
-    }
-    if (args.b1_m || args.b2_m || args.h_m || args.density_kg_m3 || args.mass_kg) {
-      throw InvalidArgument("give the block either by --manifest/--block or by --b1 --b2 --h with --density or --mass, "
-                            "not both");
-    }
-    return io::ReadManifest(args.manifest_path).FindBlock(args.block_id).ToBlock();  // BadInput: file, line, column
-  }
-  if (!args.b1_m || !args.b2_m || !args.h_m) {
-    throw InvalidArgument("the block needs --b1, --b2 and --h (half-sizes in metres), or --manifest FILE --block ID");
-  }
-  if (args.density_kg_m3.has_value() == args.mass_kg.has_value()) {
-    throw InvalidArgument("give exactly one of --density (kg/m³) or --mass (kg) for the block");
-  }
-  if (args.density_kg_m3) return core::Block::FromDensity(*args.b1_m, *args.b2_m, *args.h_m, *args.density_kg_m3);
-  return core::Block::FromMass(*args.b1_m, *args.b2_m, *args.h_m, *args.mass_kg);
+void AddFitOptions(CLI::App& app, FitArgs& args) {
+  app.add_option("--method", args.method, "Back end: nelder-mead, ceres or auto (global stage, Nelder–Mead, Ceres polish)")
+      ->capture_default_str();
+  app.add_option("--bounds", args.bounds, "Default bounds: empirical (wider than (25)/(27)) or theoretical")
+      ->capture_default_str();
+  app.add_option("--free", args.free, "Parameters to fit in addition to the defaults (t0,alpha,lambda,lambda_lat,lambda_lon,tau_edge)")
+      ->delimiter(',');
+  app.add_option("--fix", args.fix,
+                 "Parameters to hold fixed: NAME (at the data estimate) or NAME=VALUE, e.g. --fix lambda_lat=0")
+      ->delimiter(',');
+  app.add_option("--lower", args.lower, "Lower bound NAME=VALUE (repeatable)");
+  app.add_option("--upper", args.upper, "Upper bound NAME=VALUE (repeatable)");
+  app.add_option("--t-end", args.t_end_s, "End of the fitting window in recording time [s] (default: 12 ms before the impact that ends phase 4)");
+  app.add_option("--max-evaluations", args.max_evaluations, "Nelder–Mead evaluation budget (0: default)");
+  app.add_flag("--no-global", args.no_global, "Skip the global stage (local search from the data estimate only)");
+  app.add_flag("--keep-bias", args.keep_bias, "Do not subtract the gyro bias measured at rest before the release");
+  app.add_option("--threads", args.threads, "Threads of the global stage and the intervals (0: all cores)");
+  app.add_option("--intervals", args.intervals,
+                 "68 % and 95 % intervals: thorough (95 %: profiles of (28)'s sum of squares, the others re-fitted, "
+                 "the fit costs about 1.5 times as much; 68 %: linearised), fast (both linearised, nearly free) or none "
+                 "(standard errors only)")
+      ->capture_default_str();
+  app.add_option("--model-error-widening", args.model_error_widening,
+                 "Widen every 95 % interval by max(1, K·ε/ε_noise), ε_noise the noise floor at rest (0: off; measured, "
+                 "not calibrated: fitting/README.md, \"Recordings made by other physics\")")
+      ->capture_default_str();
 }
 
-bool HasBlockOptions(const BlockArgs& args) {
-  return args.b1_m || args.b2_m || args.h_m || args.density_kg_m3 || args.mass_kg || !args.manifest_path.empty() ||
-         !args.block_id.empty();
+void AddMetricsOptions(CLI::App& app, MetricsArgs& args) {
+  io::MetricsOptions& o = args.options;
+  app.add_option("--min-prominence", o.correction.impacts.min_prominence_rad_s,
+                 "Impacts: peaks of |ω_y| (|ω_x|) at least this prominent [rad/s]")
+      ->capture_default_str()->group("Drift correction");
+  app.add_option("--min-separation", o.correction.impacts.min_separation_s,
+                 "Impacts: of two peaks closer than this, the lower is ringing [s]")
+      ->capture_default_str()->group("Drift correction");
+  app.add_option("--anchors", args.anchors,
+                 "Drift at an impact: subsample (impact located inside the sample interval) or sample (the angle at the "
+                 "|ω| peak sample, as in the paper)")
+      ->capture_default_str()->check(CLI::IsMember({"subsample", "sample"}))->group("Drift correction");
+  app.add_option("--peaks", o.avrf.max_peaks, "AVRF: number of peak inclinations after the first impact (the paper: 10)")
+      ->capture_default_str()->group("AVRF");
+  app.add_option("--min-peaks", o.avrf.min_peaks, "AVRF: fewer usable peaks is the status too_few_peaks")
+      ->capture_default_str()->group("AVRF");
+  app.add_option("--uplift", args.uplift,
+                 "AVRF: COM uplift u(φ): com = b1·sin φ − h·(1 − cos φ) (correct), paper = h·sin φ − b1·(1 − cos φ) (as "
+                 "printed in the paper's Sect. 3.2)")
+      ->capture_default_str()->check(CLI::IsMember({"com", "paper"}))->group("AVRF");
 }
 
-std::optional<core::Block> MakeOptionalBlock(const BlockArgs& args) {
-  if (!HasBlockOptions(args)) return std::nullopt;
-  return MakeBlock(args);
+void AddRecordingOptions(CLI::App& app, RecordingArgs& args) {
+  app.add_option("PATH", args.path,
+                 "Recording: an x-IMU GUI prefix or file, an x-IMU3 directory, a CSV file, rockfit's HDF5 file, or a "
+                 "campaign manifest (.toml) with --trial")
+      ->required();
+  app.add_option("--trial", args.trial_id, "Trial id, when PATH is a manifest or an HDF5 file with several trials")
+      ->group("Input");
+  app.add_option("--format", args.format, "Force an input format: auto, ximu-gui, ximu3, csv, rockfit-hdf5")
+      ->capture_default_str()
+      ->group("Input");
+  app.add_option("--rate", args.rate_hz, "Gyro sample rate [Hz] when the files do not state it (x-IMU without "
+                 "_Registers.csv, CSV without time)")->group("Input");
+  app.add_option("--mounting", args.mounting,
+                 kMountingHelp)
+      ->group("Input");
+  app.add_option("--columns", args.columns,
+                 "Generic CSV column map, e.g. 'time=NAME@s;gyro=X,Y,Z@deg/s;euler=ROLL,PITCH,YAW@deg' (see `rockfit "
+                 "inspect --help`)")
+      ->group("Input");
+  app.add_option("--orientation", args.orientation, "Attitude source: auto, euler, quaternion or matrix")
+      ->capture_default_str()
+      ->group("Input");
 }
 
-std::vector<std::string> SplitList(const std::string& text, char separator) {
-  std::vector<std::string> cells;
-  std::stringstream stream(text);
-  std::string cell;
-  while (std::getline(stream, cell, separator)) cells.push_back(cell);
-  return cells;
-}
-
-std::optional<double> ParseFinite(const std::string& cell) {
-  char* end = nullptr;
-  const double value = std::strtod(cell.c_str(), &end);
-  if (cell.empty() || end == cell.c_str() || *end != '\0' || !std::isfinite(value)) return std::nullopt;
-  return value;
-}
-
-Eigen::Vector3d ParseVector3(const std::string& text, const std::string& option) {
-  std::vector<double> values;
-  for (const std::string& cell : SplitList(text)) {
-    const std::optional<double> value = ParseFinite(cell);
-    if (!value) {
-      throw InvalidArgument(option + " expects three finite numbers X,Y,Z separated by commas, got '" + text + "'");
-    }
-    values.push_back(*value);
-  }
-  if (values.size() != 3) {
-    throw InvalidArgument(option + " expects three numbers X,Y,Z separated by commas, got '" + text + "'");
-  }
-  return {values[0], values[1], values[2]};
-}
-
-nlohmann::json ToJson(const Eigen::Vector3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
-
-nlohmann::json OrNull(const std::optional<double>& value) { return value ? OrNull(*value) : nlohmann::json(); }
-nlohmann::json OrNull(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
-
-void PrintJson(const nlohmann::json& object) { std::cout << object.dump(2) << std::endl; }
-
-// "I,J" with I, J cyclic neighbours → b of the pivot edge V_{b−1}V_b (either order names the same edge).
-int ParsePivotEdge(const std::string& text) {
-  const std::string allowed = "--pivot-edge expects two neighbouring base vertices I,J (1,2 2,3 3,4 or 4,1, in either order)";
-  std::stringstream stream(text);
-  std::string cell;
-  std::vector<int> vertices;
-  while (std::getline(stream, cell, ',')) {
-    char* end = nullptr;
-    const long value = std::strtol(cell.c_str(), &end, 10);
-    if (cell.empty() || end == cell.c_str() || *end != '\0' || value < 1 || value > 4) {
-      throw InvalidArgument(allowed + ", got '" + text + "'");
-    }
-    vertices.push_back(static_cast<int>(value));
-  }
-  if (vertices.size() != 2 || !core::Block::AreNeighbours(vertices[0], vertices[1])) {
-    throw InvalidArgument(allowed + ", got '" + text + "'");
-  }
-  // In cyclic order the edge is V_{b−1}V_b: b is the vertex that follows the other one.
-  return core::Block::WrapVertex(vertices[0] + 1) == vertices[1] ? vertices[1] : vertices[0];
+void AddGroundMotionOptions(CLI::App& app, GroundMotionArgs& a) {
+  const char* group = "Ground motion";
+  app.add_option("--record", a.record,
+                 "Ground-motion record acting along the incidence angle: a PEER AT2 file (values in g) or a CSV "
+                 "(header; optional time column `time` [s]; one to three columns: horizontal 1, horizontal 2, "
+                 "vertical, or named x, y, z)")
+      ->group(group);
+  app.add_option("--record2", a.record2, "Second horizontal component, acting 90° from --record (AT2 or one-column CSV)")
+      ->group(group);
+  app.add_option("--vertical", a.vertical, "Vertical component (AT2 or one-column CSV), positive up")->group(group);
+  app.add_option("--record-format", a.record_format, "auto (by extension: .csv is CSV, else AT2), at2 or csv")
+      ->check(CLI::IsMember({"auto", "at2", "csv"}))->capture_default_str()->group(group);
+  app.add_option("--units", a.units, "Units of CSV records: g (9.80665 m/s²), m/s2 or cm/s2")
+      ->check(CLI::IsMember({"g", "m/s2", "cm/s2"}))->capture_default_str()->group(group);
+  app.add_option("--dt", a.csv_dt_s, "Time step [s] of CSV records without a time column")->group(group);
+  app.add_option("--synthetic", a.synthetic_seed,
+                 "Instead of a record: a generated Clough–Penzien record with this seed (io/README.md, \"Stochastic "
+                 "ground motion\"; PGA 0.3 g unless --pga)")
+      ->group(group);
+  app.add_option("--synthetic-duration", a.synthetic_duration_s, "Duration of the generated record [s]")
+      ->capture_default_str()->group(group);
+  app.add_option("--synthetic-dt", a.synthetic_dt_s, "Step of the generated record [s]")->capture_default_str()->group(group);
+  auto* scale = app.add_option("--scale", a.scale, "Multiply every component by this factor")->group(group);
+  app.add_option("--pga", a.pga_g,
+                 "Scale all components by one factor so that the peak horizontal acceleration (resultant of the "
+                 "horizontal components) is this many g")
+      ->excludes(scale)->group(group);
+  app.add_option("--angle", a.angle_deg, "Incidence angle β [deg] of --record from the block's x axis")
+      ->capture_default_str()->group(group);
 }
 
 }  // namespace rockfit::tools

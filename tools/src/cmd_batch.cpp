@@ -12,9 +12,9 @@
 
 #include "cli_common.hpp"
 #include "command_registry.hpp"
-#include "fit_setup.hpp"
-#include "progress_bar.hpp"
-#include "recording_input.hpp"
+#include "rockfit/app/fit_setup.hpp"
+#include "rockfit/app/progress_bar.hpp"
+#include "rockfit/app/recording_input.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/fitting/fit_campaign.hpp"
 #include "rockfit/io/manifest.hpp"

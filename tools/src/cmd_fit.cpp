@@ -6,10 +6,10 @@
 
 #include "cli_common.hpp"
 #include "command_registry.hpp"
-#include "fit_setup.hpp"
-#include "mounting_report.hpp"
+#include "rockfit/app/fit_setup.hpp"
+#include "rockfit/app/mounting_report.hpp"
 #include "plot_fit.hpp"
-#include "recording_input.hpp"
+#include "rockfit/app/recording_input.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/fitting/fit_store.hpp"
 #include "rockfit/fitting/fitter.hpp"

@@ -15,19 +15,19 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "activity.hpp"
+#include "rockfit/app/activity.hpp"
 #include "cli_common.hpp"
 #include "command_registry.hpp"
-#include "fit_setup.hpp"
-#include "fitted_parameters.hpp"
+#include "rockfit/app/fit_setup.hpp"
+#include "rockfit/app/fitted_parameters.hpp"
 #include "fragility_ledger.hpp"
-#include "fragility_output.hpp"
-#include "ground_motion_args.hpp"
-#include "progress_bar.hpp"
+#include "rockfit/app/fragility_output.hpp"
+#include "rockfit/app/ground_motion_args.hpp"
+#include "rockfit/app/progress_bar.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/fitting/fit_store.hpp"
 #include "rockfit/io/hdf5_transaction.hpp"
-#include "run_limits.hpp"
+#include "rockfit/app/run_limits.hpp"
 #include "sample_ranks.hpp"
 
 namespace rockfit::tools {
@@ -103,7 +103,7 @@ std::vector<double> ParseLevels(const std::string& text, const std::string& opti
   return levels;
 }
 
-std::vector<fitting::FragilityBlock> MakeBlocks(const FragilityCommand& cmd) {
+std::vector<quake::FragilityBlock> MakeBlocks(const FragilityCommand& cmd) {
   std::vector<std::string> ids = cmd.block.block_id.empty() ? std::vector<std::string>{""} : SplitList(cmd.block.block_id);
   std::string group_block, group_position = cmd.position;
   if (!cmd.group.empty()) {
@@ -120,11 +120,11 @@ std::vector<fitting::FragilityBlock> MakeBlocks(const FragilityCommand& cmd) {
   if (cmd.fits.empty() && (!cmd.group.empty() || !cmd.position.empty())) {
     throw InvalidArgument("--group and --position need --fits FILE (the HDF5 file of rockfit batch)");
   }
-  std::vector<fitting::FragilityBlock> blocks;
+  std::vector<quake::FragilityBlock> blocks;
   for (const std::string& id : ids) {
     BlockArgs args = cmd.block;
     args.block_id = id;
-    fitting::FragilityBlock b;
+    quake::FragilityBlock b;
     b.id = id.empty() ? "block" : id;
     b.block = MakeBlock(args);
     core::FromString(cmd.facet_tau, &b.facet_tau_rule);  // one of the names the option accepts
@@ -157,14 +157,14 @@ void CheckRecordSamples(std::size_t held, double adding, const std::string& what
   }
 }
 
-std::vector<fitting::FragilityRecord> LoadRecords(const FragilityCommand& cmd) {
+std::vector<quake::FragilityRecord> LoadRecords(const FragilityCommand& cmd) {
   if (cmd.synthetic_records < 0) throw InvalidArgument("--synthetic-records must be ≥ 0");
   if (cmd.records.size() + static_cast<std::size_t>(cmd.synthetic_records) > kMaxFragilityRecords) {
     throw InvalidArgument(fmt::format("{} --record and --synthetic-records {} are more than the {} records a study may "
                                       "have (docs/file-formats.md, \"Limits\")",
                                       cmd.records.size(), cmd.synthetic_records, kMaxFragilityRecords));
   }
-  std::vector<fitting::FragilityRecord> records;
+  std::vector<quake::FragilityRecord> records;
   std::size_t held = 0;  // samples of the records read so far
   for (const std::string& path : cmd.records) {
     GroundMotionArgs a;
@@ -197,14 +197,14 @@ std::vector<fitting::FragilityRecord> LoadRecords(const FragilityCommand& cmd) {
   return records;
 }
 
-fitting::FragilityStudyOptions MakeStudy(const FragilityCommand& cmd) {
-  fitting::FragilityStudyOptions study;
+quake::FragilityStudyOptions MakeStudy(const FragilityCommand& cmd) {
+  quake::FragilityStudyOptions study;
   study.blocks = MakeBlocks(cmd);
   study.records = LoadRecords(cmd);
   if (cmd.pga.empty() == cmd.scale.empty()) {
     throw InvalidArgument("give the intensity levels with exactly one of --pga LIST (g) or --scale LIST (factors)");
   }
-  study.measure = cmd.pga.empty() ? fitting::IntensityMeasure::kScale : fitting::IntensityMeasure::kPga;
+  study.measure = cmd.pga.empty() ? quake::IntensityMeasure::kScale : quake::IntensityMeasure::kPga;
   study.levels = cmd.pga.empty() ? ParseLevels(cmd.scale, "--scale") : ParseLevels(cmd.pga, "--pga");
   study.samples_per_level = cmd.samples;
   const double samples = static_cast<double>(study.blocks.size()) * static_cast<double>(study.levels.size()) *
@@ -230,7 +230,7 @@ fitting::FragilityStudyOptions MakeStudy(const FragilityCommand& cmd) {
 int RunFragility(const FragilityCommand& cmd) {
   SampleRanks ranks(cmd.mpi || StartedByLauncher());
   // Every rank reads the inputs; a failure on any rank stops all of them (no rank waits forever in a collective).
-  fitting::FragilityStudyOptions study;
+  quake::FragilityStudyOptions study;
   std::string hash;
   std::optional<FragilityLedger> ledger;
   std::exception_ptr failure;
@@ -291,8 +291,8 @@ int RunFragility(const FragilityCommand& cmd) {
     const std::size_t from = std::min(mine.size(), r * per_round), to = std::min(mine.size(), (r + 1) * per_round);
     const std::vector<std::int64_t> chunk(mine.begin() + static_cast<std::ptrdiff_t>(from),
                                           mine.begin() + static_cast<std::ptrdiff_t>(to));
-    const std::vector<fitting::SampleOutcome> local = fitting::RunSamples(study, chunk, cmd.threads);
-    const std::vector<fitting::SampleOutcome> gathered = ranks.Gather(local);
+    const std::vector<quake::SampleOutcome> local = quake::RunSamples(study, chunk, cmd.threads);
+    const std::vector<quake::SampleOutcome> gathered = ranks.Gather(local);
     if (ranks.rank() != 0) continue;
     try {
       done += ledger->Record(gathered, &overturned_this_run);
@@ -317,7 +317,7 @@ int RunFragility(const FragilityCommand& cmd) {
     throw NumericalFailure(fmt::format("sample {} was not run; run again with --resume", missing.front()));
   }
   ledger->journal->Sync();
-  const fitting::FragilitySummary summary = fitting::SummariseFragility(study, ledger->by_index);
+  const quake::FragilitySummary summary = quake::SummariseFragility(study, ledger->by_index);
   {
     io::hdf5::Transaction tx(cmd.output, {"/fragility"});
     io::WriteFileAttributes(tx.Root(), ROCKFIT_VERSION);
@@ -330,7 +330,7 @@ int RunFragility(const FragilityCommand& cmd) {
 
   if (summary.not_counted == static_cast<std::int64_t>(total)) {
     std::map<std::string, std::size_t> reasons;
-    for (const fitting::SampleOutcome& o : ledger->by_index) ++reasons[EndReasonName(o.end_reason)];
+    for (const quake::SampleOutcome& o : ledger->by_index) ++reasons[EndReasonName(o.end_reason)];
     std::vector<std::string> counts;
     for (const auto& [reason, n] : reasons) counts.push_back(fmt::format("{} {}", n, reason));
     throw NumericalFailure(fmt::format("none of the {} samples gave an outcome that counts ({}), so {} holds no "

@@ -7,14 +7,14 @@
 
 #include "cli_common.hpp"
 #include "command_registry.hpp"
-#include "ground_motion_args.hpp"
+#include "rockfit/app/ground_motion_args.hpp"
 #include "rockfit/core/checks.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/ground_motion.hpp"
 #include "rockfit/io/atomic_file.hpp"
 #include "rockfit/io/peer_at2.hpp"
 #include "rockfit/io/stochastic_ground_motion.hpp"
-#include "run_limits.hpp"
+#include "rockfit/app/run_limits.hpp"
 
 namespace rockfit::tools {
 namespace {

@@ -9,8 +9,8 @@
 
 #include "cli_common.hpp"
 #include "command_registry.hpp"
-#include "mounting_report.hpp"
-#include "recording_input.hpp"
+#include "rockfit/app/mounting_report.hpp"
+#include "rockfit/app/recording_input.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/load_recording.hpp"
 #include "rockfit/io/units.hpp"

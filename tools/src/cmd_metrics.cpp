@@ -5,9 +5,9 @@
 
 #include "cli_common.hpp"
 #include "command_registry.hpp"
-#include "metrics_options.hpp"
-#include "mounting_report.hpp"
-#include "recording_input.hpp"
+#include "rockfit/app/metrics_options.hpp"
+#include "rockfit/app/mounting_report.hpp"
+#include "rockfit/app/recording_input.hpp"
 #include "rockfit/core/errors.hpp"
 
 namespace rockfit::tools {

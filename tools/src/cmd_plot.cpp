@@ -8,14 +8,14 @@
 
 #include <fmt/format.h>
 
-#include "campaign_run.hpp"
+#include "rockfit/app/campaign_run.hpp"
 #include "cli_common.hpp"
 #include "command_registry.hpp"
-#include "gnuplot.hpp"
-#include "metrics_options.hpp"
-#include "output_kind.hpp"
+#include "rockfit/app/gnuplot.hpp"
+#include "rockfit/app/metrics_options.hpp"
+#include "rockfit/app/output_kind.hpp"
 #include "plot_command.hpp"
-#include "recording_input.hpp"
+#include "rockfit/app/recording_input.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/campaign_hdf5.hpp"
 

@@ -7,7 +7,7 @@
 
 #include "cli_common.hpp"
 #include "command_registry.hpp"
-#include "report_builder.hpp"
+#include "rockfit/app/report_builder.hpp"
 
 namespace rockfit::tools {
 namespace {

@@ -8,12 +8,12 @@
 
 #include <fmt/format.h>
 
-#include "activity.hpp"
+#include "rockfit/app/activity.hpp"
 #include "cli_common.hpp"
 #include "command_registry.hpp"
-#include "fitted_parameters.hpp"
-#include "ground_motion_args.hpp"
-#include "run_limits.hpp"
+#include "rockfit/app/fitted_parameters.hpp"
+#include "rockfit/app/ground_motion_args.hpp"
+#include "rockfit/app/run_limits.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/response.hpp"
 #include "rockfit/io/atomic_file.hpp"

@@ -5,11 +5,11 @@
 
 #include <fmt/format.h>
 
-#include "campaign_run.hpp"
+#include "rockfit/app/campaign_run.hpp"
 #include "cli_common.hpp"
 #include "command_registry.hpp"
-#include "metrics_options.hpp"
-#include "output_kind.hpp"
+#include "rockfit/app/metrics_options.hpp"
+#include "rockfit/app/output_kind.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/campaign_hdf5.hpp"
 #include "rockfit/io/csv_export.hpp"

@@ -8,10 +8,10 @@
 
 #include <fmt/format.h>
 
-#include "activity.hpp"
+#include "rockfit/app/activity.hpp"
 #include "cli_common.hpp"
 #include "command_registry.hpp"
-#include "run_limits.hpp"
+#include "rockfit/app/run_limits.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/mounting.hpp"
 #include "rockfit/io/synth_recording.hpp"

@@ -7,9 +7,9 @@
 
 #include "cli_common.hpp"
 #include "command_registry.hpp"
-#include "gnuplot.hpp"
+#include "rockfit/app/gnuplot.hpp"
 #include "plot_validation.hpp"
-#include "validation_run.hpp"
+#include "rockfit/app/validation_run.hpp"
 #include "rockfit/fitting/validation_store.hpp"
 #include "rockfit/io/campaign_hdf5.hpp"
 #include "rockfit/io/hdf5_transaction.hpp"

@@ -12,10 +12,10 @@ namespace {
 
 constexpr const char* kJournalKind = "fragility";
 
-std::string Bytes(const fitting::SampleOutcome& o) { return std::string(reinterpret_cast<const char*>(&o), sizeof(o)); }
+std::string Bytes(const quake::SampleOutcome& o) { return std::string(reinterpret_cast<const char*>(&o), sizeof(o)); }
 
-fitting::SampleOutcome FromBytes(const std::string& bytes) {
-  fitting::SampleOutcome o;
+quake::SampleOutcome FromBytes(const std::string& bytes) {
+  quake::SampleOutcome o;
   std::memcpy(&o, bytes.data(), sizeof(o));
   return o;
 }
@@ -24,9 +24,9 @@ fitting::SampleOutcome FromBytes(const std::string& bytes) {
 
 std::filesystem::path FragilityJournalPath(const std::string& output) { return output + ".journal"; }
 
-std::size_t FragilityLedger::Record(const std::vector<fitting::SampleOutcome>& outcomes, std::size_t* overturned) {
+std::size_t FragilityLedger::Record(const std::vector<quake::SampleOutcome>& outcomes, std::size_t* overturned) {
   std::vector<std::string> records;
-  for (const fitting::SampleOutcome& o : outcomes) {
+  for (const quake::SampleOutcome& o : outcomes) {
     const std::size_t i = static_cast<std::size_t>(o.index);
     if (i >= done.size() || done[i]) continue;
     by_index[i] = o;
@@ -46,13 +46,13 @@ std::vector<std::int64_t> FragilityLedger::Remaining() const {
   return remaining;
 }
 
-FragilityLedger OpenLedger(const std::filesystem::path& path, const fitting::FragilityStudyOptions& study,
+FragilityLedger OpenLedger(const std::filesystem::path& path, const quake::FragilityStudyOptions& study,
                            const std::string& settings_hash, bool resume) {
   FragilityLedger ledger;
   const std::size_t n = static_cast<std::size_t>(study.num_samples());
   ledger.by_index.resize(n);
   ledger.done.assign(n, 0);
-  std::optional<io::JournalContents> old = io::ReadJournal(path, kJournalKind, sizeof(fitting::SampleOutcome), n);
+  std::optional<io::JournalContents> old = io::ReadJournal(path, kJournalKind, sizeof(quake::SampleOutcome), n);
   if (old && !resume) {
     std::cerr << fmt::format("rockfit: {} holds {} samples of an interrupted study; starting over (--resume would "
                              "continue it)\n", path.string(), old->records.size());
@@ -64,11 +64,11 @@ FragilityLedger OpenLedger(const std::filesystem::path& path, const fitting::Fra
                                "over", path.string(), old->key, settings_hash));
   }
   if (!old) {
-    ledger.journal.emplace(io::JournalWriter::Create(path, kJournalKind, sizeof(fitting::SampleOutcome), settings_hash));
+    ledger.journal.emplace(io::JournalWriter::Create(path, kJournalKind, sizeof(quake::SampleOutcome), settings_hash));
     return ledger;
   }
   for (const std::string& bytes : old->records) {
-    const fitting::SampleOutcome o = FromBytes(bytes);
+    const quake::SampleOutcome o = FromBytes(bytes);
     if (o.index < 0 || static_cast<std::size_t>(o.index) >= n) {
       throw BadInput(fmt::format("{}: sample index {} outside the study's {} samples; remove the journal", path.string(),
                                  o.index, n));
@@ -82,7 +82,7 @@ FragilityLedger OpenLedger(const std::filesystem::path& path, const fitting::Fra
   if (old->discarded_bytes > 0) {
     std::cerr << fmt::format("rockfit: {}: {} bytes of a torn last write discarded\n", path.string(), old->discarded_bytes);
   }
-  ledger.journal.emplace(io::JournalWriter::Continue(path, *old, sizeof(fitting::SampleOutcome)));
+  ledger.journal.emplace(io::JournalWriter::Continue(path, *old, sizeof(quake::SampleOutcome)));
   return ledger;
 }
 

@@ -7,10 +7,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "activity.hpp"
+#include "rockfit/app/activity.hpp"
 #include "cli_common.hpp"
 #include "command_registry.hpp"
-#include "run_limits.hpp"
+#include "rockfit/app/run_limits.hpp"
 #include "rockfit/core/errors.hpp"
 
 namespace rockfit::tools {

@@ -111,14 +111,14 @@ std::vector<std::int64_t> SampleRanks::Broadcast(std::vector<std::int64_t> value
   return values;
 }
 
-std::vector<fitting::SampleOutcome> SampleRanks::Gather(const std::vector<fitting::SampleOutcome>& local) const {
+std::vector<quake::SampleOutcome> SampleRanks::Gather(const std::vector<quake::SampleOutcome>& local) const {
 #ifdef ROCKFIT_WITH_MPI
   if (mpi_) {
-    constexpr int kRecord = static_cast<int>(sizeof(fitting::SampleOutcome));
+    constexpr int kRecord = static_cast<int>(sizeof(quake::SampleOutcome));
     const int bytes = static_cast<int>(local.size()) * kRecord;
     std::vector<int> counts(rank_ == 0 ? size_ : 0), displacements(rank_ == 0 ? size_ : 0);
     MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
-    std::vector<fitting::SampleOutcome> all;
+    std::vector<quake::SampleOutcome> all;
     if (rank_ == 0) {
       int total = 0;
       for (int r = 0; r < size_; ++r) {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "rockfit/fitting/fragility_study.hpp"
+#include "rockfit/quake/fragility_study.hpp"
 
 namespace rockfit::tools {
 
@@ -38,7 +38,7 @@ class SampleRanks {
   std::vector<std::int64_t> Broadcast(std::vector<std::int64_t> values) const;
   // Every rank's `local` outcomes, concatenated in rank order, on rank 0; empty on the others (collective,
   // MPI_Gatherv of the fixed-size records as bytes: the ranks must share the byte layout, i.e. the same build).
-  std::vector<fitting::SampleOutcome> Gather(const std::vector<fitting::SampleOutcome>& local) const;
+  std::vector<quake::SampleOutcome> Gather(const std::vector<quake::SampleOutcome>& local) const;
   // Ends every rank with `code` after rank `rank()` printed why (MPI_Abort); a plain exit without MPI.
   [[noreturn]] void Abort(int code) const;
 
