@@ -3,15 +3,13 @@
 #include <cmath>
 
 #include "bindings.hpp"
-#include "rockfit/app/mounting_report.hpp"
+#include "rockfit/app/metrics_document.hpp"
 #include "rockfit/app/metrics_options.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/trial_metrics.hpp"
 
 namespace rockfit::python {
 namespace {
-
-py::object ValueOrNone(bool present, double value) { return present ? py::object(py::float_(value)) : py::none(); }
 
 py::list AnchorRecords(const std::vector<io::Anchor>& anchors) {
   py::list out;
@@ -38,8 +36,6 @@ py::object Metrics(const TrialRecording& r, const std::optional<core::Block>& gi
   args.options.avrf.min_peaks = min_peaks;
   args.anchors = anchors;
   args.uplift = uplift;
-  if (anchors != "subsample" && anchors != "sample") throw InvalidArgument("anchors must be 'subsample' or 'sample', got '" + anchors + "'");
-  if (uplift != "com" && uplift != "paper") throw InvalidArgument("uplift must be 'com' or 'paper', got '" + uplift + "'");
   const io::MetricsOptions options = app::MakeMetricsOptions(args);
   io::MetricsSummary m;
   {
@@ -47,42 +43,10 @@ py::object Metrics(const TrialRecording& r, const std::optional<core::Block>& gi
     m = io::ComputeTrialMetrics(r.recording, block, options);
   }
   const io::Recording& rec = r.recording;
-  std::vector<double> impact_times, x_anchor_times;
-  for (const auto& a : m.correction.impacts_y) impact_times.push_back(a.t_s);
-  for (const auto& a : m.correction.anchors_x) x_anchor_times.push_back(a.t_s);
-
-  py::dict d;  // the keys of `rockfit metrics --json`, in its order
-  d["trial"] = r.trial;
-  d["source"] = rec.source;
-  d["format"] = rec.format;
-  d["rate_hz"] = rec.rate_hz;
-  d["samples"] = rec.size();
-  d["status"] = m.status;
-  d["message"] = m.message;
-  d["opmf"] = ValueOrNone(m.opmf.ok(), m.opmf.opmf);
-  d["opmf_status"] = io::ToString(m.opmf.status);
-  d["max_abs_phi_x"] = m.opmf.max_abs_phi_x_rad;
-  d["max_abs_phi_y"] = m.opmf.max_abs_phi_y_rad;
-  d["avrf"] = ValueOrNone(m.avrf.ok(), m.avrf.avrf);
-  d["avrf_status"] = io::ToString(m.avrf.status);
-  d["avrf_ratios"] = OwnedArray(std::vector<double>(m.avrf.ratios));
-  d["avrf_peaks_used"] = m.avrf.peaks_used;
-  d["avrf_peak_times"] = OwnedArray(std::vector<double>(m.avrf.peak_times_s));
-  d["avrf_peak_angles"] = OwnedArray(std::vector<double>(m.avrf.peak_angles_rad));
-  d["lambda_equivalent"] = m.avrf.lambda_equivalent && std::isfinite(*m.avrf.lambda_equivalent)
-                               ? py::object(py::float_(*m.avrf.lambda_equivalent))
-                               : py::none();
-  d["impact_times"] = OwnedArray(std::move(impact_times));
-  d["phi_x_anchor_times"] = OwnedArray(std::move(x_anchor_times));
-  d["uplift_formula"] = io::ToString(options.avrf.uplift);
-  d["anchor_method"] = io::ToString(options.correction.anchor_method);
-  d["mounting"] = FromJson(app::MountingJson(rec));
-  d["block"] = BlockDict(block);
-  d["warnings"] = m.correction.warnings;
-  d["units"] = py::dict(py::arg("rate_hz") = "Hz", py::arg("max_abs_phi_x") = "rad", py::arg("max_abs_phi_y") = "rad",
-                        py::arg("avrf_peak_times") = "s", py::arg("avrf_peak_angles") = "rad",
-                        py::arg("impact_times") = "s", py::arg("phi_x_anchor_times") = "s", py::arg("block") = "m, kg",
-                        py::arg("opmf") = "1", py::arg("avrf") = "1", py::arg("lambda_equivalent") = "1");
+  py::dict d = FromJson(app::MetricsJson(r.trial, rec, block, options, m));  // the keys of `rockfit metrics --json`
+  for (const char* key : {"avrf_ratios", "avrf_peak_times", "avrf_peak_angles", "impact_times", "phi_x_anchor_times"}) {
+    d[key] = OwnedArray(d[key].cast<std::vector<double>>());
+  }
   // Beyond the program's JSON: the samples and the anchors of the correction.
   d["t"] = OwnedArray(std::vector<double>(rec.t_s));
   d["euler_raw"] = OwnedArray(std::move(m.correction.euler_raw_zyx));

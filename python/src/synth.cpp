@@ -7,6 +7,7 @@
 
 #include "bindings.hpp"
 #include "path_argument.hpp"
+#include "rockfit/app/synth_setup.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/mounting.hpp"
 #include "rockfit/io/synth_recording.hpp"
@@ -36,41 +37,44 @@ struct SynthKeywords {
   std::optional<double> accel_noise_g;
 };
 
-core::FacetTauRule ParseFacetTau(const std::string& text) {
-  core::FacetTauRule rule = core::FacetTauRule::kNoSpin;
-  if (core::FromString(text, &rule)) return rule;
-  throw InvalidArgument("facet_tau must be 'no-spin' (τ from (24)) or 'fixed' (τ = 0, the paper's Sect. 5; also "
-                        "written 'zero'), got '" + text + "'");
+std::optional<Eigen::Vector3d> OptionalVector(const py::object& value, const char* name) {
+  if (value.is_none()) return std::nullopt;
+  return ToVector3(value, name);
 }
 
-// The measurement options as `rockfit synth` makes them from its flags.
-io::MeasurementOptions Measurement(const SynthKeywords& k) {
-  if (!k.noise) {
-    const bool overridden = k.gyro_noise_dps || !k.gyro_bias_dps.is_none() || !k.quantisation || k.ringing_gain ||
-                            k.ringing_frequency_hz || k.ringing_decay_time_s || !k.ringing ||
-                            !k.drift_slope_dps.is_none() || !k.drift_walk_deg_per_rt_s.is_none() || !k.drift ||
-                            k.accel_noise_g;
-    if (overridden) throw InvalidArgument("noise=False is an ideal sensor: give no other measurement option with it");
-  }
-  io::MeasurementOptions m = k.noise ? io::MeasurementOptions{} : io::MeasurementOptions::Ideal();
-  m.seed = k.seed;
-  if (k.gyro_noise_dps) m.gyro_noise_dps = *k.gyro_noise_dps;
-  if (!k.gyro_bias_dps.is_none()) m.gyro_bias_dps = ToVector3(k.gyro_bias_dps, "gyro_bias_dps");
-  if (!k.quantisation) m.quantisation = false;
-  if (k.ringing_gain) m.ringing_gain = *k.ringing_gain;
-  if (k.ringing_frequency_hz) m.ringing_frequency_hz = *k.ringing_frequency_hz;
-  if (k.ringing_decay_time_s) m.ringing_decay_time_s = *k.ringing_decay_time_s;
-  if (!k.ringing) m.ringing_gain = 0.0;
-  if (!k.drift_slope_dps.is_none()) m.drift_slope_dps = ToVector3(k.drift_slope_dps, "drift_slope_dps");
-  if (!k.drift_walk_deg_per_rt_s.is_none()) {
-    m.drift_walk_deg_per_rt_s = ToVector3(k.drift_walk_deg_per_rt_s, "drift_walk_deg_per_rt_s");
-  }
-  if (!k.drift) {
-    m.drift_slope_dps.setZero();
-    m.drift_walk_deg_per_rt_s.setZero();
-  }
-  if (k.accel_noise_g) m.accel_noise_g = *k.accel_noise_g;
-  return m;
+// The arguments as `rockfit synth` fills them from its flags.
+app::SynthArgs MakeArgs(const SynthKeywords& k) {
+  app::SynthArgs a;
+  a.alpha_rad = k.alpha;
+  a.lambda = k.lambda;
+  a.lambda_lat = k.lambda_lat;
+  a.lambda_lon = k.lambda_lon;
+  a.tau_edge = k.tau_edge;
+  a.facet_tau = k.facet_tau;
+  a.rest_energy_height_m = k.rest_energy_height;
+  a.t0_s = k.t0;
+  a.duration_s = k.duration;
+  a.rate_hz = k.rate;
+  a.quaternion_rate_hz = k.quaternion_rate;
+  a.mounting = k.mounting;
+  a.sensor_position_B_m = OptionalVector(k.sensor_position, "sensor_position");
+  a.rtc_start_s = k.rtc_start_s;
+  a.rotation_matrix_file = k.rotation_matrix;
+  a.crlf = k.crlf;
+  a.seed = k.seed;
+  a.noise = k.noise;
+  a.gyro_noise_dps = k.gyro_noise_dps;
+  a.gyro_bias_dps = OptionalVector(k.gyro_bias_dps, "gyro_bias_dps");
+  a.quantisation = k.quantisation;
+  a.ringing_gain = k.ringing_gain;
+  a.ringing_frequency_hz = k.ringing_frequency_hz;
+  a.ringing_decay_time_s = k.ringing_decay_time_s;
+  a.ringing = k.ringing;
+  a.drift_slope_dps = OptionalVector(k.drift_slope_dps, "drift_slope_dps");
+  a.drift_walk_deg_per_rt_s = OptionalVector(k.drift_walk_deg_per_rt_s, "drift_walk_deg_per_rt_s");
+  a.drift = k.drift;
+  a.accel_noise_g = k.accel_noise_g;
+  return a;
 }
 
 py::object ReadTruth(const std::string& path) {
@@ -80,29 +84,9 @@ py::object ReadTruth(const std::string& path) {
 }
 
 py::object Synth(const std::string& prefix, const core::Block& block, const SynthKeywords& k) {
-  core::ModelParameters params;
-  params.alpha_rad = k.alpha;
-  params.lambda = k.lambda;
-  params.lambda_lat = k.lambda_lat;
-  params.lambda_lon = k.lambda_lon;
-  params.tau_edge = k.tau_edge;
-  params.facet_tau_rule = ParseFacetTau(k.facet_tau);
-
-  io::SynthRecordingOptions o;
-  o.t0_s = k.t0;
-  if (k.rest_energy_height) o.simulation.rest_energy_height_m = *k.rest_energy_height;
-  o.duration_s = k.duration;
-  o.rate_hz = k.rate;
-  const io::Mounting mounting = io::Mounting::Parse(k.mounting);
-  o.R_BS = mounting.R_BS();
-  o.mounting_text = mounting.text();
-  if (!k.sensor_position.is_none()) o.sensor_position_B = ToVector3(k.sensor_position, "sensor_position");
-  o.files.quaternion_rate_hz = k.quaternion_rate.value_or(k.rate);
-  o.files.rotation_matrix_file = k.rotation_matrix;
-  o.files.crlf_line_endings = k.crlf;
-  o.files.rtc_start_s = k.rtc_start_s;
-  o.files.seed = k.seed;
-  o.measurement = Measurement(k);
+  const app::SynthArgs args = MakeArgs(k);
+  const core::ModelParameters params = app::MakeSynthParameters(args);
+  io::SynthRecordingOptions o = app::MakeSynthOptions(args);
   o.command_line = fmt::format(
       "python3: rockfit.synth('{}', Block(b1={}, b2={}, h={}, mass={}), alpha={}, lambda_={}, lambda_lat={}, "
       "lambda_lon={}, tau_edge={}, facet_tau='{}', t0={}, duration={}, rate={}, mounting='{}', seed={}, noise={})",
@@ -116,23 +100,7 @@ py::object Synth(const std::string& prefix, const core::Block& block, const Synt
     recording = io::Synthesize(block, params, o);
     files = io::WriteSynthRecording(prefix, block, params, o, recording);
   }
-  const core::Trajectory& t = recording.trajectory;
-  std::optional<double> rest_s;
-  if (!t.impacts.empty() && t.impacts.back().kind == core::ImpactKind::kRest) rest_s = o.t0_s + t.impacts.back().t_s;
-  const auto optional = [](const std::optional<double>& x) { return x ? py::object(py::float_(*x)) : py::none(); };
-
-  py::dict d;  // the keys of `rockfit synth --json`
-  d["prefix"] = prefix;
-  d["files"] = files;
-  d["samples"] = recording.motion.size();
-  d["rate_hz"] = o.rate_hz;
-  d["duration_s"] = static_cast<double>(recording.motion.size()) / o.rate_hz;
-  d["t0_s"] = o.t0_s;
-  d["seed"] = k.seed;
-  d["impacts"] = t.impacts.size();
-  d["first_impact_s"] = t.impacts.empty() ? py::none() : py::object(py::float_(o.t0_s + t.impacts.front().t_s));
-  d["phase4_end_s"] = optional(recording.phase4_end_s);
-  d["rest_s"] = optional(rest_s);
+  py::dict d = FromJson(app::SynthResultJson(prefix, files, recording, o));  // the keys of `rockfit synth --json`
   // The truth: the parameters, and the true motion at every inertial sample.
   d["parameters"] = py::dict(py::arg("t0") = o.t0_s, py::arg("alpha") = k.alpha, py::arg("lambda") = k.lambda,
                              py::arg("lambda_lat") = k.lambda_lat, py::arg("lambda_lon") = k.lambda_lon,
@@ -182,7 +150,7 @@ void RegisterSynth(py::module_& m) {
       "measurement model adds gyro noise, bias, quantisation, ringing after impacts and attitude drift. The same\n"
       "arguments (seed) give the same files as the program.\n\n"
       "Model: alpha [rad], lambda_ (19), lambda_lat, lambda_lon (21), tau_edge [N·m·s], facet_tau 'no-spin' or\n"
-      "'zero', rest_energy_height [m]. Recording: t0 [s], duration [s], rate [Hz] (an x-IMU rate 2^(v−1)),\n"
+      "'fixed', rest_energy_height [m]. Recording: t0 [s], duration [s], rate [Hz] (an x-IMU rate 2^(v−1)),\n"
       "quaternion_rate [Hz], mounting 'x,-y,-z' or 'w,x,y,z', sensor_position (3,) [m], rtc_start_s,\n"
       "rotation_matrix, crlf. Measurement: seed; noise=False for an ideal sensor; gyro_noise_dps (0.1),\n"
       "gyro_bias_dps (3,), quantisation, ringing_gain (0.25), ringing_frequency_hz (38), ringing_decay_time_s\n"

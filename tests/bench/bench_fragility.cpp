@@ -1,4 +1,4 @@
-// Speed of a fragility study (fitting/fragility_study.hpp): simulations per second on one core for 30 s
+// Speed of a fragility study (fitting/quake/include/rockfit/quake/fragility_study.hpp): simulations per second on one core for 30 s
 // Clough–Penzien records at 200 Hz on a granite block of the sample campaign (h = 0.2 m, b1 = 0.05 m, b2 = 0.035 m)
 // with spread impact parameters and random incidence, PGA levels from below uplift (0.15 g) to certain overturning.
 // items/s is simulations per second on one thread; the counters say how the samples ended.

@@ -1,6 +1,6 @@
 // `rockfit fragility`: the probability that a block overturns (or exceeds given peak tilts) at each intensity
 // level, with binomial intervals and a fitted lognormal curve, from a Monte-Carlo study of `respond` runs
-// (fitting/fragility_study.hpp). Threads (TBB) on one machine, MPI ranks on several (sample_ranks.hpp): the
+// (fitting/quake/include/rockfit/quake/fragility_study.hpp). Threads (TBB) on one machine, MPI ranks on several (sample_ranks.hpp): the
 // ranks split the samples round-robin, rank 0 gathers each round, appends it to a journal (kill-safe, for
 // --resume) and at the end writes the HDF5 file atomically.
 #include <algorithm>

@@ -13,15 +13,12 @@
 
 #include "cli_common.hpp"
 #include "command_registry.hpp"
+#include "rockfit/app/impact_evaluation.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/impact_maps.hpp"
 
 namespace rockfit::tools {
 namespace {
-
-// Warnings about ω⁻ (not falling, not along the pivot edge) compare velocities with this fraction of
-// |ω⁻|·L. Dimensionless; only decides whether a hint is printed.
-constexpr double kWarningRelTol = 1e-9;
 
 constexpr const char* kExitCodesHelp =
     "Exit codes: 0 status ok; 1 bad arguments; 3 the map has no single answer (status singular, infeasible or\n"
@@ -48,47 +45,9 @@ struct FacetCommand {
   bool json = false;
 };
 
-void RequireFinite(double value, const std::string& option, const std::string& what) {
-  if (!std::isfinite(value)) throw InvalidArgument(option + " must be a finite number (" + what + ")");
-}
-
-void RequireVertex(int k, const std::string& option) {
-  if (k < 1 || k > 4) {
-    throw InvalidArgument(option + " must be a base vertex 1, 2, 3 or 4 (V1=(−b1,−b2), V2=(−b1,+b2), V3=(+b1,+b2), "
-                          "V4=(+b1,−b2)), got " + std::to_string(k));
-  }
-}
-
 std::string FormatVector(const Eigen::Vector3d& v) { return fmt::format("({:+.9f}, {:+.9f}, {:+.9f})", v.x(), v.y(), v.z()); }
 
 std::string YesNo(bool value) { return value ? "yes" : "no"; }
-
-// The contact after the impact as printed: "V4", "V3V4", "facet" (rest on the whole base), or null.
-nlohmann::json ContactAfterJson(const core::ImpactOutcome& out) {
-  if (out.status != core::ImpactStatus::kOk) return nullptr;
-  return out.contact_after.first == 0 ? std::string("facet") : out.contact_after.ToString();
-}
-
-// Keys shared by both kinds; ω⁺ and energies after are null unless the status is ok.
-nlohmann::json OutcomeJson(const char* kind, const core::ImpactOutcome& out) {
-  const bool ok = out.status == core::ImpactStatus::kOk;
-  nlohmann::json j;
-  j["kind"] = kind;
-  j["status"] = core::ToString(out.status);
-  j["contact_before"] = out.contact_before.ToString();
-  j["omega_minus"] = ToJson(out.w_minus_W);
-  j["omega_plus"] = ok ? ToJson(out.w_plus_W) : nlohmann::json(nullptr);
-  j["omega_plus_body"] = ok ? ToJson(out.w_plus_B) : nlohmann::json(nullptr);
-  j["tau"] = ok ? nlohmann::json(out.tau) : nlohmann::json(nullptr);
-  j["contact_after"] = ContactAfterJson(out);
-  j["energy_before"] = out.energy_before_J;
-  j["energy_after"] = ok ? nlohmann::json(out.energy_after_J) : nlohmann::json(nullptr);
-  j["delta_energy"] = ok ? nlohmann::json(out.delta_energy_J) : nlohmann::json(nullptr);
-  j["within_bounds"] = out.within_geometric_bounds;
-  j["energy_nonincreasing"] = ok ? nlohmann::json(out.energy_nonincreasing) : nlohmann::json(nullptr);
-  j["units"] = {{"omega", "rad/s"}, {"tau", "N*m*s"}, {"energy", "J"}, {"tilt", "rad"}};
-  return j;
-}
 
 void PrintOutcomeTable(const core::ImpactOutcome& out, const char* bounds_name, const char* omega_plus_frame) {
   const bool ok = out.status == core::ImpactStatus::kOk;
@@ -127,43 +86,20 @@ void PrintWarnings(const std::vector<std::string>& warnings) {
 
 int RunEdge(const EdgeCommand& cmd) {
   const core::Block block = MakeBlock(cmd.block);
-  RequireVertex(cmd.pivot, "--pivot");
-  RequireVertex(cmd.landing, "--landing");
-  if (!core::Block::AreNeighbours(cmd.pivot, cmd.landing)) {
-    throw InvalidArgument("--landing must be a neighbour of --pivot V" + std::to_string(cmd.pivot) + " (V" +
-                          std::to_string(core::Block::WrapVertex(cmd.pivot - 1)) + " or V" +
-                          std::to_string(core::Block::WrapVertex(cmd.pivot + 1)) + "), got " + std::to_string(cmd.landing));
-  }
-  RequireFinite(cmd.tilt_rad, "--tilt", "rad, in [0, π/2]");
-  if (cmd.tilt_rad < 0.0 || cmd.tilt_rad > core::kMaxEdgeImpactTilt) {
-    throw InvalidArgument("--tilt must be in [0, π/2] rad (0: flat base), got " + std::to_string(cmd.tilt_rad));
-  }
-  RequireFinite(cmd.lambda, "--lambda", "position of the resultant along the edge, (19)");
-  RequireFinite(cmd.tau, "--tau", "N·m·s");
-  const Eigen::Vector3d w_minus_W = ParseVector3(cmd.omega_minus, "--omega-minus");
-
-  const Eigen::Matrix3d R_WB = core::EdgeImpactAttitude(block, cmd.pivot, cmd.landing, cmd.tilt_rad);
-  const core::EdgeImpactParameters params{cmd.lambda, cmd.tau};
-  const core::ImpactOutcome out = core::EdgeImpact(block, R_WB, cmd.pivot, cmd.landing, w_minus_W, params);
-  const std::vector<double> singular = core::EdgeImpactSingularLambdas(block, R_WB, cmd.pivot, cmd.landing);
-
-  std::vector<std::string> warnings;
-  const Eigen::Vector3d p_ba_W = R_WB * (block.p_BV_B(cmd.landing) - block.p_BV_B(cmd.pivot));
-  if (w_minus_W.cross(p_ba_W).z() >= -kWarningRelTol * w_minus_W.norm() * p_ba_W.norm()) {
-    warnings.push_back(fmt::format("with this ω⁻ the landing vertex V{} does not move down (rotation about V{}), so "
-                                   "the edge does not hit the ground",
-                                   cmd.landing, cmd.pivot));
-  }
+  EdgeImpactArgs args;
+  args.pivot = cmd.pivot;
+  args.landing = cmd.landing;
+  args.tilt_rad = cmd.tilt_rad;
+  args.w_minus_W = ParseVector3(cmd.omega_minus, "--omega-minus");
+  args.lambda = cmd.lambda;
+  args.tau = cmd.tau;
+  const ImpactEvaluation result = EvaluateEdgeImpact(block, args, kProgramImpactNames);
+  const core::ImpactOutcome& out = result.outcome;
+  const std::vector<double>& singular = result.singular_lambdas;
+  const std::vector<std::string>& warnings = result.warnings;
 
   if (cmd.json) {
-    nlohmann::json j = OutcomeJson("edge", out);
-    j["pivot"] = cmd.pivot;
-    j["landing"] = cmd.landing;
-    j["tilt"] = cmd.tilt_rad;
-    j["lambda"] = cmd.lambda;
-    j["singular_lambdas"] = singular;
-    j["warnings"] = warnings;
-    PrintJson(j);
+    PrintJson(EdgeImpactJson(args, result));
   } else {
     std::cout << fmt::format("edge impact     rocking about V{}, edge V{}V{} lands, tilt {} rad\n", cmd.pivot, cmd.pivot,
                              cmd.landing, cmd.tilt_rad)
@@ -182,61 +118,24 @@ int RunEdge(const EdgeCommand& cmd) {
 int RunFacet(const FacetCommand& cmd) {
   const core::Block block = MakeBlock(cmd.block);
   const int b = ParsePivotEdge(cmd.pivot_edge);
-  RequireFinite(cmd.lambda_lat, "--lambda-lat", "(21)");
-  RequireFinite(cmd.lambda_lon, "--lambda-lon", "(21)");
-  if (cmd.tau) RequireFinite(*cmd.tau, "--tau", "N·m·s");
-  const Eigen::Vector3d w_minus_B = ParseVector3(cmd.omega_minus, "--omega-minus");
-
-  core::FacetImpactParameters params;
-  params.lambda_lat = cmd.lambda_lat;
-  params.lambda_lon = cmd.lambda_lon;
-  params.tau_rule = cmd.tau ? core::FacetTauRule::kFixed : core::FacetTauRule::kNoSpin;
-  params.tau = cmd.tau.value_or(0.0);
-  const core::ImpactOutcome out = core::FacetImpact(block, b, w_minus_B, params);
-
-  std::vector<std::string> warnings;
-  const Eigen::Vector3d edge_B = block.p_BV_B(b) - block.p_BV_B(b - 1);
-  const Eigen::Vector3d falling_B = edge_B.normalized();
-  const double velocity_scale = w_minus_B.norm() * (block.p_BC_B() - block.p_BV_B(b)).norm();
-  if (w_minus_B.cross(block.p_BV_B(b + 1) - block.p_BV_B(b)).z() >= -kWarningRelTol * velocity_scale) {
-    warnings.push_back(fmt::format("with this ω⁻ the base does not fall onto the ground about V{}V{}; in rockfit's "
-                                   "frame a falling block has ω⁻ = +ω·({:+.3g}, {:+.3g}, {:+.3g}), ω > 0 (the paper's "
-                                   "Fig. 11 writes [0, −1, 0] for V1V2 in its own axes)",
-                                   core::Block::WrapVertex(b - 1), b, falling_B.x(), falling_B.y(), falling_B.z()));
-  }
-  if ((w_minus_B - w_minus_B.dot(falling_B) * falling_B).norm() > kWarningRelTol * w_minus_B.norm()) {
-    warnings.push_back(fmt::format("ω⁻ is not along the pivot edge V{}V{}, as rocking about that edge requires; the "
-                                   "part off the edge is mapped as given, with V{} as pre-impact pivot",
-                                   core::Block::WrapVertex(b - 1), b, b));
-  }
+  FacetImpactArgs args;
+  args.b = b;
+  args.w_minus_B = ParseVector3(cmd.omega_minus, "--omega-minus");
+  args.lambda_lat = cmd.lambda_lat;
+  args.lambda_lon = cmd.lambda_lon;
+  args.tau = cmd.tau;
+  const ImpactEvaluation result = EvaluateFacetImpact(block, args, kProgramImpactNames);
+  const core::ImpactOutcome& out = result.outcome;
+  const std::vector<std::string>& warnings = result.warnings;
+  const core::FacetTauRule tau_rule = cmd.tau ? core::FacetTauRule::kFixed : core::FacetTauRule::kNoSpin;
 
   if (cmd.json) {
-    nlohmann::json j = OutcomeJson("facet", out);
-    j["pivot_edge"] = out.contact_before.ToString();
-    j["b"] = b;
-    j["lambda_lat"] = cmd.lambda_lat;
-    j["lambda_lon"] = cmd.lambda_lon;
-    j["tau_rule"] = core::ToString(params.tau_rule);
-    if (params.tau_rule == core::FacetTauRule::kFixed) j["tau"] = params.tau;  // the τ used, whatever the status
-    nlohmann::json candidates = nlohmann::json::array();
-    for (const core::FacetCandidate& c : out.candidates) {
-      const bool solved = c.status == core::ImpactStatus::kOk;
-      candidates.push_back({{"contact", c.contact.ToString()},
-                            {"status", core::ToString(c.status)},
-                            {"feasible", c.feasible},
-                            {"impulse_lifts_22", solved ? nlohmann::json(c.impulse_lifts) : nlohmann::json(nullptr)},
-                            {"no_penetration_23", solved ? nlohmann::json(c.no_penetration) : nlohmann::json(nullptr)},
-                            {"omega_plus", solved ? ToJson(c.w_plus) : nlohmann::json(nullptr)},
-                            {"tau", solved ? nlohmann::json(c.tau) : nlohmann::json(nullptr)}});
-    }
-    j["candidates"] = candidates;
-    j["warnings"] = warnings;
-    PrintJson(j);
+    PrintJson(FacetImpactJson(args, result));
   } else {
     std::cout << fmt::format("facet impact    pivot edge V{}V{} (b = {}), block flat (W = B)\n",
                              core::Block::WrapVertex(b - 1), b, b)
               << fmt::format("parameters      λ_lat = {}, λ_lon = {}, τ rule {}{}\n", cmd.lambda_lat, cmd.lambda_lon,
-                             core::ToString(params.tau_rule),
+                             core::ToString(tau_rule),
                              cmd.tau ? fmt::format(" (τ = {} N·m·s)", *cmd.tau) : std::string(" (24)"));
     PrintOutcomeTable(out, "(27)", "(W = B)");
     std::cout << "candidates      vertex  status     (22)  (23)  feasible  ω⁺ [rad/s]                                 τ [N·m·s]\n";
@@ -254,7 +153,7 @@ int RunFacet(const FacetCommand& cmd) {
   std::string hint;
   if (out.status == core::ImpactStatus::kSingular) {
     hint = "(18) is singular for these parameters: move λ_lat/λ_lon away from this point.";
-  } else if (params.tau_rule == core::FacetTauRule::kFixed) {
+  } else if (tau_rule == core::FacetTauRule::kFixed) {
     hint = "With a fixed --tau the facet map need not have exactly one feasible vertex (paper Fig. 11): see the "
            "candidates, or drop --tau to use the no-spin rule (24).";
   } else {

@@ -5,6 +5,7 @@
 
 #include "cli_common.hpp"
 #include "command_registry.hpp"
+#include "rockfit/app/metrics_document.hpp"
 #include "rockfit/app/metrics_options.hpp"
 #include "rockfit/app/mounting_report.hpp"
 #include "rockfit/app/recording_input.hpp"
@@ -19,8 +20,6 @@ struct MetricsCommand {
   MetricsArgs metrics;
   bool json = false;
 };
-
-nlohmann::json ValueOrNull(bool present, double value) { return present ? nlohmann::json(value) : nlohmann::json(); }
 
 std::string List(const std::vector<double>& values, const char* format) {
   std::string out;
@@ -46,37 +45,7 @@ int RunMetrics(const MetricsCommand& cmd) {
   const int exit_code = m.ok() ? kExitOk : kExitNumerical;
 
   if (cmd.json) {
-    nlohmann::json out;
-    out["trial"] = input.trial_id;
-    out["source"] = rec.source;
-    out["format"] = rec.format;
-    out["rate_hz"] = rec.rate_hz;
-    out["samples"] = rec.size();
-    out["status"] = m.status;
-    out["message"] = m.message;
-    out["opmf"] = ValueOrNull(m.opmf.ok(), m.opmf.opmf);
-    out["opmf_status"] = io::ToString(m.opmf.status);
-    out["max_abs_phi_x"] = m.opmf.max_abs_phi_x_rad;
-    out["max_abs_phi_y"] = m.opmf.max_abs_phi_y_rad;
-    out["avrf"] = ValueOrNull(m.avrf.ok(), m.avrf.avrf);
-    out["avrf_status"] = io::ToString(m.avrf.status);
-    out["avrf_ratios"] = m.avrf.ratios;
-    out["avrf_peaks_used"] = m.avrf.peaks_used;
-    out["avrf_peak_times"] = m.avrf.peak_times_s;
-    out["avrf_peak_angles"] = m.avrf.peak_angles_rad;
-    out["lambda_equivalent"] = OrNull(m.avrf.lambda_equivalent);
-    out["impact_times"] = impact_times;
-    out["phi_x_anchor_times"] = x_anchor_times;
-    out["uplift_formula"] = io::ToString(options.avrf.uplift);
-    out["anchor_method"] = io::ToString(options.correction.anchor_method);
-    out["mounting"] = MountingJson(rec);
-    out["block"] = {{"b1", block->b1()}, {"b2", block->b2()}, {"h", block->h()}, {"mass", block->mass()}};
-    out["warnings"] = m.correction.warnings;
-    out["units"] = {{"rate_hz", "Hz"},         {"max_abs_phi_x", "rad"},   {"max_abs_phi_y", "rad"},
-                    {"avrf_peak_times", "s"},  {"avrf_peak_angles", "rad"}, {"impact_times", "s"},
-                    {"phi_x_anchor_times", "s"}, {"block", "m, kg"},       {"opmf", "1"},
-                    {"avrf", "1"},             {"lambda_equivalent", "1"}};
-    PrintJson(out);
+    PrintJson(MetricsJson(input.trial_id, rec, *block, options, m));
   } else {
     std::cout << fmt::format("trial      {}  ({}, {} Hz, {} samples, {:.2f} s)\n", input.trial_id, rec.source,
                              rec.rate_hz, rec.size(), rec.duration_s());

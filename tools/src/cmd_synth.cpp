@@ -12,6 +12,7 @@
 #include "cli_common.hpp"
 #include "command_registry.hpp"
 #include "rockfit/app/run_limits.hpp"
+#include "rockfit/app/synth_setup.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/mounting.hpp"
 #include "rockfit/io/synth_recording.hpp"
@@ -19,49 +20,41 @@
 namespace rockfit::tools {
 namespace {
 
+// The values the options fill: SynthArgs directly where the option is the value; the vectors as text (parsed
+// naming their option) and the negative flags as given.
 struct SynthCommand {
   BlockArgs block;
-  // Model parameters.
-  double alpha_rad = 0.2;
-  double lambda = 1.0;
-  double lambda_lat = 0.0;
-  double lambda_lon = 1.0;
-  double tau_edge = 0.0;
-  std::string facet_tau = "no-spin";
-  std::optional<double> rest_energy_height_m;
-  // Recording.
-  double t0_s = 2.0;
-  double duration_s = 10.0;
-  double rate_hz = 256.0;
-  std::optional<double> quaternion_rate_hz;
-  std::string mounting = "x,y,z";
+  SynthArgs args;
   std::string sensor_position;
-  std::int64_t rtc_start_s = 0;
-  bool no_rotation_matrix = false;
-  bool crlf = false;
-  // Measurement.
-  std::uint64_t seed = 1;
-  std::optional<double> gyro_noise_dps;
   std::string gyro_bias_dps;
-  bool no_quantisation = false;
-  std::optional<double> ringing_gain;
-  std::optional<double> ringing_frequency_hz;
-  std::optional<double> ringing_decay_time_s;
-  bool no_ringing = false;
   std::string drift_slope_dps;
   std::string drift_walk;
+  bool no_rotation_matrix = false;
+  bool no_quantisation = false;
+  bool no_ringing = false;
   bool no_drift = false;
-  std::optional<double> accel_noise_g;
   bool no_noise = false;
   std::string output;
   bool json = false;
 };
 
-core::FacetTauRule ParseFacetTau(const std::string& text) {
-  core::FacetTauRule rule = core::FacetTauRule::kNoSpin;
-  if (core::FromString(text, &rule)) return rule;
-  throw InvalidArgument("--facet-tau expects no-spin (τ from (24), the default) or fixed (τ = 0, the paper's Sect. 5; "
-                        "also written zero), got '" + text + "'");
+std::optional<Eigen::Vector3d> OptionalVector(const std::string& text, const std::string& option) {
+  if (text.empty()) return std::nullopt;
+  return ParseVector3(text, option);
+}
+
+SynthArgs CompleteArgs(const SynthCommand& cmd) {
+  SynthArgs a = cmd.args;
+  a.sensor_position_B_m = OptionalVector(cmd.sensor_position, "--sensor-position-m");
+  a.gyro_bias_dps = OptionalVector(cmd.gyro_bias_dps, "--gyro-bias-dps");
+  a.drift_slope_dps = OptionalVector(cmd.drift_slope_dps, "--drift-slope-dps");
+  a.drift_walk_deg_per_rt_s = OptionalVector(cmd.drift_walk, "--drift-walk-deg-per-rt-s");
+  a.rotation_matrix_file = !cmd.no_rotation_matrix;
+  a.quantisation = !cmd.no_quantisation;
+  a.ringing = !cmd.no_ringing;
+  a.drift = !cmd.no_drift;
+  a.noise = !cmd.no_noise;
+  return a;
 }
 
 std::string Vector3Text(const Eigen::Vector3d& v) { return fmt::format("{},{},{}", v.x(), v.y(), v.z()); }
@@ -86,8 +79,8 @@ std::string ReproducingCommand(const SynthCommand& cmd, const core::ModelParamet
   if (cmd.block.density_kg_m3) c += fmt::format(" --density {}", *cmd.block.density_kg_m3);
   if (cmd.block.mass_kg) c += fmt::format(" --mass {}", *cmd.block.mass_kg);
   c += fmt::format(" --alpha {} --lambda {} --lambda-lat {} --lambda-lon {} --tau-edge {} --facet-tau {}", p.alpha_rad,
-                   p.lambda, p.lambda_lat, p.lambda_lon, p.tau_edge, cmd.facet_tau);
-  if (cmd.rest_energy_height_m) c += fmt::format(" --rest-energy-height-m {}", *cmd.rest_energy_height_m);
+                   p.lambda, p.lambda_lat, p.lambda_lon, p.tau_edge, cmd.args.facet_tau);
+  if (cmd.args.rest_energy_height_m) c += fmt::format(" --rest-energy-height-m {}", *cmd.args.rest_energy_height_m);
   c += fmt::format(" --t0 {} --duration {} --rate {} --quaternion-rate {} --mounting={}", o.t0_s, o.duration_s, o.rate_hz,
                    o.files.quaternion_rate_hz, o.mounting_text);
   if (o.sensor_position_B) c += " --sensor-position-m=" + Vector3Text(*o.sensor_position_B);
@@ -112,74 +105,21 @@ std::string ReproducingCommand(const SynthCommand& cmd, const core::ModelParamet
 
 int RunSynth(const SynthCommand& cmd) {
   const core::Block block = MakeBlock(cmd.block);
-  core::ModelParameters params;
-  params.alpha_rad = cmd.alpha_rad;
-  params.lambda = cmd.lambda;
-  params.lambda_lat = cmd.lambda_lat;
-  params.lambda_lon = cmd.lambda_lon;
-  params.tau_edge = cmd.tau_edge;
-  params.facet_tau_rule = ParseFacetTau(cmd.facet_tau);
-
-  io::SynthRecordingOptions o;
-  o.t0_s = cmd.t0_s;
-  if (cmd.rest_energy_height_m) o.simulation.rest_energy_height_m = *cmd.rest_energy_height_m;
-  o.duration_s = cmd.duration_s;
-  o.rate_hz = cmd.rate_hz;
-  const io::Mounting mounting = io::Mounting::Parse(cmd.mounting);
-  o.R_BS = mounting.R_BS();
-  o.mounting_text = mounting.text();
-  if (!cmd.sensor_position.empty()) o.sensor_position_B = ParseVector3(cmd.sensor_position, "--sensor-position-m");
-  o.files.quaternion_rate_hz = cmd.quaternion_rate_hz.value_or(cmd.rate_hz);
-  o.files.rotation_matrix_file = !cmd.no_rotation_matrix;
-  o.files.crlf_line_endings = cmd.crlf;
-  o.files.rtc_start_s = cmd.rtc_start_s;
-  o.files.seed = cmd.seed;
-
-  io::MeasurementOptions& m = o.measurement;
-  if (cmd.no_noise) m = io::MeasurementOptions::Ideal();
-  m.seed = cmd.seed;
-  if (cmd.gyro_noise_dps) m.gyro_noise_dps = *cmd.gyro_noise_dps;
-  if (!cmd.gyro_bias_dps.empty()) m.gyro_bias_dps = ParseVector3(cmd.gyro_bias_dps, "--gyro-bias-dps");
-  if (cmd.no_quantisation) m.quantisation = false;
-  if (cmd.ringing_gain) m.ringing_gain = *cmd.ringing_gain;
-  if (cmd.ringing_frequency_hz) m.ringing_frequency_hz = *cmd.ringing_frequency_hz;
-  if (cmd.ringing_decay_time_s) m.ringing_decay_time_s = *cmd.ringing_decay_time_s;
-  if (cmd.no_ringing) m.ringing_gain = 0.0;
-  if (!cmd.drift_slope_dps.empty()) m.drift_slope_dps = ParseVector3(cmd.drift_slope_dps, "--drift-slope-dps");
-  if (!cmd.drift_walk.empty()) m.drift_walk_deg_per_rt_s = ParseVector3(cmd.drift_walk, "--drift-walk-deg-per-rt-s");
-  if (cmd.no_drift) {
-    m.drift_slope_dps.setZero();
-    m.drift_walk_deg_per_rt_s.setZero();
-  }
-  if (cmd.accel_noise_g) m.accel_noise_g = *cmd.accel_noise_g;
-
+  const SynthArgs args = CompleteArgs(cmd);
+  const core::ModelParameters params = MakeSynthParameters(args);
+  io::SynthRecordingOptions o = MakeSynthOptions(args);
   o.command_line = ReproducingCommand(cmd, params, o);
   CheckTrajectorySamples(o.duration_s, std::max(o.rate_hz, o.files.quaternion_rate_hz), "--duration and --rate");
   const Activity activity("making the synthetic recording and its files");
   const io::SynthRecording recording = io::Synthesize(block, params, o);
   const std::vector<std::string> files = io::WriteSynthRecording(cmd.output, block, params, o, recording);
 
-  const core::Trajectory& t = recording.trajectory;
-  // The simulator logs a "rest" record when the motion has ended; without one it lasts beyond the recording.
-  std::optional<double> rest_s;
-  if (!t.impacts.empty() && t.impacts.back().kind == core::ImpactKind::kRest) rest_s = o.t0_s + t.impacts.back().t_s;
-  const auto optional_json = [](const std::optional<double>& x) { return x ? nlohmann::json(*x) : nlohmann::json(nullptr); };
   if (cmd.json) {
-    nlohmann::json out;
-    out["prefix"] = cmd.output;
-    out["files"] = files;
-    out["samples"] = recording.motion.size();
-    out["rate_hz"] = o.rate_hz;
-    out["duration_s"] = static_cast<double>(recording.motion.size()) / o.rate_hz;
-    out["t0_s"] = o.t0_s;
-    out["seed"] = cmd.seed;
-    out["impacts"] = t.impacts.size();
-    out["first_impact_s"] = t.impacts.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.t0_s + t.impacts.front().t_s);
-    out["phase4_end_s"] = optional_json(recording.phase4_end_s);
-    out["rest_s"] = optional_json(rest_s);
-    PrintJson(out);
+    PrintJson(SynthResultJson(cmd.output, files, recording, o));
     return kExitOk;
   }
+  const core::Trajectory& t = recording.trajectory;
+  const std::optional<double> rest_s = SynthRestTime(recording, o);
   std::cout << fmt::format("synthetic x-IMU recording {}: {} samples at {:g} Hz ({:g} s), release at t0 = {:g} s\n",
                            cmd.output, recording.motion.size(), o.rate_hz, recording.motion.size() / o.rate_hz, o.t0_s)
             << fmt::format("motion: {} impacts", t.impacts.size());
@@ -200,46 +140,46 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       "the measurement model adds gyro noise, bias, quantisation, ringing after impacts and attitude drift.\n"
       "Deterministic for a given --seed.");
   AddBlockOptions(*app, cmd->block);
-  app->add_option("--alpha", cmd->alpha_rad, "Release tilt α [rad]")->group("Model")->capture_default_str();
-  app->add_option("--lambda", cmd->lambda, "λ of edge impacts (19)")->group("Model")->capture_default_str();
-  app->add_option("--lambda-lat", cmd->lambda_lat, "λ_lat of facet impacts (21)")->group("Model")->capture_default_str();
-  app->add_option("--lambda-lon", cmd->lambda_lon, "λ_lon of facet impacts (21)")->group("Model")->capture_default_str();
-  app->add_option("--tau-edge", cmd->tau_edge, "τ of edge impacts [N·m·s]")->group("Model")->capture_default_str();
-  app->add_option("--facet-tau", cmd->facet_tau, "τ of facet impacts: no-spin (from (24)) or zero (Sect. 5)")
+  app->add_option("--alpha", cmd->args.alpha_rad, "Release tilt α [rad]")->group("Model")->capture_default_str();
+  app->add_option("--lambda", cmd->args.lambda, "λ of edge impacts (19)")->group("Model")->capture_default_str();
+  app->add_option("--lambda-lat", cmd->args.lambda_lat, "λ_lat of facet impacts (21)")->group("Model")->capture_default_str();
+  app->add_option("--lambda-lon", cmd->args.lambda_lon, "λ_lon of facet impacts (21)")->group("Model")->capture_default_str();
+  app->add_option("--tau-edge", cmd->args.tau_edge, "τ of edge impacts [N·m·s]")->group("Model")->capture_default_str();
+  app->add_option("--facet-tau", cmd->args.facet_tau, "τ of facet impacts: no-spin (from (24)) or fixed (τ = 0, Sect. 5)")
       ->group("Model")->capture_default_str();
-  app->add_option("--rest-energy-height-m", cmd->rest_energy_height_m,
+  app->add_option("--rest-energy-height-m", cmd->args.rest_energy_height_m,
                   "The motion ends at rest when the kinetic energy after a facet impact is below m·g·this [m] (simulator default 1e-9)")
       ->group("Model");
 
-  app->add_option("--t0", cmd->t0_s, "Release time in the recording [s]")->group("Recording")->capture_default_str();
-  app->add_option("--duration", cmd->duration_s, "Recording length [s]")->group("Recording")->capture_default_str();
-  app->add_option("--rate", cmd->rate_hz, "Inertial sample rate [Hz], an x-IMU rate 2^(v−1): 1 … 512")
+  app->add_option("--t0", cmd->args.t0_s, "Release time in the recording [s]")->group("Recording")->capture_default_str();
+  app->add_option("--duration", cmd->args.duration_s, "Recording length [s]")->group("Recording")->capture_default_str();
+  app->add_option("--rate", cmd->args.rate_hz, "Inertial sample rate [Hz], an x-IMU rate 2^(v−1): 1 … 512")
       ->group("Recording")->capture_default_str();
-  app->add_option("--quaternion-rate", cmd->quaternion_rate_hz, "Quaternion/Euler rate [Hz] (default: --rate)")->group("Recording");
-  app->add_option("--mounting", cmd->mounting,
+  app->add_option("--quaternion-rate", cmd->args.quaternion_rate_hz, "Quaternion/Euler rate [Hz] (default: --rate)")->group("Recording");
+  app->add_option("--mounting", cmd->args.mounting,
                   "Sensor axes on the block: a permutation with signs 'x,-y,-z' (entry i = sensor axis along block axis i) "
                   "or a unit quaternion 'w,x,y,z' (q_BS), as for the readers")
       ->group("Recording")->capture_default_str();
   app->add_option("--sensor-position-m", cmd->sensor_position, "Accelerometer position in the block frame X,Y,Z [m] (default: top-face centre)")
       ->group("Recording");
-  app->add_option("--rtc-start-s", cmd->rtc_start_s, "Device clock at start-up, seconds after 2000-01-01 00:00:00")
+  app->add_option("--rtc-start-s", cmd->args.rtc_start_s, "Device clock at start-up, seconds after 2000-01-01 00:00:00")
       ->group("Recording")->capture_default_str();
   app->add_flag("--no-rotation-matrix", cmd->no_rotation_matrix, "Do not write <prefix>_RotationMatrix.csv (the largest file)")
       ->group("Recording");
-  app->add_flag("--crlf", cmd->crlf, "CRLF line endings, as the x-IMU GUI itself writes (default LF)")->group("Recording");
+  app->add_flag("--crlf", cmd->args.crlf, "CRLF line endings, as the x-IMU GUI itself writes (default LF)")->group("Recording");
 
-  app->add_option("--seed", cmd->seed, "Seed of every random part")->group("Measurement")->capture_default_str();
-  auto* gyro_noise = app->add_option("--gyro-noise-dps", cmd->gyro_noise_dps, "Gyro white noise σ [deg/s] (default 0.1)")->group("Measurement");
+  app->add_option("--seed", cmd->args.seed, "Seed of every random part")->group("Measurement")->capture_default_str();
+  auto* gyro_noise = app->add_option("--gyro-noise-dps", cmd->args.gyro_noise_dps, "Gyro white noise σ [deg/s] (default 0.1)")->group("Measurement");
   auto* gyro_bias = app->add_option("--gyro-bias-dps", cmd->gyro_bias_dps, "Gyro bias X,Y,Z [deg/s] (default 0,0,0)")->group("Measurement");
   auto* no_quant = app->add_flag("--no-quantisation", cmd->no_quantisation, "No fixed-point quantisation (gyro 1/16 deg/s, …)")->group("Measurement");
-  auto* ringing_gain = app->add_option("--ringing-gain", cmd->ringing_gain, "Ringing amplitude per unit jump |Δω| (default 0.25)")->group("Measurement");
-  auto* ringing_f = app->add_option("--ringing-frequency-hz", cmd->ringing_frequency_hz, "Ringing frequency [Hz] (default 38)")->group("Measurement");
-  auto* ringing_t = app->add_option("--ringing-decay-time-s", cmd->ringing_decay_time_s, "Ringing e-folding time [s] (default 0.03)")->group("Measurement");
+  auto* ringing_gain = app->add_option("--ringing-gain", cmd->args.ringing_gain, "Ringing amplitude per unit jump |Δω| (default 0.25)")->group("Measurement");
+  auto* ringing_f = app->add_option("--ringing-frequency-hz", cmd->args.ringing_frequency_hz, "Ringing frequency [Hz] (default 38)")->group("Measurement");
+  auto* ringing_t = app->add_option("--ringing-decay-time-s", cmd->args.ringing_decay_time_s, "Ringing e-folding time [s] (default 0.03)")->group("Measurement");
   auto* no_ringing = app->add_flag("--no-ringing", cmd->no_ringing, "No ringing after impacts")->group("Measurement");
   auto* drift_slope = app->add_option("--drift-slope-dps", cmd->drift_slope_dps, "Linear drift of roll,pitch,yaw [deg/s] (default 0.02,-0.05,0.4)")->group("Measurement");
   auto* drift_walk = app->add_option("--drift-walk-deg-per-rt-s", cmd->drift_walk, "Random-walk drift of roll,pitch,yaw [deg/√s] (default 0.01,0.01,0.03)")->group("Measurement");
   auto* no_drift = app->add_flag("--no-drift", cmd->no_drift, "No attitude drift")->group("Measurement");
-  auto* accel_noise = app->add_option("--accel-noise-g", cmd->accel_noise_g, "Accelerometer white noise σ [g] (default 0.015)")->group("Measurement");
+  auto* accel_noise = app->add_option("--accel-noise-g", cmd->args.accel_noise_g, "Accelerometer white noise σ [g] (default 0.015)")->group("Measurement");
   auto* no_noise = app->add_flag("--no-noise", cmd->no_noise, "An ideal sensor: no noise, bias, quantisation, ringing or drift")->group("Measurement");
   for (auto* option : {gyro_noise, gyro_bias, no_quant, ringing_gain, ringing_f, ringing_t, no_ringing, drift_slope, drift_walk, no_drift, accel_noise}) {
     no_noise->excludes(option);

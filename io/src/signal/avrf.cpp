@@ -20,6 +20,16 @@ const char* ToString(UpliftFormula formula) {
   return "unknown";
 }
 
+bool FromString(std::string_view text, UpliftFormula* formula) {
+  for (UpliftFormula f : {UpliftFormula::kComUplift, UpliftFormula::kPaperPrinted}) {
+    if (text == ToString(f)) {
+      *formula = f;
+      return true;
+    }
+  }
+  return false;
+}
+
 const char* ToString(AvrfStatus status) {
   switch (status) {
     case AvrfStatus::kOk: return "ok";

@@ -23,6 +23,16 @@ const char* ToString(AnchorMethod method) {
   return "unknown";
 }
 
+bool FromString(std::string_view text, AnchorMethod* method) {
+  for (AnchorMethod m : {AnchorMethod::kSubsample, AnchorMethod::kSample}) {
+    if (text == ToString(m)) {
+      *method = m;
+      return true;
+    }
+  }
+  return false;
+}
+
 const char* ToString(AnchorSource source) {
   switch (source) {
     case AnchorSource::kOmegaY: return "omega_y";

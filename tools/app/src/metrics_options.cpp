@@ -4,11 +4,16 @@
 
 namespace rockfit::app {
 
-
 io::MetricsOptions MakeMetricsOptions(const MetricsArgs& args) {
   io::MetricsOptions o = args.options;
-  o.avrf.uplift = args.uplift == "paper" ? io::UpliftFormula::kPaperPrinted : io::UpliftFormula::kComUplift;
-  o.correction.anchor_method = args.anchors == "sample" ? io::AnchorMethod::kSample : io::AnchorMethod::kSubsample;
+  if (!io::FromString(args.uplift, &o.avrf.uplift)) {
+    throw InvalidArgument("the uplift formula is com (the height gained by the COM) or paper (as printed in the "
+                          "paper's Sect. 3.2), got '" + args.uplift + "'");
+  }
+  if (!io::FromString(args.anchors, &o.correction.anchor_method)) {
+    throw InvalidArgument("the drift anchors are subsample (the impact inside the sample interval) or sample (the "
+                          "angle at the |ω| peak sample, as in the paper), got '" + args.anchors + "'");
+  }
   o.Validate();
   return o;
 }

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "rockfit/core/block.hpp"
@@ -26,6 +27,8 @@ enum class UpliftFormula {
 };
 // "com", "paper".
 const char* ToString(UpliftFormula formula);
+// The inverse of ToString; false (and *formula untouched) for any other text.
+bool FromString(std::string_view text, UpliftFormula* formula);
 
 struct AvrfOptions {
   std::size_t max_peaks = 10;  // the paper's ten peak inclinations (nine ratios)

@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -29,6 +30,8 @@ enum class AnchorMethod {
 };
 // "subsample", "sample".
 const char* ToString(AnchorMethod method);
+// The inverse of ToString; false (and *method untouched) for any other text.
+bool FromString(std::string_view text, AnchorMethod* method);
 
 struct DriftCorrectionOptions {
   ImpactDetectionOptions impacts;

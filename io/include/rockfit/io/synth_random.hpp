@@ -22,7 +22,7 @@ enum class SynthStream : std::uint64_t {
   kDriftWalk = 4,
   kHousekeeping = 5,  // battery voltage and temperature packets
   kGroundMotion = 6,  // white noise of the stochastic ground-motion generator (stochastic_ground_motion.hpp)
-  kFragilitySample = 7,  // the random inputs of one sample of a fragility study (fitting/fragility_study.hpp)
+  kFragilitySample = 7,  // the random inputs of one sample of a fragility study (fitting/quake/include/rockfit/quake/fragility_study.hpp)
 };
 
 // The SplitMix64 finaliser (Steele, Lea & Flood 2014): a bijective 64-bit mix used to derive stream seeds.

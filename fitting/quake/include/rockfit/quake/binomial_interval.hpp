@@ -1,5 +1,5 @@
 // Confidence intervals for a binomial proportion k/n, for the probabilities of a fragility study
-// (fitting/README.md, "Fragility"): the Wilson score interval and the exact Clopper–Pearson interval.
+// (fitting/quake/README.md, "The fragility study"): the Wilson score interval and the exact Clopper–Pearson interval.
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// A Monte-Carlo overturning fragility study (fitting/README.md, "Fragility"): blocks with a distribution of their
+// A Monte-Carlo overturning fragility study (fitting/quake/README.md, "The fragility study"): blocks with a distribution of their
 // impact parameters, a set of ground-motion records, intensity levels and incidence angles; every sample is one
 // Respond() run (core/response.hpp). The study is a pure function of its options and the sample index:
 //

@@ -1,6 +1,6 @@
 // The lognormal fragility curve P(IM) = Φ(ln(IM/θ)/β) fitted by maximum likelihood to binomial counts per
 // intensity level (Baker 2015, "Efficient analytical fragility function fitting using dynamic structural analysis
-// data"; fitting/README.md, "Fragility"). Standard errors come from the observed information (the inverse of
+// data"; fitting/quake/README.md, "The fragility study"). Standard errors come from the observed information (the inverse of
 // the Hessian of −log L at the optimum), the median's by the delta method through ln θ.
 #pragma once
 

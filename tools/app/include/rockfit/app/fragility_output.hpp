@@ -1,4 +1,4 @@
-// The results of a fragility study (fitting/fragility_study.hpp) as rockfit writes them: the /fragility group of
+// The results of a fragility study (fitting/quake/include/rockfit/quake/fragility_study.hpp) as rockfit writes them: the /fragility group of
 // the HDF5 file (layout in docs/file-formats.md), the `--json` object and the terminal table of `rockfit
 // fragility`.
 #pragma once
