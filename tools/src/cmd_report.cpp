@@ -70,8 +70,8 @@ int RunReport(const ReportCommand& cmd) {
     std::cerr << fmt::format("rockfit: {} not drawn ({}{}): {}\n", names.size() == 1 ? "1 figure" : fmt::format("{} figures", names.size()),
                              names.front(), names.size() > 1 ? ", …" : "", reason);
   }
-  std::cout << fmt::format("written  {} ({} trials, {} fitted; {} figures, {} not drawn; {:.1f} kB)\n", cmd.output,
-                           s.trials, s.trials_fitted, s.figures, s.figures_missing.size(), s.bytes / 1000.0);
+  std::cout << fmt::format("written  {} ({} trials, {} fitted; {} figures, {} not drawn)\n", cmd.output, s.trials,
+                           s.trials_fitted, s.figures, s.figures_missing.size());
   return kExitOk;
 }
 
