@@ -35,6 +35,7 @@ void RegisterSimulate(py::module_& m);
 void RegisterFit(py::module_& m);
 void RegisterSynth(py::module_& m);
 void RegisterValidate(py::module_& m);
+void RegisterQuake(py::module_& m);
 void RegisterReport(py::module_& m);
 
 // A recording as Python sees it (rockfit.Recording): the samples and the readers' metadata, the trial id, and the

@@ -38,5 +38,6 @@ PYBIND11_MODULE(rockfit, m) {
   rockfit::python::RegisterFit(m);
   rockfit::python::RegisterSynth(m);
   rockfit::python::RegisterValidate(m);
+  rockfit::python::RegisterQuake(m);
   rockfit::python::RegisterReport(m);
 }

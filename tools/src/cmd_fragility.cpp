@@ -22,6 +22,7 @@
 #include "rockfit/app/fitted_parameters.hpp"
 #include "fragility_ledger.hpp"
 #include "rockfit/app/fragility_output.hpp"
+#include "rockfit/app/fragility_setup.hpp"
 #include "rockfit/app/ground_motion_args.hpp"
 #include "rockfit/app/progress_bar.hpp"
 #include "rockfit/core/errors.hpp"
@@ -43,27 +44,7 @@ constexpr std::chrono::seconds kSyncEvery{10};
 constexpr std::chrono::seconds kReportEvery{1};
 
 struct FragilityCommand {
-  BlockArgs block;
-  std::string fits, group, position;
-  double lambda = 1.0, lambda_lat = 0.0, lambda_lon = 1.0, tau_edge = 0.0;
-  double lambda_sd = 0.0, lambda_lat_sd = 0.0, lambda_lon_sd = 0.0;
-  std::string facet_tau = "no-spin";
-  std::vector<std::string> records;
-  std::string record_format = "auto";
-  std::string units = "g";
-  std::optional<double> csv_dt_s;
-  int synthetic_records = 0;
-  std::uint64_t synthetic_seed = 1;
-  double synthetic_duration_s = 20.0;
-  double synthetic_dt_s = 0.005;
-  std::string pga, scale;
-  std::string angle = "random";
-  std::string tilts;
-  std::int64_t samples = 100;
-  std::uint64_t seed = 1;
-  double tail_s = 5.0;
-  double rate_hz = 200.0;
-  std::string overturn = "support";
+  FragilityArgs study;
   int threads = 0;
   int round = 0;
   bool mpi = false;
@@ -71,161 +52,6 @@ struct FragilityCommand {
   bool json = false;
   std::string output;
 };
-
-double ParseNumber(const std::string& cell, const std::string& option) {
-  const std::optional<double> v = ParseFinite(cell);
-  if (!v) throw InvalidArgument(fmt::format("{}: '{}' is not a number", option, cell));
-  return *v;
-}
-
-// "0.1,0.2,0.4" or "FROM:TO:N" (N evenly spaced levels from FROM to TO).
-std::vector<double> ParseLevels(const std::string& text, const std::string& option) {
-  std::vector<double> levels;
-  if (text.find(':') != std::string::npos) {
-    const std::vector<std::string> parts = SplitList(text, ':');
-    const double n = parts.size() == 3 ? ParseNumber(parts[2], option) : 0.0;
-    if (parts.size() != 3 || n < 2 || n != std::floor(n)) {
-      throw InvalidArgument(fmt::format("{} expects FROM:TO:N with N ≥ 2 levels, got '{}'", option, text));
-    }
-    if (n > static_cast<double>(kMaxFragilityLevels)) {
-      throw InvalidArgument(fmt::format("{} asks for {} levels, more than the {} a study may have (docs/file-formats.md, "
-                                        "\"Limits\"); a fragility curve needs a dozen", option, n, kMaxFragilityLevels));
-    }
-    const double from = ParseNumber(parts[0], option), to = ParseNumber(parts[1], option);
-    for (int i = 0; i < static_cast<int>(n); ++i) levels.push_back(from + (to - from) * i / (n - 1.0));
-    return levels;
-  }
-  for (const std::string& cell : SplitList(text)) levels.push_back(ParseNumber(cell, option));
-  if (levels.size() > kMaxFragilityLevels) {
-    throw InvalidArgument(fmt::format("{} lists {} levels, more than the {} a study may have (docs/file-formats.md, "
-                                      "\"Limits\")", option, levels.size(), kMaxFragilityLevels));
-  }
-  return levels;
-}
-
-std::vector<quake::FragilityBlock> MakeBlocks(const FragilityCommand& cmd) {
-  std::vector<std::string> ids = cmd.block.block_id.empty() ? std::vector<std::string>{""} : SplitList(cmd.block.block_id);
-  std::string group_block, group_position = cmd.position;
-  if (!cmd.group.empty()) {
-    const std::size_t comma = cmd.group.find(',');
-    if (comma == std::string::npos) throw InvalidArgument("--group expects BLOCK,POSITION such as block2,A");
-    group_block = cmd.group.substr(0, comma);
-    group_position = cmd.group.substr(comma + 1);
-    if (ids.size() > 1) throw InvalidArgument("--group names one block; for several blocks give --position POSITION");
-    if (cmd.block.block_id.empty() && !cmd.block.manifest_path.empty()) ids = {group_block};
-  }
-  if (!cmd.fits.empty() && group_position.empty()) {
-    throw InvalidArgument("with --fits give --group BLOCK,POSITION (one block) or --position POSITION (the blocks of --block)");
-  }
-  if (cmd.fits.empty() && (!cmd.group.empty() || !cmd.position.empty())) {
-    throw InvalidArgument("--group and --position need --fits FILE (the HDF5 file of rockfit batch)");
-  }
-  std::vector<quake::FragilityBlock> blocks;
-  for (const std::string& id : ids) {
-    BlockArgs args = cmd.block;
-    args.block_id = id;
-    quake::FragilityBlock b;
-    b.id = id.empty() ? "block" : id;
-    b.block = MakeBlock(args);
-    core::FromString(cmd.facet_tau, &b.facet_tau_rule);  // one of the names the option accepts
-    if (!cmd.fits.empty()) {
-      const std::string fit_block = group_block.empty() ? b.id : group_block;
-      const FittedGroupRanges r = ReadFittedGroupRanges(cmd.fits, fit_block, group_position);
-      b.lambda = {r.lambda.value, r.lambda.TotalSd()};
-      b.lambda_lat = {r.lambda_lat.value, r.lambda_lat.TotalSd()};
-      b.lambda_lon = {r.lambda_lon.value, r.lambda_lon.TotalSd()};
-      b.tau_edge = r.tau_edge.value;
-      b.source = r.description + " in " + cmd.fits + " (sd: estimate and between-trial spread)";
-    } else {
-      b.lambda = {cmd.lambda, cmd.lambda_sd};
-      b.lambda_lat = {cmd.lambda_lat, cmd.lambda_lat_sd};
-      b.lambda_lon = {cmd.lambda_lon, cmd.lambda_lon_sd};
-      b.tau_edge = cmd.tau_edge;
-      b.source = "command line";
-    }
-    blocks.push_back(b);
-  }
-  return blocks;
-}
-
-// Refuses a study whose records would hold more than kMaxStudyRecordSamples samples, before the next `adding`.
-void CheckRecordSamples(std::size_t held, double adding, const std::string& what) {
-  if (static_cast<double>(held) + adding > static_cast<double>(kMaxStudyRecordSamples)) {
-    throw InvalidArgument(fmt::format("{} would bring the study's records to {:.4g} samples, more than the {} a study "
-                                      "may hold (docs/file-formats.md, \"Limits\"); use fewer or shorter records",
-                                      what, static_cast<double>(held) + adding, kMaxStudyRecordSamples));
-  }
-}
-
-std::vector<quake::FragilityRecord> LoadRecords(const FragilityCommand& cmd) {
-  if (cmd.synthetic_records < 0) throw InvalidArgument("--synthetic-records must be ≥ 0");
-  if (cmd.records.size() + static_cast<std::size_t>(cmd.synthetic_records) > kMaxFragilityRecords) {
-    throw InvalidArgument(fmt::format("{} --record and --synthetic-records {} are more than the {} records a study may "
-                                      "have (docs/file-formats.md, \"Limits\")",
-                                      cmd.records.size(), cmd.synthetic_records, kMaxFragilityRecords));
-  }
-  std::vector<quake::FragilityRecord> records;
-  std::size_t held = 0;  // samples of the records read so far
-  for (const std::string& path : cmd.records) {
-    GroundMotionArgs a;
-    a.record = path;
-    a.record_format = cmd.record_format;
-    a.units = cmd.units;
-    a.csv_dt_s = cmd.csv_dt_s;
-    records.push_back({path, LoadGroundMotion(a).assembled.ground});
-    CheckResponseLength(records.back().ground, path, true, cmd.tail_s, cmd.rate_hz);
-    CheckRecordSamples(held, static_cast<double>(records.back().ground.size()), "--record " + path);
-    held += records.back().ground.size();
-  }
-  if (cmd.synthetic_records > 0) {
-    const double each = cmd.synthetic_duration_s / cmd.synthetic_dt_s + 1.0;
-    CheckRecordSamples(held, static_cast<double>(cmd.synthetic_records) * each,
-                       fmt::format("--synthetic-records {} of {} s at {} s", cmd.synthetic_records,
-                                   cmd.synthetic_duration_s, cmd.synthetic_dt_s));
-  }
-  for (int k = 0; k < cmd.synthetic_records; ++k) {
-    GroundMotionArgs a;
-    a.synthetic_seed = cmd.synthetic_seed + static_cast<std::uint64_t>(k);
-    a.synthetic_duration_s = cmd.synthetic_duration_s;
-    a.synthetic_dt_s = cmd.synthetic_dt_s;
-    records.push_back({fmt::format("synthetic:{}", *a.synthetic_seed), LoadGroundMotion(a).assembled.ground});
-    CheckResponseLength(records.back().ground, records.back().name, false, cmd.tail_s, cmd.rate_hz);
-  }
-  if (records.empty()) {
-    throw InvalidArgument("give ground motions: --record FILE (repeatable; PEER AT2 or CSV) and/or --synthetic-records N");
-  }
-  return records;
-}
-
-quake::FragilityStudyOptions MakeStudy(const FragilityCommand& cmd) {
-  quake::FragilityStudyOptions study;
-  study.blocks = MakeBlocks(cmd);
-  study.records = LoadRecords(cmd);
-  if (cmd.pga.empty() == cmd.scale.empty()) {
-    throw InvalidArgument("give the intensity levels with exactly one of --pga LIST (g) or --scale LIST (factors)");
-  }
-  study.measure = cmd.pga.empty() ? quake::IntensityMeasure::kScale : quake::IntensityMeasure::kPga;
-  study.levels = cmd.pga.empty() ? ParseLevels(cmd.scale, "--scale") : ParseLevels(cmd.pga, "--pga");
-  study.samples_per_level = cmd.samples;
-  const double samples = static_cast<double>(study.blocks.size()) * static_cast<double>(study.levels.size()) *
-                         static_cast<double>(cmd.samples);
-  if (samples > static_cast<double>(kMaxFragilitySamples)) {
-    throw InvalidArgument(fmt::format("{} block(s) × {} levels × --samples {} are {:.4g} samples, more than the {} a "
-                                      "study may have (docs/file-formats.md, \"Limits\"); lower --samples or the "
-                                      "number of levels", study.blocks.size(), study.levels.size(), cmd.samples,
-                                      samples, kMaxFragilitySamples));
-  }
-  if (cmd.angle != "random") study.angle_rad = ParseNumber(cmd.angle, "--angle") * M_PI / 180.0;
-  if (!cmd.tilts.empty()) {
-    for (const std::string& cell : SplitList(cmd.tilts)) study.tilt_fractions.push_back(ParseNumber(cell, "--tilt"));
-  }
-  study.seed = cmd.seed;
-  study.response.tail_s = cmd.tail_s;
-  study.response.simulation.rate_hz = cmd.rate_hz;
-  core::FromString(cmd.overturn, &study.response.simulation.overturn);  // (checked by the option)
-  study.Validate();
-  return study;
-}
 
 int RunFragility(const FragilityCommand& cmd) {
   SampleRanks ranks(cmd.mpi || StartedByLauncher());
@@ -236,10 +62,9 @@ int RunFragility(const FragilityCommand& cmd) {
   std::exception_ptr failure;
   bool already_complete = false;
   try {
-    if (cmd.samples < 1) throw InvalidArgument("--samples must be at least 1");
     if (cmd.threads < 0) throw InvalidArgument("-j must be ≥ 0 (0: all cores)");
     if (cmd.round < 0) throw InvalidArgument("--round must be ≥ 0 (0: automatic)");
-    study = MakeStudy(cmd);
+    study = MakeFragilityStudy(cmd.study);
     hash = fitting::SettingsHash(study.SettingsText());
     if (ranks.rank() == 0) {
       { io::hdf5::Transaction probe(cmd.output); }  // exit 4 now, not after the study, when it cannot be written
@@ -375,19 +200,19 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       "sample has its own seed (study seed, index): the result is the same bit for bit on any number of threads or\n"
       "MPI ranks (mpirun -np N rockfit fragility …). Completed samples go to OUTPUT.journal as they finish; after a\n"
       "kill, --resume finishes the study.");
-  AddBlockOptions(*app, cmd->block);
+  AddBlockOptions(*app, cmd->study.block);
   app->get_option("--block")->description("Block id in the manifest; several: ID,ID,…");
   const char* model = "Parameters";
-  app->add_option("--lambda", cmd->lambda, "Mean λ of edge impacts (19)")->capture_default_str()->group(model);
-  app->add_option("--lambda-lat", cmd->lambda_lat, "Mean λ_lat of facet impacts (21)")->capture_default_str()->group(model);
-  app->add_option("--lambda-lon", cmd->lambda_lon, "Mean λ_lon of facet impacts (21)")->capture_default_str()->group(model);
-  app->add_option("--lambda-sd", cmd->lambda_sd, "Standard deviation of λ (normal)")->capture_default_str()->group(model);
-  app->add_option("--lambda-lat-sd", cmd->lambda_lat_sd, "Standard deviation of λ_lat")->capture_default_str()->group(model);
-  app->add_option("--lambda-lon-sd", cmd->lambda_lon_sd, "Standard deviation of λ_lon")->capture_default_str()->group(model);
-  app->add_option("--tau-edge", cmd->tau_edge, "τ of edge impacts [N·m·s]")->capture_default_str()->group(model);
-  app->add_option("--facet-tau", cmd->facet_tau, "τ of facet impacts: no-spin (24) or fixed (τ = 0, Sect. 5; also zero)")
+  app->add_option("--lambda", cmd->study.lambda, "Mean λ of edge impacts (19)")->capture_default_str()->group(model);
+  app->add_option("--lambda-lat", cmd->study.lambda_lat, "Mean λ_lat of facet impacts (21)")->capture_default_str()->group(model);
+  app->add_option("--lambda-lon", cmd->study.lambda_lon, "Mean λ_lon of facet impacts (21)")->capture_default_str()->group(model);
+  app->add_option("--lambda-sd", cmd->study.lambda_sd, "Standard deviation of λ (normal)")->capture_default_str()->group(model);
+  app->add_option("--lambda-lat-sd", cmd->study.lambda_lat_sd, "Standard deviation of λ_lat")->capture_default_str()->group(model);
+  app->add_option("--lambda-lon-sd", cmd->study.lambda_lon_sd, "Standard deviation of λ_lon")->capture_default_str()->group(model);
+  app->add_option("--tau-edge", cmd->study.tau_edge, "τ of edge impacts [N·m·s]")->capture_default_str()->group(model);
+  app->add_option("--facet-tau", cmd->study.facet_tau, "τ of facet impacts: no-spin (24) or fixed (τ = 0, Sect. 5; also zero)")
       ->check(CLI::IsMember({"no-spin", "fixed", "zero"}))->capture_default_str()->group(model);
-  auto* fits = app->add_option("--fits", cmd->fits,
+  auto* fits = app->add_option("--fits", cmd->study.fits,
                   "Take the distribution from the HDF5 file of rockfit batch: per parameter the pooled estimate (else the "
                   "mean) with sd = √(its standard error² + between-trial spread²)")
       ->group(model);
@@ -395,38 +220,38 @@ const CommandRegistration kRegistration([](CLI::App& root) {
                             "--lambda-lon-sd", "--tau-edge"}) {
     fits->excludes(app->get_option(given));  // the distribution comes from one place
   }
-  app->add_option("--group", cmd->group, "With --fits: BLOCK,POSITION of one block")->group(model);
-  app->add_option("--position", cmd->position, "With --fits and --block ID,ID,…: the position of every block")->group(model);
+  app->add_option("--group", cmd->study.group, "With --fits: BLOCK,POSITION of one block")->group(model);
+  app->add_option("--position", cmd->study.position, "With --fits and --block ID,ID,…: the position of every block")->group(model);
   const char* ground = "Ground motion";
-  app->add_option("--record", cmd->records, "A ground-motion record (PEER AT2 or CSV); repeat for several")->group(ground);
-  app->add_option("--record-format", cmd->record_format, "auto (by extension: .csv is CSV, else AT2), at2 or csv")
+  app->add_option("--record", cmd->study.records, "A ground-motion record (PEER AT2 or CSV); repeat for several")->group(ground);
+  app->add_option("--record-format", cmd->study.record_format, "auto (by extension: .csv is CSV, else AT2), at2 or csv")
       ->check(CLI::IsMember({"auto", "at2", "csv"}))->capture_default_str()->group(ground);
-  app->add_option("--units", cmd->units, "Units of CSV records: g, m/s2 or cm/s2")
+  app->add_option("--units", cmd->study.units, "Units of CSV records: g, m/s2 or cm/s2")
       ->check(CLI::IsMember({"g", "m/s2", "cm/s2"}))->capture_default_str()->group(ground);
-  app->add_option("--dt", cmd->csv_dt_s, "Time step [s] of CSV records without a time column")->group(ground);
-  app->add_option("--synthetic-records", cmd->synthetic_records,
+  app->add_option("--dt", cmd->study.csv_dt_s, "Time step [s] of CSV records without a time column")->group(ground);
+  app->add_option("--synthetic-records", cmd->study.synthetic_records,
                   "Also N generated Clough–Penzien records, seeds --synthetic-seed … +N−1 (as respond --synthetic)")
       ->capture_default_str()->group(ground);
-  app->add_option("--synthetic-seed", cmd->synthetic_seed, "Seed of the first generated record")->capture_default_str()->group(ground);
-  app->add_option("--synthetic-duration", cmd->synthetic_duration_s, "Duration of the generated records [s]")
+  app->add_option("--synthetic-seed", cmd->study.synthetic_seed, "Seed of the first generated record")->capture_default_str()->group(ground);
+  app->add_option("--synthetic-duration", cmd->study.synthetic_duration_s, "Duration of the generated records [s]")
       ->capture_default_str()->group(ground);
-  app->add_option("--synthetic-dt", cmd->synthetic_dt_s, "Step of the generated records [s]")->capture_default_str()->group(ground);
+  app->add_option("--synthetic-dt", cmd->study.synthetic_dt_s, "Step of the generated records [s]")->capture_default_str()->group(ground);
   const char* levels = "Study";
-  auto* pga = app->add_option("--pga", cmd->pga,
+  auto* pga = app->add_option("--pga", cmd->study.pga,
                               "Intensity levels: peak horizontal ground acceleration [g], as LIST (0.1,0.2,0.3) or "
                               "FROM:TO:N; each record is scaled to it")->group(levels);
-  app->add_option("--scale", cmd->scale, "Intensity levels: factors multiplying the records as read (LIST or FROM:TO:N)")
+  app->add_option("--scale", cmd->study.scale, "Intensity levels: factors multiplying the records as read (LIST or FROM:TO:N)")
       ->excludes(pga)->group(levels);
-  app->add_option("--angle", cmd->angle, "Incidence angle [deg] of the records from the block's x axis, or random "
+  app->add_option("--angle", cmd->study.angle, "Incidence angle [deg] of the records from the block's x axis, or random "
                                          "(uniform on [0°, 360°) per sample)")->capture_default_str()->group(levels);
-  app->add_option("--tilt", cmd->tilts, "Also the probability that the peak tilt reaches these fractions of the critical "
+  app->add_option("--tilt", cmd->study.tilts, "Also the probability that the peak tilt reaches these fractions of the critical "
                                         "tilt atan(min(b1,b2)/h), e.g. 0.5,0.8")->group(levels);
-  app->add_option("--samples", cmd->samples, "Samples per level and block (records used in turn)")->capture_default_str()->group(levels);
-  app->add_option("--seed", cmd->seed, "Study seed: sample i draws from its own stream (seed, i)")->capture_default_str()->group(levels);
-  app->add_option("--tail", cmd->tail_s, "Simulate this long after the end of each record [s]")->capture_default_str()->group(levels);
-  app->add_option("--rate", cmd->rate_hz, "Sample rate of each run [Hz] (peak tilts are taken over the samples and the end)")
+  app->add_option("--samples", cmd->study.samples, "Samples per level and block (records used in turn)")->capture_default_str()->group(levels);
+  app->add_option("--seed", cmd->study.seed, "Study seed: sample i draws from its own stream (seed, i)")->capture_default_str()->group(levels);
+  app->add_option("--tail", cmd->study.tail_s, "Simulate this long after the end of each record [s]")->capture_default_str()->group(levels);
+  app->add_option("--rate", cmd->study.rate_hz, "Sample rate of each run [Hz] (peak tilts are taken over the samples and the end)")
       ->capture_default_str()->group(levels);
-  app->add_option("--overturn", cmd->overturn,
+  app->add_option("--overturn", cmd->study.overturn,
                   "When a block has overturned: support (its COM passes over the support) or side (it comes to lie on a\n"
                   "side; the table may pull it back before), as in `rockfit respond`")
       ->check(CLI::IsMember({"support", "side"}))->capture_default_str()->group(levels);
