@@ -7,6 +7,7 @@
 # Installs missing Debian packages with --no-install-recommends (as root, or through sudo). clang and
 # libclang-rt-14-dev are for the libFuzzer targets of tests/fuzz (tools/fuzz.sh); the build itself uses g++.
 # libopenmpi-dev and openmpi-bin give `rockfit fragility` its MPI ranks (CMake option ROCKFIT_WITH_MPI).
+# chromium, chromium-driver and python3-selenium run the test of `rockfit report` in a real (headless) browser.
 # Environment: BUILD_DIR (default build), JOBS (default: number of cores), CMAKE_ARGS (extra).
 set -euo pipefail
 
@@ -24,6 +25,7 @@ packages=(
   gnuplot-nox python3 python3-h5py python3-numpy ccache
   python3-dev python3-pybind11 pybind11-dev python3-pytest python3-matplotlib
   clang libclang-rt-14-dev
+  chromium chromium-driver python3-selenium
 )
 
 missing=()

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The main job: analyse the bundled sample campaign as an experimenter would. Called by
-# `tools/bootstrap.sh run`; writes its outputs (HDF5, PNG) to OUT_DIR (default build/results).
+# `tools/bootstrap.sh run`; writes its outputs (HDF5, PNG, HTML) to OUT_DIR (default build/results).
 set -euo pipefail
 rockfit="${1:?usage: tools/main_job.sh PATH_TO_ROCKFIT [OUT_DIR]}"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -35,6 +35,11 @@ echo "      under a generated Clough–Penzien record at 30° to the block's x a
 "$rockfit" respond --manifest "$manifest" --block block2 --fits "$out/fits.h5" --group block2,A \
   --record "$here/data-samples/ground-motions/cp-seed2-0.45g.AT2" --angle 30 --format hdf5 -o "$out/response_block2-A.h5"
 "$rockfit" plot response "$out/response_block2-A.h5" -o "$out/response_block2-A.png"
+
+echo
+echo "== 7. one HTML page of the campaign to share (opens offline; figures need gnuplot): overview, every trial, provenance"
+"$rockfit" report "$out/campaign.h5" --fits "$out/fits.h5" --response "$out/response_block2-A.h5" \
+  --title "Sample campaign" -o "$out/report.html"
 
 echo
 echo "outputs in $out:"

@@ -36,6 +36,7 @@ void RegisterFit(py::module_& m);
 void RegisterSynth(py::module_& m);
 void RegisterValidate(py::module_& m);
 void RegisterQuake(py::module_& m);
+void RegisterReport(py::module_& m);
 
 // A recording as Python sees it (rockfit.Recording): the samples and the readers' metadata, the trial id, and the
 // block and labels when it came from a campaign manifest.

@@ -39,4 +39,5 @@ PYBIND11_MODULE(rockfit, m) {
   rockfit::python::RegisterSynth(m);
   rockfit::python::RegisterValidate(m);
   rockfit::python::RegisterQuake(m);
+  rockfit::python::RegisterReport(m);
 }

@@ -11,7 +11,7 @@
 #include "rockfit/app/campaign_run.hpp"
 #include "cli_common.hpp"
 #include "command_registry.hpp"
-#include "gnuplot.hpp"
+#include "rockfit/app/gnuplot.hpp"
 #include "rockfit/app/metrics_options.hpp"
 #include "rockfit/app/output_kind.hpp"
 #include "plot_command.hpp"

@@ -7,7 +7,7 @@
 
 #include "cli_common.hpp"
 #include "command_registry.hpp"
-#include "gnuplot.hpp"
+#include "rockfit/app/gnuplot.hpp"
 #include "plot_validation.hpp"
 #include "rockfit/app/validation_run.hpp"
 #include "rockfit/fitting/validation_store.hpp"

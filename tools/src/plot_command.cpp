@@ -3,7 +3,7 @@
 #include <iostream>
 
 #include "cli_common.hpp"
-#include "gnuplot.hpp"
+#include "rockfit/app/gnuplot.hpp"
 
 namespace rockfit::tools {
 

@@ -7,7 +7,7 @@
 
 #include "cli_common.hpp"
 #include "command_registry.hpp"
-#include "gnuplot.hpp"
+#include "rockfit/app/gnuplot.hpp"
 #include "plot_command.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/ground_motion.hpp"

@@ -8,7 +8,7 @@
 
 #include "cli_common.hpp"
 #include "command_registry.hpp"
-#include "gnuplot.hpp"
+#include "rockfit/app/gnuplot.hpp"
 #include "plot_command.hpp"
 #include "rockfit/fitting/validation_store.hpp"
 #include "rockfit/io/hdf5_file.hpp"

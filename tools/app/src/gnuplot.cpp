@@ -1,4 +1,4 @@
-#include "gnuplot.hpp"
+#include "rockfit/app/gnuplot.hpp"
 
 #include <signal.h>
 #include <sys/stat.h>
@@ -23,7 +23,7 @@
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/atomic_file.hpp"
 
-namespace rockfit::tools {
+namespace rockfit::app {
 
 namespace {
 
@@ -193,4 +193,4 @@ void GnuplotFigure::Render(const std::string& body, const std::filesystem::path&
   replacement.Commit();
 }
 
-}  // namespace rockfit::tools
+}  // namespace rockfit::app

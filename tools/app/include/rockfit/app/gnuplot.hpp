@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace rockfit::tools {
+namespace rockfit::app {
 
 enum class ImageFormat { kPng, kSvg };
 // ".png" or ".svg" (any case); InvalidArgument naming the option otherwise.
@@ -46,4 +46,4 @@ class GnuplotFigure {
   std::filesystem::path directory_;
 };
 
-}  // namespace rockfit::tools
+}  // namespace rockfit::app
