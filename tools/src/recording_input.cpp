@@ -45,9 +45,9 @@ io::LoadOptions MakeLoadOptions(const std::string& format, const std::optional<d
   }
   if (!columns.empty()) options.columns = io::ColumnMap::Parse(columns);
   const auto parsed_orientation = io::ParseOrientationChoice(orientation);
-  if (!parsed_orientation || *parsed_orientation == io::OrientationChoice::kNone) {
-    throw InvalidArgument("--orientation must be auto, euler, quaternion or matrix (drift correction needs the "
-                          "attitude), got '" + orientation + "'");
+  if (!parsed_orientation) {
+    throw InvalidArgument("--orientation must be auto, euler, quaternion, matrix or none (none: the attitude is "
+                          "integrated from the gyro), got '" + orientation + "'");
   }
   options.orientation = *parsed_orientation;
   options.Validate();
@@ -75,7 +75,8 @@ void AddRecordingOptions(CLI::App& app, RecordingArgs& args) {
                  "Generic CSV column map, e.g. 'time=NAME@s;gyro=X,Y,Z@deg/s;euler=ROLL,PITCH,YAW@deg' (see `rockfit "
                  "inspect --help`)")
       ->group("Input");
-  app.add_option("--orientation", args.orientation, "Attitude source: auto, euler, quaternion or matrix")
+  app.add_option("--orientation", args.orientation, "Attitude source: auto, euler, quaternion, matrix, or none (integrated from the gyro and levelled by the "
+                 "accelerometer; also when the files hold no attitude)")
       ->capture_default_str()
       ->group("Input");
 }
