@@ -94,7 +94,8 @@ io::Recording LoadManifestTrial(const io::TrialSpec& trial) {
   if (IsRockfitHdf5(trial.files, trial.format)) return io::ReadRecordingHdf5(trial.files, "");
   io::LoadOptions options;
   try {
-    options = MakeLoadOptions(trial.format, trial.rate_hz, io::RateSource::kManifest, trial.mounting, "", "auto");
+    options = MakeLoadOptions(trial.format, trial.rate_hz, io::RateSource::kManifest, trial.mounting, trial.columns,
+                              "auto");
   } catch (const InvalidArgument& e) {  // a manifest entry is input data
     throw BadInput(fmt::format("trial '{}' (line {}): {}", trial.id, trial.where.line, e.what()));
   }

@@ -100,7 +100,7 @@ CsvTimeColumn ReadCsvTimeColumn(const CsvTable& table, std::size_t column, TimeU
                    "Check the time column's unit in the column map (time=NAME@s, @ms, @us or @ns).");
     }
   }
-  std::string how = fmt::format("time from column {} in {}{}", table.DescribeColumn(column), UnitName(unit),
+  std::string how = fmt::format("time from {} in {}{}", table.DescribeColumn(column), UnitName(unit),
                                 integers ? ", whole numbers read exactly" : "");
   if (out.absolute) {
     how += fmt::format("; absolute (Unix epoch) times, the first {} s after 1970-01-01 UTC, taken relative to it",
