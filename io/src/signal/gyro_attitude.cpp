@@ -6,6 +6,7 @@
 
 #include "rockfit/core/errors.hpp"
 #include "recording/attitude.hpp"
+#include "rockfit/io/impact_detection.hpp"
 #include "rockfit/io/units.hpp"
 
 namespace rockfit::io {
@@ -51,27 +52,45 @@ GyroAttitude IntegrateGyroAttitude(const Recording& recording, const GyroAttitud
   GyroAttitude result;
   if (n == 0) return result;
 
+  // The rest before the release: found from the gyro as the mounting estimate finds it. Without an accelerometer
+  // the estimate is given a constant vertical specific force, so that only its rest finder speaks.
+  Recording probe;
+  const Recording* rest_source = &recording;
   if (!recording.has_accel()) {
-    result.warnings.push_back(
-        "the attitude was integrated from the gyro starting level (the recording has no accelerometer to show the "
-        "tilt at rest); the drift correction removes the error of the start at the impacts");
-  } else {
-    const MountingEstimate rest = EstimateMounting(recording, options.rest);
-    if (rest.rest_before_samples == 0) {
-      result.warnings.push_back("the attitude was integrated from the gyro starting level: no rest before the "
-                                "release to level it by the accelerometer (" + rest.check.message + ")");
-    } else {
-      Eigen::Vector3d f_B = Eigen::Vector3d::Zero();
-      for (std::size_t k = rest.rest_before_first; k < rest.rest_before_first + rest.rest_before_samples; ++k) {
-        f_B += recording.accel_B[k];
-      }
-      if (f_B.allFinite() && f_B.norm() > 0.0) {
-        result.start = AttitudeStart::kAccelerometer;
-        result.start_euler_zyx = LevelledEulerZyx(f_B);
-        result.gyro_bias_rad_s = rest.gyro_bias_rad_s;
-        result.rest_samples = rest.rest_before_samples;
-      }
+    probe.source = recording.source;
+    probe.rate_hz = recording.rate_hz;
+    probe.t_s = recording.t_s;
+    probe.w_B = recording.w_B;
+    probe.accel_B.assign(n, Eigen::Vector3d(0.0, 0.0, kMetresPerSecond2PerG));
+    rest_source = &probe;
+  }
+  const MountingEstimate rest = EstimateMounting(*rest_source, options.rest);
+  if (rest.rest_before_samples > 0) {
+    result.gyro_bias_rad_s = rest.gyro_bias_rad_s;
+    result.rest_samples = rest.rest_before_samples;
+  }
+  if (recording.has_accel() && rest.rest_before_samples > 0) {
+    Eigen::Vector3d f_B = Eigen::Vector3d::Zero();
+    for (std::size_t k = rest.rest_before_first; k < rest.rest_before_first + rest.rest_before_samples; ++k) {
+      f_B += recording.accel_B[k];
     }
+    if (f_B.allFinite() && f_B.norm() > 0.0) {
+      result.start = AttitudeStart::kAccelerometer;
+      result.start_euler_zyx = LevelledEulerZyx(f_B);
+    }
+  }
+  // Without a levelled start: level at the first impact, where the block lands on its base (φx = φy = 0 to the
+  // rate times half a sample), else at the first sample.
+  std::size_t level_at = 0;
+  if (result.start == AttitudeStart::kLevel) {
+    const std::vector<Peak> impacts = DetectRatePeaks(recording, 1, ImpactDetectionOptions{});
+    if (!impacts.empty()) level_at = impacts.front().index;
+    result.warnings.push_back(fmt::format(
+        "the attitude was integrated from the gyro and levelled at {} ({}); the drift correction removes the error "
+        "of that start at the impacts",
+        level_at > 0 ? fmt::format("the first impact (t = {:.3f} s)", recording.t_s[level_at]) : "the first sample",
+        !recording.has_accel() ? "the recording has no accelerometer to show the tilt at rest"
+                               : "no rest before the release to level it by the accelerometer: " + rest.check.message));
   }
 
   // The levelled attitude holds during the rest; integrate from the first sample (the rest's rates are the bias).
@@ -83,6 +102,14 @@ GyroAttitude IntegrateGyroAttitude(const Recording& recording, const GyroAttitud
     q_WB = q_WB * BodyRateStep(w_mean, recording.t_s[k + 1] - recording.t_s[k]);
     q_WB.normalize();  // keeps |q| = 1 against round-off over 10^5 steps
     result.euler_zyx[k + 1] = EulerZyxFromQuaternion(q_WB);
+  }
+  if (level_at > 0) {
+    // q'_k = q_level⁻¹ ⊗ q_k makes the attitude at the impact level with the same yaw (a rotation of the world).
+    Eigen::Quaterniond at_impact = QuaternionFromEulerZyx(result.euler_zyx[level_at]);
+    const Eigen::Quaterniond yaw = QuaternionFromEulerZyx({result.euler_zyx[level_at][0], 0.0, 0.0});
+    const Eigen::Quaterniond shift = yaw * at_impact.conjugate();
+    for (Eigen::Vector3d& e : result.euler_zyx) e = EulerZyxFromQuaternion(shift * QuaternionFromEulerZyx(e));
+    result.start_euler_zyx = result.euler_zyx[0];
   }
   UnwrapAngles(result.euler_zyx);
   return result;
@@ -99,7 +126,7 @@ Recording WithAttitude(const Recording& recording, const GyroAttitudeOptions& op
                         "(φx = {:.3f}°, φy = {:.3f}°)",
                         attitude.rest_samples, attitude.start_euler_zyx[2] / kRadPerDeg,
                         attitude.start_euler_zyx[1] / kRadPerDeg)
-          : "integrated from the gyro, starting level";
+          : "integrated from the gyro, levelled at the first impact (no accelerometer or no rest to level it by)";
   result.orientation_rate_hz = recording.rate_hz;
   for (std::string& w : attitude.warnings) result.warnings.push_back(std::move(w));
   return result;

@@ -159,14 +159,14 @@ TEST(AppCsv, AFullyQuotedSpreadsheetExportIsReadByItsHeader) {
 }
 
 TEST(AppCsv, MetricsOfTheGyroOnlyFilesAgreeWithTheQuotedExportWithItsAccelerometer) {
-  // Without an accelerometer the attitude starts level (a warning); the drift correction removes that start.
+  // Without an accelerometer the attitude is levelled at the first impact (a warning).
   const ScratchDir dir("app_metrics");
   const MetricsSummary with_accel =
       ComputeTrialMetrics(LoadRecording(dir.Write("trial.csv", QuotedSpreadsheet()), {}), Granite(), {});
   const MetricsSummary phyphox = ComputeTrialMetrics(LoadRecording(dir.Write("Gyroscope.csv", Phyphox()), {}), Granite(), {});
   ASSERT_TRUE(with_accel.ok()) << with_accel.message;
   ASSERT_TRUE(phyphox.ok()) << phyphox.message;
-  EXPECT_THAT(::testing::PrintToString(phyphox.correction.warnings), HasSubstr("starting level"));
+  EXPECT_THAT(::testing::PrintToString(phyphox.correction.warnings), HasSubstr("levelled at the first impact"));
   EXPECT_NEAR(phyphox.opmf.opmf, with_accel.opmf.opmf, 0.003);
   EXPECT_NEAR(phyphox.avrf.avrf / with_accel.avrf.avrf, 1.0, 0.01);
 }

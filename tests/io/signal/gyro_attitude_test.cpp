@@ -169,7 +169,7 @@ TEST(GyroOnlyMetrics, WithoutAnAccelerometerTheStartIsLevelWithAWarning) {
   const GyroAttitude a = IntegrateGyroAttitude(r);
   EXPECT_EQ(a.start, AttitudeStart::kLevel);
   ASSERT_FALSE(a.warnings.empty());
-  EXPECT_NE(a.warnings.front().find("starting level"), std::string::npos);
+  EXPECT_NE(a.warnings.front().find("levelled at"), std::string::npos);
   EXPECT_NEAR(a.euler_zyx.back()[1], 0.5 * 1.99, 1e-12);  // φy = ω·t for a rotation about y alone
 }
 

@@ -8,10 +8,11 @@
 // The start is levelled by the accelerometer during that rest: the specific force at rest is
 // g·R_WBᵀ·e_z = g·(−sin φy, sin φx cos φy, cos φx cos φy), so φx = atan2(f_y, f_z), φy = atan2(−f_x, √(f_y²+f_z²));
 // φz starts at 0 (the yaw is free: nothing in the metrics depends on it). Without an accelerometer (or without
-// a rest before the release) the start is level, with a warning: the drift correction needs the angles only
-// relative to their values at the impacts, so a wrong start is removed with the drift (to first order in the
-// tilt). No correction by the accelerometer after the release: impacts saturate it, and the drift correction
-// removes what the gyro's errors add between impacts.
+// a rest before the release) the attitude is levelled at the first impact instead, where the block lands on its
+// base (φx = φy = 0 to within the rate times half a sample), with a warning; the bias still comes from the rest,
+// found from the gyro alone. The drift correction needs the angles only relative to their values at the impacts.
+// No correction by the accelerometer after the release: impacts saturate it, and the drift correction removes
+// what the gyro's errors add between impacts.
 #pragma once
 
 #include <string>
@@ -34,7 +35,7 @@ struct GyroAttitudeOptions {
 // How the start of the integration was fixed.
 enum class AttitudeStart {
   kAccelerometer,  // "accelerometer": levelled by the specific force at rest before the release
-  kLevel,          // "level": φx = φy = 0 (no accelerometer or no rest)
+  kLevel,          // "level": φx = φy = 0 at the first impact (no accelerometer or no rest; else at the first sample)
 };
 const char* ToString(AttitudeStart start);
 
