@@ -57,6 +57,6 @@ def test_recording_without_attitude_gets_it_from_the_gyro(rockfit, sample_block)
     result = rockfit.metrics(bare, sample_block)
     with_attitude = rockfit.metrics(rec, sample_block)
     assert result.status == "ok"
-    # The bounds for gyro-only recordings (io/README.md, "Attitude from the gyro").
+    # The required agreement of gyro-only metrics (io/README.md, "Attitude from the gyro").
     assert result.opmf == pytest.approx(with_attitude.opmf, abs=0.003)
     assert result.avrf == pytest.approx(with_attitude.avrf, rel=0.01)

@@ -17,7 +17,8 @@ namespace {
 std::string CsvManifest() { return (SourceDir() / "data-samples" / "csv" / "manifest.toml").string(); }
 std::string XimuManifest() { return (SourceDir() / "data-samples" / "manifest.toml").string(); }
 
-// The bounds for a gyro-only campaign against the same campaign with its attitude.
+// The required agreement of a gyro-only campaign with the same campaign read with its attitude (io/README.md,
+// "Attitude from the gyro").
 constexpr double kOpmfAgreement = 0.003;
 constexpr double kAvrfRelativeAgreement = 0.01;
 // block3-A-1 rocks the most out of plane (OPMF 0.17): measured 0.0049 apart, most of it the integral of the

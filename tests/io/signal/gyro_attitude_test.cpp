@@ -134,7 +134,8 @@ Agreement CompareMetrics(const core::ModelParameters& p, std::uint64_t seed, con
   return {a.opmf.opmf, b.opmf.opmf, a.avrf.avrf, b.avrf.avrf, worst_rad};
 }
 
-// The bounds: OPMF within 0.003, AVRF within 1 % of the values from the device's attitude.
+// The required agreement of gyro-only metrics (io/README.md, "Attitude from the gyro"): OPMF within 0.003, AVRF
+// within 1 % of the values from the device's attitude.
 constexpr double kOpmfAgreement = 0.003;
 constexpr double kAvrfRelativeAgreement = 0.01;
 // The drift-corrected angles agree to what the device's own attitude filter adds between impacts (its drift and
