@@ -43,6 +43,13 @@ GyroAttitude IntegrateGyroAttitude(const Recording& recording, const GyroAttitud
     throw BadInput("recording '" + recording.source + "': time, angular velocity and accelerometer differ in length");
   }
   for (std::size_t k = 0; k < n; ++k) {
+    if (recording.w_B[k].allFinite() && recording.w_B[k].cwiseAbs().maxCoeff() > kMaxIntegrableRate_rad_s) {
+      throw BadInput(fmt::format("recording '{}': sample {} (t = {:.6g} s) has an angular rate of {:.3g} rad/s, beyond "
+                                 "any gyro (at most {:g} rad/s here); check the gyro columns' unit, or cut the file "
+                                 "where the values go wrong",
+                                 recording.source, k, recording.t_s[k], recording.w_B[k].cwiseAbs().maxCoeff(),
+                                 kMaxIntegrableRate_rad_s));
+    }
     if (!std::isfinite(recording.t_s[k]) || !recording.w_B[k].allFinite() ||
         (k > 0 && !(recording.t_s[k] > recording.t_s[k - 1]))) {
       throw BadInput("recording '" + recording.source + "': sample " + std::to_string(k) +

@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "recording/attitude.hpp"
+#include "rockfit/core/errors.hpp"
 #include "rockfit/io/load_recording.hpp"
 #include "rockfit/io/synth_recording.hpp"
 #include "rockfit/io/trial_metrics.hpp"
@@ -172,6 +173,24 @@ TEST(GyroOnlyMetrics, WithoutAnAccelerometerTheStartIsLevelWithAWarning) {
   ASSERT_FALSE(a.warnings.empty());
   EXPECT_NE(a.warnings.front().find("levelled at"), std::string::npos);
   EXPECT_NEAR(a.euler_zyx.back()[1], 0.5 * 1.99, 1e-12);  // φy = ω·t for a rotation about y alone
+}
+
+TEST(IntegrateGyroAttitude, ARateBeyondAnyGyroIsBadInputNotAnOverflow) {
+  // Found by fuzzing: 2.7e301 rad/s passes the reader (a finite number) but the step's angle overflowed to NaN.
+  Recording r;
+  r.source = "g.csv";
+  r.rate_hz = 100.0;
+  for (int k = 0; k < 10; ++k) {
+    r.t_s.push_back(k / 100.0);
+    r.w_B.emplace_back(0.0, k == 3 ? -2.7e301 : 0.1, 0.0);
+  }
+  try {
+    IntegrateGyroAttitude(r);
+    FAIL() << "expected BadInput";
+  } catch (const BadInput& e) {
+    EXPECT_NE(std::string(e.what()).find("sample 3"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("beyond any gyro"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

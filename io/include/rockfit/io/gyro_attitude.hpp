@@ -26,6 +26,10 @@
 
 namespace rockfit::io {
 
+// No gyro measures more: MEMS ranges end at ±4000 °/s ≈ 70 rad/s. A larger rate is a wrong unit or a broken file
+// (and its angle over a step would overflow), refused with BadInput.
+inline constexpr double kMaxIntegrableRate_rad_s = 1e4;
+
 struct GyroAttitudeOptions {
   MountingEstimateOptions rest;  // how the rest before the release is found (mounting_estimate.hpp)
   // Throws InvalidArgument naming the bad option.
@@ -55,7 +59,8 @@ Eigen::Quaterniond BodyRateStep(const Eigen::Vector3d& w_B, double dt_s);
 Eigen::Vector3d LevelledEulerZyx(const Eigen::Vector3d& f_B);
 
 // The attitude integrated from recording.w_B (and levelled by recording.accel_B), as described above.
-// Throws BadInput for a recording whose samples are not finite or whose times do not increase.
+// Throws BadInput for a recording whose samples are not finite, whose times do not increase, or whose rates exceed
+// kMaxIntegrableRate_rad_s.
 GyroAttitude IntegrateGyroAttitude(const Recording& recording, const GyroAttitudeOptions& options = {});
 
 // `recording` with euler_zyx from IntegrateGyroAttitude when it has none (orientation_source says so and the
