@@ -21,7 +21,7 @@ seconds="${1:-20}"
 shift || true
 build_dir="${FUZZ_BUILD_DIR:-$here/build-fuzz}"
 # One per input surface (tests/fuzz/README.md).
-all_targets=(ximu_gui ximu3 generic_csv option_grammars manifest rockfit_hdf5 ground_motion)
+all_targets=(ximu_gui ximu3 generic_csv option_grammars manifest rockfit_hdf5 ground_motion app_csv)
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=("${all_targets[@]}")
 

@@ -175,8 +175,10 @@ void RegisterRecording(py::module_& m) {
       "format: 'auto', 'ximu-gui', 'ximu3', 'csv' (generic CSV) or 'rockfit-hdf5'.\n"
       "rate: gyro sample rate [Hz] when the files do not state it (x-IMU CSV without _Registers.csv).\n"
       "mounting: sensor axes on the block, 'x,-y,-z' or a quaternion 'w,x,y,z' (q_BS); default identity.\n"
-      "columns: generic CSV column map, e.g. 'time=NAME@s;gyro=X,Y,Z@deg/s;euler=ROLL,PITCH,YAW@deg'.\n"
-      "orientation: attitude source 'auto', 'euler', 'quaternion' or 'matrix'.\n\n"
+      "columns: generic CSV column map, e.g. 'time=NAME@s;gyro=X,Y,Z@deg/s;euler=ROLL,PITCH,YAW@deg', or a preset\n"
+      "  'phyphox' or 'sensor-logger' (a manifest trial or block gives it with columns = ...).\n"
+      "orientation: attitude source 'auto', 'euler', 'quaternion', 'matrix' or 'none' (metrics then integrate the\n"
+      "  attitude from the gyro, as for files without one).\n\n"
       "Returns a rockfit.Recording. Raises rockfit.InputError (file, line, column, what to do) for files that\n"
       "cannot be read, ValueError for options that do not fit.");
 }

@@ -51,8 +51,12 @@ def test_metrics_without_a_block_is_a_value_error(rockfit):
         rockfit.metrics(rec, uplift="nope")
 
 
-def test_recording_without_attitude_is_an_input_error(rockfit, sample_block):
+def test_recording_without_attitude_gets_it_from_the_gyro(rockfit, sample_block):
     rec = rockfit.load_recording(str(MANIFEST), trial=SAMPLE_TRIAL)
     bare = rockfit.Recording(rec.t, rec.w_B)
-    with pytest.raises(rockfit.InputError):
-        rockfit.metrics(bare, sample_block)
+    result = rockfit.metrics(bare, sample_block)
+    with_attitude = rockfit.metrics(rec, sample_block)
+    assert result.status == "ok"
+    # The required agreement of gyro-only metrics (io/README.md, "Attitude from the gyro").
+    assert result.opmf == pytest.approx(with_attitude.opmf, abs=0.003)
+    assert result.avrf == pytest.approx(with_attitude.avrf, rel=0.01)

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "../fuzz/app_csv_target.hpp"
 #include "../fuzz/generic_csv_target.hpp"
 #include "../fuzz/ground_motion_target.hpp"
 #include "../fuzz/manifest_target.hpp"
@@ -31,7 +32,7 @@ const std::vector<FuzzTarget>& Targets() {
   static const std::vector<FuzzTarget> targets = {
       {"ximu_gui", fuzz::XimuGui},       {"ximu3", fuzz::Ximu3},       {"generic_csv", fuzz::GenericCsv},
       {"option_grammars", fuzz::OptionGrammars}, {"manifest", fuzz::Manifest}, {"rockfit_hdf5", fuzz::RockfitHdf5},
-      {"ground_motion", fuzz::GroundMotion}};
+      {"ground_motion", fuzz::GroundMotion}, {"app_csv", fuzz::AppCsv}};
   return targets;
 }
 

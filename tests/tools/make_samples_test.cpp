@@ -43,4 +43,19 @@ TEST(MakeSamples, RegeneratesTrialsAndManifestBitForBit) {
 }
 
 }  // namespace
+TEST(MakeSamples, RegeneratesTheCsvSamplesBitForBit) {
+  const fs::path samples = SourceDir() / "data-samples" / "csv";
+  if (!fs::is_regular_file("/usr/bin/python3")) GTEST_SKIP() << "tools/make_csv_samples.py needs /usr/bin/python3";
+  const fs::path out = fs::temp_directory_path() / ("rockfit_make_csv_samples_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  const std::string command = "/usr/bin/python3 " + ShellQuote((SourceDir() / "tools" / "make_csv_samples.py").string()) +
+                              " " + ShellQuote(out.string()) + " >/dev/null 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  for (const char* file : {"phyphox/Gyroscope.csv", "sensor-logger/Gyroscope.csv", "arduino/log.csv", "quoted/trial.csv"}) {
+    EXPECT_TRUE(ReadWholeFile(out / file) == ReadWholeFile(samples / file))
+        << file << " differs from the committed sample; regenerate with tools/make_csv_samples.py and commit";
+  }
+  fs::remove_all(out);
+}
+
 }  // namespace rockfit::testing

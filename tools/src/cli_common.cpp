@@ -83,7 +83,8 @@ void AddRecordingOptions(CLI::App& app, RecordingArgs& args) {
                  "Generic CSV column map, e.g. 'time=NAME@s;gyro=X,Y,Z@deg/s;euler=ROLL,PITCH,YAW@deg' (see `rockfit "
                  "inspect --help`)")
       ->group("Input");
-  app.add_option("--orientation", args.orientation, "Attitude source: auto, euler, quaternion or matrix")
+  app.add_option("--orientation", args.orientation, "Attitude source: auto, euler, quaternion, matrix, or none (integrated from the gyro and levelled by the "
+                 "accelerometer; also when the files hold no attitude)")
       ->capture_default_str()
       ->group("Input");
 }

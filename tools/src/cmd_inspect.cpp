@@ -97,6 +97,7 @@ void PrintJsonSummary(const io::Recording& r) {
     out["gaps"].push_back({{"index", gap.index}, {"t_s", gap.t_s}, {"duration_s", gap.duration_s}, {"missing", gap.missing}});
   }
   out["warnings"] = r.warnings;
+  out["recognised"] = r.recognised;
   out["orientation_source"] = r.orientation_source;
   out["orientation_rate_hz"] = r.orientation_rate_hz;
   out["mounting"] = r.mounting;
@@ -155,6 +156,10 @@ void PrintText(const io::Recording& r) {
   }
   std::cout << fmt::format("columns      {}\n", r.columns.size());
   for (const std::string& column : r.columns) std::cout << "  " << column << "\n";
+  if (!r.recognised.empty()) {
+    std::cout << "recognised\n";
+    for (const std::string& note : r.recognised) std::cout << "  " << note << "\n";
+  }
   if (r.warnings.empty()) {
     std::cout << "warnings     none\n";
   } else {
@@ -195,9 +200,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   app->add_option("--format", cmd->format, "Force a format: auto, ximu-gui, ximu3, csv, rockfit-hdf5")->capture_default_str();
   app->add_option("--columns", cmd->columns,
                   "Generic CSV column map: 'time=NAME@s;gyro=X,Y,Z@deg/s;euler=ROLL,PITCH,YAW@deg;accel=X,Y,Z@g' "
-                  "(units: s|ms|us, deg/s|rad/s, deg|rad, g|m/s^2; '@unit' may be left out when the header ends in '(unit)')");
+                  "(units: s|ms|us|ns, deg/s|rad/s, deg|rad, g|m/s^2; '@unit' may be left out when the header ends in "
+                  "'(unit)' or '[unit]'), or a preset: phyphox, sensor-logger");
   app->add_flag("--json", cmd->json,
-                "Print one JSON object: format, source, rate_hz, rate_source, samples, duration_s, columns, gaps, "
+                "Print one JSON object: format, source, rate_hz, rate_source, samples, duration_s, columns, recognised, gaps, "
                 "warnings, orientation_source, orientation_rate_hz, mounting, mounting_check (applied, given, estimated, status, "
                 "message, angles_deg, std_error_deg, determined, disagreement_deg, release_tilt_rad, warning), ranges "
                 "(min/max per channel, SI units)");

@@ -10,6 +10,7 @@
 #include "text/header_matching.hpp"
 #include "recording/recording_assembly.hpp"
 #include "recording/time_base.hpp"
+#include "generic/csv_time_column.hpp"
 #include "rockfit/io/units.hpp"
 
 namespace rockfit::io {
@@ -61,55 +62,155 @@ Unit ResolveUnit(const CsvTable& table, std::size_t column, const std::optional<
 
 }  // namespace
 
-ColumnMap DetectColumnMap(const CsvTable& table) {
-  ColumnMap map;
-  // Gyroscope.
-  if (!FindTriple(table, {"Gyroscope X", "Gyroscope Y", "Gyroscope Z"}, map.gyro, true)) {
-    if (FindTriple(table, {"gyro_x_dps", "gyro_y_dps", "gyro_z_dps"}, map.gyro, false)) {
-      map.gyro_unit = AngularRateUnit::kDegreesPerSecond;
-    } else if (FindTriple(table, {"gyro_x_rad_s", "gyro_y_rad_s", "gyro_z_rad_s"}, map.gyro, false)) {
-      map.gyro_unit = AngularRateUnit::kRadiansPerSecond;
-    } else {
-      ThrowBadInput({{table.name(), table.header_line()}, "", "no gyroscope columns that rockfit recognises",
-                     "columns 'Gyroscope X (deg/s)', 'Gyroscope Y (deg/s)', 'Gyroscope Z (deg/s)' (or gyro_x_dps, "
-                     "gyro_x_rad_s, …)",
-                     "Say which columns hold what with a column map, e.g. --columns \"time=t@s;gyro=wx,wy,wz@rad/s\" "
-                     "(see rockfit inspect --help), or pick the right file."});
+namespace {
+
+// The first name of `names` that finds three columns "<name> x/y/z" (the unit in the header); true when found.
+bool FindAxes(const CsvTable& table, std::initializer_list<std::array<const char*, 3>> names,
+              std::array<std::string, 3>& out, std::string* matched) {
+  for (const auto& triple : names) {
+    if (FindTriple(table, {triple[0], triple[1], triple[2]}, out, true)) {
+      *matched = triple[0];
+      return true;
     }
   }
-  // Time.
+  return false;
+}
+
+std::string FileName(const CsvTable& table) { return std::filesystem::path(table.name()).filename().string(); }
+
+bool StartsWithNoCase(const std::string& text, std::string_view prefix) {
+  return NormalizeHeader(text.substr(0, prefix.size())) == NormalizeHeader(prefix);
+}
+
+void Note(std::vector<std::string>* notes, std::string text) {
+  if (notes) notes->push_back(std::move(text));
+}
+
+// Sensor Logger's files: time (ns since 1970), seconds_elapsed, and x, y, z (in the order z, y, x).
+bool IsSensorLoggerHeader(const CsvTable& table) {
+  return FindExact(table, "time") && FindExact(table, "seconds_elapsed") && FindExact(table, "x") &&
+         FindExact(table, "y") && FindExact(table, "z");
+}
+
+}  // namespace
+
+ColumnMap PresetColumnMap(const std::string& preset, const CsvTable& table, std::vector<std::string>* notes) {
+  ColumnMap map;
+  if (preset == "phyphox") {
+    map.time = "Time (s)";
+    map.time_unit = TimeUnit::kSeconds;
+    map.gyro = {"Gyroscope x (rad/s)", "Gyroscope y (rad/s)", "Gyroscope z (rad/s)"};
+    map.gyro_unit = AngularRateUnit::kRadiansPerSecond;
+    std::array<std::string, 3> accel;
+    if (FindTriple(table, {"Acceleration x (m/s^2)", "Acceleration y (m/s^2)", "Acceleration z (m/s^2)"}, accel, false)) {
+      map.accel = accel;
+      map.accel_unit = AccelerationUnit::kMetresPerSecond2;
+    }
+    Note(notes, "layout: phyphox export (preset phyphox): 'Time (s)', 'Gyroscope x/y/z (rad/s)'" +
+                    std::string(map.has_accel() ? ", 'Acceleration x/y/z (m/s^2)' (acceleration with g)" : ""));
+  } else if (preset == "sensor-logger") {
+    map.time = "time";
+    map.time_unit = TimeUnit::kNanoseconds;
+    map.gyro = {"x", "y", "z"};
+    map.gyro_unit = AngularRateUnit::kRadiansPerSecond;
+    Note(notes, "layout: Sensor Logger Gyroscope.csv (preset sensor-logger): 'time' in ns since 1970, 'x', 'y', 'z' "
+                "in rad/s ('seconds_elapsed' is not read)");
+  } else {
+    throw InvalidArgument("unknown column map preset '" + preset + "' (presets: phyphox, sensor-logger)");
+  }
+  return map;
+}
+
+ColumnMap DetectColumnMap(const CsvTable& table, std::vector<std::string>* notes) {
+  ColumnMap map;
+  std::string matched;
+  const std::string file_name = FileName(table);
+  // Sensor Logger: x, y, z could be any of its sensors; the file name says which.
+  if (IsSensorLoggerHeader(table)) {
+    if (!StartsWithNoCase(file_name, "Gyroscope")) {
+      ThrowBadInput({{table.name(), table.header_line()}, "",
+                     "Sensor Logger's columns time, seconds_elapsed, x, y, z in a file not named Gyroscope*.csv",
+                     "the gyroscope's file (Gyroscope.csv of the export)",
+                     "Pick Gyroscope.csv, or if this file holds the gyroscope under another name, say so with "
+                     "--columns sensor-logger (or columns = \"sensor-logger\" in the manifest)."});
+    }
+    ColumnMap preset = PresetColumnMap("sensor-logger", table, notes);
+    Note(notes, "why: the header is time, seconds_elapsed, z, y, x and the file is named " + file_name);
+    return preset;
+  }
+  // Gyroscope.
+  if (FindAxes(table, {{"Gyroscope X", "Gyroscope Y", "Gyroscope Z"}, {"gyro_x", "gyro_y", "gyro_z"},
+                       {"gyro x", "gyro y", "gyro z"}, {"gyr_x", "gyr_y", "gyr_z"}, {"gyrX", "gyrY", "gyrZ"},
+                       {"gx", "gy", "gz"}, {"wx", "wy", "wz"}},
+               map.gyro, &matched)) {
+    Note(notes, "gyroscope: columns '" + matched + "' … with the unit in each header");
+  } else if (FindTriple(table, {"gyro_x_dps", "gyro_y_dps", "gyro_z_dps"}, map.gyro, false)) {
+    map.gyro_unit = AngularRateUnit::kDegreesPerSecond;
+    Note(notes, "gyroscope: columns gyro_x_dps … (deg/s, from the names)");
+  } else if (FindTriple(table, {"gyro_x_rad_s", "gyro_y_rad_s", "gyro_z_rad_s"}, map.gyro, false)) {
+    map.gyro_unit = AngularRateUnit::kRadiansPerSecond;
+    Note(notes, "gyroscope: columns gyro_x_rad_s … (rad/s, from the names)");
+  } else {
+    ThrowBadInput({{table.name(), table.header_line()}, "", "no gyroscope columns that rockfit recognises",
+                   "columns 'Gyroscope X (deg/s)', 'Gyroscope Y (deg/s)', 'Gyroscope Z (deg/s)' (or gx [dps], "
+                   "gyro_x (rad/s), gyro_x_dps, gyro_x_rad_s, …)",
+                   "Say which columns hold what with a column map, e.g. --columns \"time=t@s;gyro=wx,wy,wz@rad/s\" "
+                   "or a preset (--columns phyphox, --columns sensor-logger; see rockfit inspect --help), or pick "
+                   "the right file."});
+  }
+  // Time: a unit in the header, or in the name.
   for (const char* name : {"Time", "Timestamp", "t"}) {
     if (const auto column = FindByName(table, name)) {
       if (ParseTimeUnit(SplitHeaderUnit(table.header()[*column]).unit)) {
         map.time = table.header()[*column];
+        Note(notes, "time: column '" + map.time + "' with the unit in its header");
         break;
       }
     }
   }
   if (map.time.empty()) {
-    for (const auto& [name, unit] : {std::pair{"time_s", TimeUnit::kSeconds}, std::pair{"t_s", TimeUnit::kSeconds},
-                                     std::pair{"timestamp_us", TimeUnit::kMicroseconds}}) {
+    for (const auto& [name, unit] :
+         {std::pair{"time_s", TimeUnit::kSeconds}, std::pair{"t_s", TimeUnit::kSeconds},
+          std::pair{"time_ms", TimeUnit::kMilliseconds}, std::pair{"timestamp_ms", TimeUnit::kMilliseconds},
+          std::pair{"millis", TimeUnit::kMilliseconds}, std::pair{"time_us", TimeUnit::kMicroseconds},
+          std::pair{"timestamp_us", TimeUnit::kMicroseconds}, std::pair{"micros", TimeUnit::kMicroseconds},
+          std::pair{"time_ns", TimeUnit::kNanoseconds}, std::pair{"timestamp_ns", TimeUnit::kNanoseconds}}) {
       if (const auto column = FindExact(table, name)) {
         map.time = table.header()[*column];
         map.time_unit = unit;
+        Note(notes, "time: column '" + map.time + "' (" + UnitName(unit) + ", from the name)");
         break;
       }
     }
   }
   // Attitude and accelerometer, when all three columns are there.
-  if (!FindTriple(table, {"Roll", "Pitch", "Yaw"}, map.euler, true)) {
-    if (FindTriple(table, {"roll_deg", "pitch_deg", "yaw_deg"}, map.euler, false)) map.euler_unit = AngleUnit::kDegrees;
-    else if (FindTriple(table, {"roll_rad", "pitch_rad", "yaw_rad"}, map.euler, false)) map.euler_unit = AngleUnit::kRadians;
-    else map.euler = {};
+  if (FindAxes(table, {{"Roll", "Pitch", "Yaw"}}, map.euler, &matched)) {
+    Note(notes, "attitude: columns Roll, Pitch, Yaw (ZYX Euler angles) with the unit in each header");
+  } else if (FindTriple(table, {"roll_deg", "pitch_deg", "yaw_deg"}, map.euler, false)) {
+    map.euler_unit = AngleUnit::kDegrees;
+    Note(notes, "attitude: columns roll_deg, pitch_deg, yaw_deg");
+  } else if (FindTriple(table, {"roll_rad", "pitch_rad", "yaw_rad"}, map.euler, false)) {
+    map.euler_unit = AngleUnit::kRadians;
+    Note(notes, "attitude: columns roll_rad, pitch_rad, yaw_rad");
+  } else {
+    map.euler = {};
   }
-  if (!FindTriple(table, {"Accelerometer X", "Accelerometer Y", "Accelerometer Z"}, map.accel, true)) {
-    if (FindTriple(table, {"accel_x_g", "accel_y_g", "accel_z_g"}, map.accel, false)) {
-      map.accel_unit = AccelerationUnit::kG;
-    } else if (FindTriple(table, {"accel_x_m_s2", "accel_y_m_s2", "accel_z_m_s2"}, map.accel, false)) {
-      map.accel_unit = AccelerationUnit::kMetresPerSecond2;
-    } else {
-      map.accel = {};
-    }
+  if (FindAxes(table, {{"Accelerometer X", "Accelerometer Y", "Accelerometer Z"},
+                       {"Acceleration x", "Acceleration y", "Acceleration z"}, {"accel_x", "accel_y", "accel_z"},
+                       {"acc_x", "acc_y", "acc_z"}, {"accX", "accY", "accZ"}, {"ax", "ay", "az"}},
+               map.accel, &matched)) {
+    Note(notes, "accelerometer: columns '" + matched + "' … with the unit in each header");
+  } else if (FindTriple(table, {"accel_x_g", "accel_y_g", "accel_z_g"}, map.accel, false)) {
+    map.accel_unit = AccelerationUnit::kG;
+    Note(notes, "accelerometer: columns accel_x_g … (g, from the names)");
+  } else if (FindTriple(table, {"accel_x_m_s2", "accel_y_m_s2", "accel_z_m_s2"}, map.accel, false)) {
+    map.accel_unit = AccelerationUnit::kMetresPerSecond2;
+    Note(notes, "accelerometer: columns accel_x_m_s2 … (m/s², from the names)");
+  } else {
+    map.accel = {};
+  }
+  if (StartsWithNoCase(FileName(table), "Gyroscope") && !map.has_accel() && FindExact(table, "Absolute (rad/s)")) {
+    Note(notes, "layout: the columns of a phyphox gyroscope export (read as with --columns phyphox)");
   }
   return map;
 }
@@ -121,8 +222,22 @@ Recording ReadGenericCsvRecording(const std::filesystem::path& file, const LoadO
   recording.source = file.string();
   const CsvTable table = CsvTable::ReadFile(file, recording.warnings);
   const std::string file_name = file.filename().string();
-  const ColumnMap map = options.columns ? *options.columns : DetectColumnMap(table);
+  std::vector<std::string> notes;
+  ColumnMap map;
+  if (!options.columns) {
+    map = DetectColumnMap(table, &notes);
+  } else if (options.columns->is_preset()) {
+    map = PresetColumnMap(options.columns->preset, table, &notes);
+    notes.push_back("why: the column map names the preset");
+  } else {
+    map = *options.columns;
+    notes.push_back("layout: the column map " + map.ToString());
+  }
   map.Validate();
+  notes.insert(notes.begin(), fmt::format("table: header on line {}, fields separated by {}, decimal {}",
+                                          table.header_line(), table.delimiter() == '\t' ? std::string("tab")
+                                                                                         : fmt::format("'{}'", table.delimiter()),
+                                          table.decimal_separator() == DecimalSeparator::kPoint ? "points" : "commas"));
 
   if (options.orientation == OrientationChoice::kQuaternion || options.orientation == OrientationChoice::kRotationMatrix) {
     throw InvalidArgument("--orientation " + OrientationChoiceName(options.orientation) +
@@ -166,16 +281,18 @@ Recording ReadGenericCsvRecording(const std::filesystem::path& file, const LoadO
   const std::size_t n = table.row_count();
   SensorSamples samples;
   if (map.has_time()) {
-    const double scale = ToSi(ResolveUnit(table, time_column, map.time_unit, &ParseTimeUnit, "s, ms, us"));
-    std::vector<double> times = ReadIncreasingColumn(
-        table, time_column, false,
-        "Each sample needs its own time: a repeated time means a duplicated line or a clock of too coarse a "
-        "resolution. Delete the repeated line, or leave the time column out and give the rate.");
+    const TimeUnit time_unit = ResolveUnit(table, time_column, map.time_unit, &ParseTimeUnit, "s, ms, us, ns");
     if (n < 2) {
       ThrowBadInput({{file.string(), table.Line(0)}, "", "a single sample",
                      "at least two samples to find the rate from their times", "Pick a longer recording."});
     }
-    for (double& t : times) t *= scale;
+    CsvTimeColumn time = ReadCsvTimeColumn(table, time_column, time_unit);
+    for (std::string& note : time.notes) notes.push_back(std::move(note));
+    if (time.wraps > 0) {
+      recording.warnings.push_back(fmt::format("{}: the time counter wrapped {} time(s) at 2^{}; the times were unwrapped",
+                                               file_name, time.wraps, time.wrap_modulus == (1u << 16) ? 16 : 32));
+    }
+    const std::vector<double>& times = time.t_s;
     TimestampTimeBase base = TimeBaseFromTimestamps(times);
     // No IMU samples faster than 1 MHz: closer times are a wrong unit or a broken clock (and 1/step overflows).
     constexpr double kMinMedianStep_s = 1e-6;
@@ -183,7 +300,7 @@ Recording ReadGenericCsvRecording(const std::filesystem::path& file, const LoadO
       ThrowBadInput({table.HeaderPosition(time_column), table.DescribeColumn(time_column),
                      fmt::format("times {:.6g} s apart (median), too close for a sample rate", base.median_step_s),
                      "times at least a microsecond apart",
-                     "Check the time column's unit in the column map (time=NAME@s, @ms or @us)."});
+                     "Check the time column's unit in the column map (time=NAME@s, @ms, @us or @ns)."});
     }
     recording.rate_hz = base.rate_hz;
     recording.rate_source = RateSource::kTimestamps;
@@ -241,6 +358,13 @@ Recording ReadGenericCsvRecording(const std::filesystem::path& file, const LoadO
     recording.orientation_rate_hz = recording.rate_hz;
   }
 
+  for (std::size_t k = 0; k < 3; ++k) {
+    notes.push_back(fmt::format("gyroscope {}: {} in {}", "xyz"[k], table.DescribeColumn(gyro[k]),
+                                UnitName(ResolveUnit(table, gyro[k], map.gyro_unit, &ParseAngularRateUnit, "deg/s, rad/s"))));
+  }
+  if (!map.has_accel()) notes.push_back("accelerometer: none");
+  if (!use_euler) notes.push_back("attitude: none in the file (metrics integrate it from the gyro)");
+  recording.recognised = std::move(notes);
   AssembleRecording(std::move(samples), options.mounting, recording);
   return recording;
 }

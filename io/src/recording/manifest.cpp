@@ -14,6 +14,7 @@
 
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/load_options.hpp"
+#include "rockfit/io/column_map.hpp"
 #include "rockfit/io/mounting.hpp"
 #include "rockfit/io/input_limits.hpp"
 #include "recording/toml_key_depth.hpp"
@@ -172,11 +173,45 @@ const toml::array* TableArray(const Reporter& report, const toml::table& root, c
   return array;
 }
 
+// The keys that say how to read recordings, in [[trials]] and (as defaults) in [[blocks]]: format, rate, mounting,
+// columns; each checked where it is written. Absent keys leave the outputs empty.
+void ReadRecordingKeys(const Reporter& report, const toml::table& table, const std::string& what, std::string* format,
+                       std::optional<double>* rate_hz, std::string* mounting, std::string* columns) {
+  *format = ReadOptionalString(report, table, "format", what);
+  if (!format->empty() && !ParseFormatName(*format)) {
+    report.Fail(PositionOf(table.get("format")->source()),
+                fmt::format("{}: unknown format '{}'; use one of {}", what, *format, fmt::join(ManifestFormats(), ", ")));
+  }
+  *rate_hz = ReadOptionalPositive(report, table, "rate", what, "Hz");
+  if (*rate_hz && **rate_hz > kMaxRate_hz) {
+    report.Fail(PositionOf(table.get("rate")->source()),
+                fmt::format("{}: rate {} Hz is above {} Hz, faster than any IMU rockfit reads", what, **rate_hz,
+                            kMaxRate_hz));
+  }
+  *mounting = ReadOptionalString(report, table, "mounting", what);
+  if (!mounting->empty()) {
+    try {
+      (void)MountingOption::Parse(*mounting);
+    } catch (const InvalidArgument& e) {
+      report.Fail(PositionOf(table.get("mounting")->source()), fmt::format("{}: {}", what, e.what()));
+    }
+  }
+  *columns = ReadOptionalString(report, table, "columns", what);
+  if (!columns->empty()) {
+    try {
+      (void)ColumnMap::Parse(*columns);
+    } catch (const InvalidArgument& e) {
+      report.Fail(PositionOf(table.get("columns")->source()), fmt::format("{}: {}", what, e.what()));
+    }
+  }
+}
+
 BlockSpec ParseBlock(const Reporter& report, const toml::table& table, std::size_t ordinal) {
   BlockSpec block;
   block.where = PositionOf(table.source());
   const std::string anonymous = fmt::format("[[blocks]] number {}", ordinal);
-  CheckKeys(report, table, anonymous, {"id", "b1", "b2", "h", "density", "mass", "notes"});
+  CheckKeys(report, table, anonymous,
+            {"id", "b1", "b2", "h", "density", "mass", "notes", "format", "columns", "rate", "mounting"});
   block.id = ReadRequiredString(report, table, "id", anonymous, block.where);
   const std::string what = fmt::format("[[blocks]] '{}'", block.id);
   const toml::node* id_node = table.get("id");
@@ -191,6 +226,7 @@ BlockSpec ParseBlock(const Reporter& report, const toml::table& table, std::size
                                          block.mass_kg ? ", not both" : ""));
   }
   block.notes = ReadOptionalString(report, table, "notes", what);
+  ReadRecordingKeys(report, table, what, &block.format, &block.rate_hz, &block.mounting, &block.columns);
   return block;
 }
 
@@ -199,7 +235,8 @@ TrialSpec ParseTrial(const Reporter& report, const toml::table& table, std::size
   TrialSpec trial;
   trial.where = PositionOf(table.source());
   const std::string anonymous = fmt::format("[[trials]] number {}", ordinal);
-  CheckKeys(report, table, anonymous, {"id", "block", "position", "files", "format", "rate", "mounting", "notes"});
+  CheckKeys(report, table, anonymous,
+            {"id", "block", "position", "files", "format", "rate", "mounting", "columns", "notes"});
   trial.id = ReadRequiredString(report, table, "id", anonymous, trial.where);
   CheckId(report, trial.id, "trial", PositionOf(table.get("id")->source()));
   const std::string what = fmt::format("[[trials]] '{}'", trial.id);
@@ -210,25 +247,9 @@ TrialSpec ParseTrial(const Reporter& report, const toml::table& table, std::size
   if (trial.files_as_written.empty()) report.Fail(PositionOf(table.get("files")->source()), what + ": 'files' is empty");
   const std::filesystem::path files(trial.files_as_written);
   trial.files = files.is_absolute() ? files : (base_dir / files).lexically_normal();
-  trial.format = ReadOptionalString(report, table, "format", what, "auto");
-  if (!ParseFormatName(trial.format)) {
-    report.Fail(PositionOf(table.get("format")->source()),
-                fmt::format("{}: unknown format '{}'; use one of {}", what, trial.format, fmt::join(ManifestFormats(), ", ")));
-  }
-  trial.rate_hz = ReadOptionalPositive(report, table, "rate", what, "Hz");
-  if (trial.rate_hz && *trial.rate_hz > kMaxRate_hz) {
-    report.Fail(PositionOf(table.get("rate")->source()),
-                fmt::format("{}: rate {} Hz is above {} Hz, faster than any IMU rockfit reads", what, *trial.rate_hz,
-                            kMaxRate_hz));
-  }
-  trial.mounting = ReadOptionalString(report, table, "mounting", what);
-  if (!trial.mounting.empty()) {
-    try {
-      (void)MountingOption::Parse(trial.mounting);
-    } catch (const InvalidArgument& e) {
-      report.Fail(PositionOf(table.get("mounting")->source()), fmt::format("{}: {}", what, e.what()));
-    }
-  }
+  std::string format;
+  ReadRecordingKeys(report, table, what, &format, &trial.rate_hz, &trial.mounting, &trial.columns);
+  trial.format = format.empty() ? "auto" : format;
   trial.notes = ReadOptionalString(report, table, "notes", what);
   return trial;
 }
@@ -291,6 +312,13 @@ Manifest ParseManifest(std::string_view text, const std::filesystem::path& path)
         report.Fail(PositionOf(table.get("block")->source()),
                     fmt::format("[[trials]] '{}' names block '{}', which no [[blocks]] entry defines; known blocks: {}",
                                 trial.id, trial.block_id, known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
+      }
+      for (const BlockSpec& block : manifest.blocks) {  // the block's defaults for what the trial leaves out
+        if (block.id != trial.block_id) continue;
+        if (!Find(table, "format") && !block.format.empty()) trial.format = block.format;
+        if (!trial.rate_hz) trial.rate_hz = block.rate_hz;
+        if (trial.mounting.empty()) trial.mounting = block.mounting;
+        if (trial.columns.empty()) trial.columns = block.columns;
       }
       trial_ids[trial.id] = id_where;
       manifest.trials.push_back(std::move(trial));

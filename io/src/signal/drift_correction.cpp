@@ -7,10 +7,9 @@
 
 #include <fmt/format.h>
 
-#include <fmt/format.h>
-
 #include "rockfit/core/errors.hpp"
 #include "signal/euler_kinematics.hpp"
+#include "rockfit/io/gyro_attitude.hpp"
 #include "rockfit/io/impact_consistency.hpp"
 #include "rockfit/core/enum_names.hpp"
 
@@ -152,8 +151,20 @@ void RequireUsable(const Recording& recording) {
 
 DriftCorrection CorrectDrift(const Recording& recording, const DriftCorrectionOptions& options) {
   options.Validate();
+  if (!recording.has_euler() && recording.size() > 0) {
+    // No attitude in the files: integrate it from the gyro (gyro_attitude.hpp).
+    const Recording integrated = WithAttitude(recording);
+    DriftCorrection result = CorrectDrift(integrated, options);
+    result.attitude = integrated.orientation_source;
+    std::vector<std::string> notes{"the recording has no attitude; it was " + integrated.orientation_source};
+    notes.insert(notes.end(), integrated.warnings.begin() + static_cast<std::ptrdiff_t>(recording.warnings.size()),
+                 integrated.warnings.end());
+    result.warnings.insert(result.warnings.begin(), notes.begin(), notes.end());
+    return result;
+  }
   RequireUsable(recording);
   DriftCorrection result;
+  result.attitude = "file";
   result.euler_raw_zyx = recording.euler_zyx;
   result.euler_corrected_zyx = recording.euler_zyx;
 

@@ -204,6 +204,7 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
   for (std::size_t k = before.begin; k < before.end; ++k) bias += r.w_B[k];
   bias /= static_cast<double>(before.size());
   e.gyro_bias_rad_s = bias;
+  e.rest_before_first = before.begin;
   e.rest_before_samples = before.size();
 
   // Phase 1: from the release to the sample before the first impact's peak, where |ω| is large enough.

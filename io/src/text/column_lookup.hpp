@@ -56,7 +56,7 @@ Unit HeaderUnit(const CsvTable& table, std::size_t column, std::optional<Unit> (
   const HeaderParts parts = SplitHeaderUnit(table.header()[column]);
   if (const std::optional<Unit> unit = parse(parts.unit)) return *unit;
   ThrowBadInput({table.HeaderPosition(column), table.DescribeColumn(column),
-                 parts.unit.empty() ? "no unit in parentheses" : "the unit '" + parts.unit + "'",
+                 parts.unit.empty() ? "no unit in parentheses or brackets" : "the unit '" + parts.unit + "'",
                  "one of " + allowed, "Write the unit at the end of the header cell, e.g. '" + parts.name + " (" +
                  allowed.substr(0, allowed.find(',')) + ")', or give it in the column map (name@unit)."});
 }

@@ -1,5 +1,6 @@
 #include "rockfit/io/column_map.hpp"
 
+#include <algorithm>
 #include <set>
 #include <vector>
 
@@ -55,8 +56,20 @@ std::string Entry(const std::string& key, const std::string& names, const std::o
 
 }  // namespace
 
+const std::vector<std::string>& ColumnMapPresets() {
+  static const std::vector<std::string> kPresets = {"phyphox", "sensor-logger"};
+  return kPresets;
+}
+
 ColumnMap ColumnMap::Parse(std::string_view spec) {
   ColumnMap map;
+  const std::string name = NormalizeHeader(spec);
+  for (const std::string& preset : ColumnMapPresets()) {
+    if (name == preset) {
+      map.preset = preset;
+      return map;
+    }
+  }
   std::set<std::string> seen;
   for (const std::string& entry : Split(spec, ';')) {
     if (entry.empty()) continue;
@@ -75,7 +88,7 @@ ColumnMap ColumnMap::Parse(std::string_view spec) {
     if (key == "time") {
       if (names.size() != 1 || names[0].empty()) Refuse(spec, "time needs exactly one column name");
       map.time = names[0];
-      SetUnit(spec, key, unit, &ParseTimeUnit, map.time_unit, "s, ms, us");
+      SetUnit(spec, key, unit, &ParseTimeUnit, map.time_unit, "s, ms, us, ns");
     } else if (key == "gyro") {
       SetTriple(spec, key, names, map.gyro);
       SetUnit(spec, key, unit, &ParseAngularRateUnit, map.gyro_unit, "deg/s, rad/s");
@@ -86,7 +99,7 @@ ColumnMap ColumnMap::Parse(std::string_view spec) {
       SetTriple(spec, key, names, map.accel);
       SetUnit(spec, key, unit, &ParseAccelerationUnit, map.accel_unit, "g, m/s^2");
     } else {
-      Refuse(spec, "unknown key '" + key + "' (keys: time, gyro, euler, accel)");
+      Refuse(spec, "unknown key '" + key + "' (keys: time, gyro, euler, accel; or a preset alone: phyphox, sensor-logger)");
     }
   }
   try {
@@ -98,6 +111,13 @@ ColumnMap ColumnMap::Parse(std::string_view spec) {
 }
 
 void ColumnMap::Validate() const {
+  if (is_preset()) {
+    const auto& presets = ColumnMapPresets();
+    if (std::find(presets.begin(), presets.end(), preset) == presets.end()) {
+      throw InvalidArgument("unknown column map preset '" + preset + "' (presets: phyphox, sensor-logger)");
+    }
+    return;
+  }
   if (gyro[0].empty() || gyro[1].empty() || gyro[2].empty()) {
     throw InvalidArgument("the gyroscope columns (gyro=X,Y,Z) are required");
   }
@@ -120,6 +140,7 @@ void ColumnMap::Validate() const {
 }
 
 std::string ColumnMap::ToString() const {
+  if (is_preset()) return preset;
   auto join = [](const std::array<std::string, 3>& names) { return names[0] + "," + names[1] + "," + names[2]; };
   std::string text;
   if (has_time()) text += Entry("time", time, time_unit) + ";";

@@ -24,8 +24,11 @@ const char* const kNumberExample = "a number such as -0.0625 or -6.113857E-05";
 bool IsBlank(std::string_view text) { return TrimSpaces(text).empty(); }
 bool IsDigit(char c) { return c >= '0' && c <= '9'; }
 
-// Splits [begin, end) of `text` at `delimiter` into trimmed cells (reusing `cells`).
-void SplitLine(const std::string& text, Span line, char delimiter, std::vector<Span>& cells) {
+bool IsPadding(char c, char delimiter) { return c == ' ' || (delimiter != '\t' && c == '\t'); }
+
+// Splits [begin, end) of `text` at `delimiter` into trimmed cells (reusing `cells`). Spaces are trimmed; with tab
+// separators tabs are separators, never padding.
+void SplitPlainLine(const std::string& text, Span line, char delimiter, std::vector<Span>& cells) {
   cells.clear();
   std::size_t start = line.begin;
   while (true) {
@@ -33,19 +36,92 @@ void SplitLine(const std::string& text, Span line, char delimiter, std::vector<S
     const std::size_t stop = hit ? static_cast<std::size_t>(static_cast<const char*>(hit) - text.data()) : line.end;
     std::size_t b = start;
     std::size_t e = stop;
-    // Spaces are trimmed; with tab separators tabs are separators, never padding.
-    while (b < e && (text[b] == ' ' || (delimiter != '\t' && text[b] == '\t'))) ++b;
-    while (e > b && (text[e - 1] == ' ' || (delimiter != '\t' && text[e - 1] == '\t'))) --e;
+    while (b < e && IsPadding(text[b], delimiter)) ++b;
+    while (e > b && IsPadding(text[e - 1], delimiter)) --e;
     cells.push_back({b, e});
     if (!hit) break;
     start = stop + 1;
   }
 }
 
+// A line holding '"': RFC 4180 quoting. A cell whose first non-space character is '"' runs to the next '"' that
+// is not doubled; inside it separators are text and "" is one '"'. The quoted text is unescaped in place (it only
+// gets shorter), so the span starts where the text does. Returns the offset of a broken quote (unterminated, or
+// text after the closing quote) or npos.
+std::size_t SplitQuotedLine(std::string& text, Span line, char delimiter, std::vector<Span>& cells) {
+  cells.clear();
+  std::size_t i = line.begin;
+  while (true) {
+    while (i < line.end && IsPadding(text[i], delimiter)) ++i;
+    if (i < line.end && text[i] == '"') {
+      const std::size_t open = i;
+      const std::size_t b = i + 1;
+      std::size_t out = b;
+      std::size_t j = b;
+      bool closed = false;
+      while (j < line.end) {
+        if (text[j] == '"') {
+          if (j + 1 < line.end && text[j + 1] == '"') {
+            text[out++] = '"';
+            j += 2;
+            continue;
+          }
+          closed = true;
+          ++j;
+          break;
+        }
+        text[out++] = text[j++];
+      }
+      if (!closed) return open;
+      cells.push_back({b, out});
+      while (j < line.end && IsPadding(text[j], delimiter)) ++j;
+      if (j == line.end) return std::string::npos;
+      if (text[j] != delimiter) return j;
+      i = j + 1;
+      continue;
+    }
+    const void* hit = std::memchr(text.data() + i, delimiter, line.end - i);
+    const std::size_t stop = hit ? static_cast<std::size_t>(static_cast<const char*>(hit) - text.data()) : line.end;
+    const std::size_t quote = text.find('"', i);
+    if (quote < stop) return quote;  // a quote inside an unquoted cell
+    std::size_t e = stop;
+    while (e > i && IsPadding(text[e - 1], delimiter)) --e;
+    cells.push_back({i, e});
+    if (!hit) return std::string::npos;
+    i = stop + 1;
+  }
+}
+
+// Either of the two above; a broken quote throws BadInput at its line and column.
+void SplitLine(std::string& text, Span line, char delimiter, std::vector<Span>& cells, const std::string& name,
+               std::size_t line_number) {
+  if (std::memchr(text.data() + line.begin, '"', line.end - line.begin) == nullptr) {
+    SplitPlainLine(text, line, delimiter, cells);
+    return;
+  }
+  const std::size_t broken = SplitQuotedLine(text, line, delimiter, cells);
+  if (broken == std::string::npos) return;
+  const bool unterminated = text[broken] == '"' && (broken == line.begin || text.find('"', broken + 1) >= line.end);
+  ThrowBadInput({{name, line_number, broken - line.begin + 1},
+                 "",
+                 unterminated ? "a '\"' that opens a quoted field which does not end on this line"
+                              : "a '\"' inside a field, or text after a field's closing '\"'",
+                 "fields quoted as in RFC 4180: \"text\" with \"\" for a quote inside, and nothing between the closing "
+                 "quote and the next separator",
+                 "Quote the whole field and double any quote inside it (\"a \"\"b\"\" c\"), or remove the stray quote."});
+}
+
+// The separator is the most frequent of ',', ';' and tab outside quotes.
 char DetectDelimiter(std::string_view header) {
-  const auto commas = std::count(header.begin(), header.end(), ',');
-  const auto semicolons = std::count(header.begin(), header.end(), ';');
-  const auto tabs = std::count(header.begin(), header.end(), '\t');
+  std::ptrdiff_t commas = 0, semicolons = 0, tabs = 0;
+  bool quoted = false;
+  for (char c : header) {
+    if (c == '"') quoted = !quoted;
+    if (quoted) continue;
+    commas += c == ',';
+    semicolons += c == ';';
+    tabs += c == '\t';
+  }
   if (semicolons > commas && semicolons >= tabs) return ';';
   if (tabs > commas && tabs > semicolons) return '\t';
   return ',';
@@ -113,8 +189,8 @@ void CheckReadableText(std::string* text, const std::string& name, std::vector<s
 }
 
 // The cells of the header line (a trailing separator dropped); refuses a first line of numbers only.
-void SplitHeader(const std::string& body, Span line, char delimiter, const TextPosition& at, std::vector<Span>& cells) {
-  SplitLine(body, line, delimiter, cells);
+void SplitHeader(std::string& body, Span line, char delimiter, const TextPosition& at, std::vector<Span>& cells) {
+  SplitLine(body, line, delimiter, cells, at.file, at.line);
   if (cells.size() > 1 && cells.back().begin == cells.back().end) cells.pop_back();  // trailing separator
   for (const Span& cell : cells) {
     const std::string_view text_cell(body.data() + cell.begin, cell.end - cell.begin);
@@ -169,7 +245,7 @@ CsvTable CsvTable::FromText(std::string text, std::string display_name, std::vec
   const std::string& name = table.name_;
   CheckReadableText(&text, name, warnings);
   table.text_ = std::move(text);
-  const std::string& body = table.text_;
+  std::string& body = table.text_;
 
   const char eol = body.find('\n') != std::string::npos ? '\n' : (body.find('\r') != std::string::npos ? '\r' : '\n');
   std::vector<Span> cells;
@@ -213,7 +289,7 @@ CsvTable CsvTable::FromText(std::string text, std::string display_name, std::vec
       continue;
     }
 
-    SplitLine(body, line, table.delimiter_, cells);
+    SplitLine(body, line, table.delimiter_, cells, name, line_number);
     const std::size_t columns = table.header_.size();
     if (cells.size() == columns + 1 && cells.back().begin == cells.back().end) cells.pop_back();  // trailing separator
     if (cells.size() != columns) {

@@ -4,7 +4,10 @@
 //  * LF, CRLF (and old-Mac CR) line ends are accepted, also mixed.
 //  * A UTF-8 byte-order mark is removed with a warning (the device never writes one: the file was
 //    re-saved by another program). UTF-16 files and binary files are refused.
-//  * The separator is the most frequent of ',', ';' and tab in the header line. With ';' or tab,
+//  * Fields may be quoted as in RFC 4180 ("Time (s)","a, b","say ""hi"""): separators inside quotes are text,
+//    "" is one quote. A quoted field must end on its line (no line breaks inside fields); a stray or
+//    unterminated quote is an error at its line and column.
+//  * The separator is the most frequent of ',', ';' and tab outside quotes in the header line. With ';' or tab,
 //    numbers may use a decimal comma (a spreadsheet's export in many languages); both are warnings.
 //  * Header and data cells are trimmed of spaces ("…, Element 2" has a leading space).
 //  * A trailing separator (an empty last header cell, e.g. DigitalIO) is ignored.

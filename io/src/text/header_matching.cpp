@@ -62,8 +62,8 @@ std::optional<HeaderSuggestion> ClosestHeader(const std::vector<std::string>& ca
 
 HeaderParts SplitHeaderUnit(std::string_view header) {
   header = TrimSpaces(header);
-  if (!header.empty() && header.back() == ')') {
-    const std::size_t open = header.rfind('(');
+  if (!header.empty() && (header.back() == ')' || header.back() == ']')) {
+    const std::size_t open = header.rfind(header.back() == ')' ? '(' : '[');
     if (open != std::string_view::npos) {
       return {std::string(TrimSpaces(header.substr(0, open))),
               std::string(TrimSpaces(header.substr(open + 1, header.size() - open - 2)))};

@@ -30,8 +30,8 @@ struct HeaderSuggestion {
 std::optional<HeaderSuggestion> ClosestHeader(const std::vector<std::string>& candidates,
                                               const std::vector<std::string>& wanted);
 
-// Splits "Gyroscope X (deg/s)" into name "Gyroscope X" and unit "deg/s" (both trimmed). Without a
-// final parenthesised part the unit is empty.
+// Splits "Gyroscope X (deg/s)" or "gx [deg/s]" into name and unit (both trimmed). Without a final part in
+// parentheses or square brackets the unit is empty.
 struct HeaderParts {
   std::string name;
   std::string unit;

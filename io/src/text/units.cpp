@@ -26,13 +26,15 @@ double ToSi(TimeUnit unit) {
       return 1e-3;
     case TimeUnit::kMicroseconds:
       return 1e-6;
+    case TimeUnit::kNanoseconds:
+      return 1e-9;
   }
   return 1.0;
 }
 
 std::optional<AngularRateUnit> ParseAngularRateUnit(std::string_view text) {
-  if (OneOf(text, {"deg/s", "dps", "°/s", "degrees/s", "degree/s", "deg s^-1"})) return AngularRateUnit::kDegreesPerSecond;
-  if (OneOf(text, {"rad/s", "radians/s", "rad s^-1"})) return AngularRateUnit::kRadiansPerSecond;
+  if (OneOf(text, {"deg/s", "dps", "°/s", "degrees/s", "degree/s", "deg s^-1", "deg/sec", "°/sec", "deg s-1"})) return AngularRateUnit::kDegreesPerSecond;
+  if (OneOf(text, {"rad/s", "radians/s", "rad s^-1", "rad/sec", "rad s-1", "rads/s"})) return AngularRateUnit::kRadiansPerSecond;
   return std::nullopt;
 }
 
@@ -46,7 +48,7 @@ std::optional<AccelerationUnit> ParseAccelerationUnit(std::string_view text) {
   // "G" (upper case) is Gauss in x-IMU headers, but this parser is case-insensitive, so it is only
   // applied to accelerometer columns.
   if (OneOf(text, {"g"})) return AccelerationUnit::kG;
-  if (OneOf(text, {"m/s2", "m/s^2", "m/s²", "m s^-2"})) return AccelerationUnit::kMetresPerSecond2;
+  if (OneOf(text, {"m/s2", "m/s^2", "m/s²", "m s^-2", "m s-2", "ms^-2", "ms-2", "m/s/s", "m/sec^2"})) return AccelerationUnit::kMetresPerSecond2;
   return std::nullopt;
 }
 
@@ -54,6 +56,7 @@ std::optional<TimeUnit> ParseTimeUnit(std::string_view text) {
   if (OneOf(text, {"s", "sec", "seconds"})) return TimeUnit::kSeconds;
   if (OneOf(text, {"ms", "milliseconds"})) return TimeUnit::kMilliseconds;
   if (OneOf(text, {"us", "µs", "μs", "microseconds"})) return TimeUnit::kMicroseconds;
+  if (OneOf(text, {"ns", "nanoseconds"})) return TimeUnit::kNanoseconds;
   return std::nullopt;
 }
 
@@ -68,6 +71,8 @@ std::string UnitName(TimeUnit unit) {
       return "ms";
     case TimeUnit::kMicroseconds:
       return "us";
+    case TimeUnit::kNanoseconds:
+      return "ns";
   }
   return "s";
 }

@@ -90,7 +90,7 @@ TEST(Manifest, UnknownKeyNamesLineColumnAndSuggestsTheKey) {
   std::string text = kGood;
   text.replace(text.find("rate = 256"), 10, "rat = 256");
   EXPECT_EQ(ErrorOf(text), "/campaign/m.toml:21:1: unknown key 'rat' in [[trials]] number 1 (did you mean 'rate'?); "
-                           "allowed keys: id, block, position, files, format, rate, mounting, notes");
+                           "allowed keys: id, block, position, files, format, rate, mounting, columns, notes");
 }
 
 TEST(Manifest, UnknownTopLevelKeyIsAnError) {
@@ -251,6 +251,59 @@ TEST(Manifest, ReadsFromAFile) {
   const testing::ScratchDir dir("manifest");
   const Manifest m = ReadManifest(dir.Write("m.toml", kGood));
   EXPECT_EQ(m.FindTrial("B3-A-1").files, dir / "raw/B3-A-1");
+}
+
+TEST(Manifest, ATrialTakesItsColumnMapAndTheBlocksDefaultsForWhatItLeavesOut) {
+  const std::string text = R"([[blocks]]
+id = "P"
+b1 = 0.05
+b2 = 0.03
+h = 0.2
+density = 2692
+format = "csv"
+columns = "phyphox"
+rate = 100
+mounting = "x,-y,-z"
+
+[[trials]]
+id = "P-1"
+block = "P"
+position = "A"
+files = "phone/Gyroscope.csv"
+
+[[trials]]
+id = "P-2"
+block = "P"
+position = "A"
+files = "logger/log.csv"
+format = "generic-csv"
+columns = "time=ms@ms;gyro=gx,gy,gz@dps"
+mounting = "x,y,z"
+)";
+  const Manifest m = ParseManifest(text, "/campaign/m.toml");
+  const TrialSpec& p1 = m.FindTrial("P-1");
+  EXPECT_EQ(p1.format, "csv");
+  EXPECT_EQ(p1.columns, "phyphox");
+  EXPECT_EQ(p1.rate_hz, 100.0);
+  EXPECT_EQ(p1.mounting, "x,-y,-z");
+  const TrialSpec& p2 = m.FindTrial("P-2");
+  EXPECT_EQ(p2.format, "generic-csv");
+  EXPECT_EQ(p2.columns, "time=ms@ms;gyro=gx,gy,gz@dps");
+  EXPECT_EQ(p2.mounting, "x,y,z");
+}
+
+TEST(Manifest, ABadColumnMapIsReportedAtItsLineAndColumn) {
+  const std::string text = std::string(kGood) + R"(
+[[trials]]
+id = "B3-C-1"
+block = "B3"
+position = "C"
+files = "raw/c.csv"
+columns = "gyro=a,b@rad/s"
+)";
+  const std::string message = ErrorOf(text);
+  EXPECT_NE(message.find("m.toml:"), std::string::npos) << message;
+  EXPECT_NE(message.find("gyro needs three column names"), std::string::npos) << message;
 }
 
 }  // namespace

@@ -187,5 +187,47 @@ TEST(CsvTable, ReadFileNamesTheFileInEveryMessage) {
   EXPECT_THROW(CsvTable::ReadFile(dir.path(), warnings), BadInput);
 }
 
+
+// ---- RFC 4180 quoting
+
+TEST(CsvTableQuoting, QuotedHeaderCellsAreReadWithoutTheirQuotes) {
+  const CsvTable table = Parse("\"Time (s)\",\"Gyroscope x (rad/s)\"\n1.5E-2,\"-0.25\"\n");
+  ASSERT_EQ(table.column_count(), 2u);
+  EXPECT_EQ(table.header()[0], "Time (s)");
+  EXPECT_EQ(table.header()[1], "Gyroscope x (rad/s)");
+  EXPECT_DOUBLE_EQ(table.Real(0, 1), -0.25);
+}
+
+TEST(CsvTableQuoting, SeparatorsInsideQuotesAreTextAndDoubledQuotesAreOneQuote) {
+  const CsvTable table = Parse("\"a, b\",\"say \"\"hi\"\"\",c\n1,2,3\n");
+  ASSERT_EQ(table.column_count(), 3u);
+  EXPECT_EQ(table.header()[0], "a, b");
+  EXPECT_EQ(table.header()[1], "say \"hi\"");
+  EXPECT_EQ(table.header()[2], "c");
+  EXPECT_EQ(table.delimiter(), ',');
+}
+
+TEST(CsvTableQuoting, TheSeparatorIsCountedOutsideQuotes) {
+  // Three commas inside the quotes, two semicolons outside: a ';'-file.
+  const CsvTable table = Parse("\"a,b,c,d\";x;y\n1;2;3\n");
+  EXPECT_EQ(table.delimiter(), ';');
+  EXPECT_EQ(table.header()[0], "a,b,c,d");
+}
+
+TEST(CsvTableQuoting, SpacesAroundAQuotedFieldAreTrimmedAndInsideKept) {
+  const CsvTable table = Parse("  \" a \" ,b\n1,2\n");
+  EXPECT_EQ(table.header()[0], " a ");
+}
+
+TEST(CsvTableQuoting, AnUnterminatedQuoteIsAnErrorAtItsLineAndColumn) {
+  EXPECT_THAT(ParseError("a,b\n1,\"2\n"), HasSubstr("t.csv:2:3:"));
+  EXPECT_THAT(ParseError("a,b\n1,\"2\n"), HasSubstr("does not end on this line"));
+}
+
+TEST(CsvTableQuoting, TextAfterAClosingQuoteIsAnErrorAtItsLineAndColumn) {
+  EXPECT_THAT(ParseError("\"a\"x,b\n1,2\n"), HasSubstr("t.csv:1:4:"));
+  EXPECT_THAT(ParseError("a,b\n1,2\"3\n"), HasSubstr("t.csv:2:4:"));
+}
+
 }  // namespace
 }  // namespace rockfit::io

@@ -31,6 +31,12 @@ TEST(ClosestHeader, SuggestsAMisspellingButNotAnUnrelatedColumn) {
   EXPECT_FALSE(ClosestHeader(header, {"Accelerometer Z (g)"}));
 }
 
+TEST(SplitHeaderUnit, SeparatesTheUnitInFinalSquareBrackets) {
+  const HeaderParts parts = SplitHeaderUnit("gyro_x [deg/s]");
+  EXPECT_EQ(parts.name, "gyro_x");
+  EXPECT_EQ(parts.unit, "deg/s");
+}
+
 TEST(SplitHeaderUnit, SeparatesTheUnitInFinalParentheses) {
   const HeaderParts parts = SplitHeaderUnit(" Gyroscope X (deg/s) ");
   EXPECT_EQ(parts.name, "Gyroscope X");

@@ -38,9 +38,20 @@ TEST(Units, NamesRoundTripThroughTheParsers) {
   for (auto unit : {AccelerationUnit::kG, AccelerationUnit::kMetresPerSecond2}) {
     EXPECT_EQ(ParseAccelerationUnit(UnitName(unit)), unit);
   }
-  for (auto unit : {TimeUnit::kSeconds, TimeUnit::kMilliseconds, TimeUnit::kMicroseconds}) {
+  for (auto unit : {TimeUnit::kSeconds, TimeUnit::kMilliseconds, TimeUnit::kMicroseconds, TimeUnit::kNanoseconds}) {
     EXPECT_EQ(ParseTimeUnit(UnitName(unit)), unit);
   }
+}
+
+TEST(Units, SpellingsOfLoggersAndPhoneAppsAreRecognised) {
+  EXPECT_EQ(ParseTimeUnit("ns"), TimeUnit::kNanoseconds);
+  EXPECT_DOUBLE_EQ(ToSi(TimeUnit::kNanoseconds), 1e-9);
+  EXPECT_EQ(ParseAngularRateUnit("dps"), AngularRateUnit::kDegreesPerSecond);
+  EXPECT_EQ(ParseAngularRateUnit("deg/sec"), AngularRateUnit::kDegreesPerSecond);
+  EXPECT_EQ(ParseAngularRateUnit("rad/sec"), AngularRateUnit::kRadiansPerSecond);
+  EXPECT_EQ(ParseAccelerationUnit("ms^-2"), AccelerationUnit::kMetresPerSecond2);
+  EXPECT_EQ(ParseAccelerationUnit("m/s/s"), AccelerationUnit::kMetresPerSecond2);
+  EXPECT_FALSE(ParseAccelerationUnit("G/s"));
 }
 
 }  // namespace

@@ -45,9 +45,9 @@ io::LoadOptions MakeLoadOptions(const std::string& format, const std::optional<d
   }
   if (!columns.empty()) options.columns = io::ColumnMap::Parse(columns);
   const auto parsed_orientation = io::ParseOrientationChoice(orientation);
-  if (!parsed_orientation || *parsed_orientation == io::OrientationChoice::kNone) {
-    throw InvalidArgument("--orientation must be auto, euler, quaternion or matrix (drift correction needs the "
-                          "attitude), got '" + orientation + "'");
+  if (!parsed_orientation) {
+    throw InvalidArgument("--orientation must be auto, euler, quaternion, matrix or none (none: the attitude is "
+                          "integrated from the gyro), got '" + orientation + "'");
   }
   options.orientation = *parsed_orientation;
   options.Validate();
@@ -70,7 +70,8 @@ io::Recording LoadManifestTrial(const io::TrialSpec& trial) {
   if (IsRockfitHdf5(trial.files, trial.format)) return io::ReadRecordingHdf5(trial.files, "");
   io::LoadOptions options;
   try {
-    options = MakeLoadOptions(trial.format, trial.rate_hz, io::RateSource::kManifest, trial.mounting, "", "auto");
+    options = MakeLoadOptions(trial.format, trial.rate_hz, io::RateSource::kManifest, trial.mounting, trial.columns,
+                              "auto");
   } catch (const InvalidArgument& e) {  // a manifest entry is input data
     throw BadInput(fmt::format("trial '{}' (line {}): {}", trial.id, trial.where.line, e.what()));
   }

@@ -74,11 +74,15 @@ struct DriftCorrection {
   std::size_t rejected_y = 0;     // peaks of |ω_y| where φ_y is not zero (not impacts)
   std::size_t rejected_x = 0;     // candidate anchors of φ_x where φ_x is not zero
   std::vector<std::string> warnings;
+  // Where the angles came from: "file", or how they were integrated from the gyro (gyro_attitude.hpp) when the
+  // recording has none.
+  std::string attitude = "file";
   double first_impact_s() const { return impacts_y.empty() ? 0.0 : impacts_y.front().t_s; }
   double last_impact_s() const { return impacts_y.empty() ? 0.0 : impacts_y.back().t_s; }
 };
 
-// Throws BadInput when the recording has no Euler angles or no valid rate.
+// A recording without Euler angles gets them from its gyro first (WithAttitude, gyro_attitude.hpp).
+// Throws BadInput for an empty recording or one without a valid rate.
 DriftCorrection CorrectDrift(const Recording& recording, const DriftCorrectionOptions& options);
 
 // The piecewise-linear interpolant through (anchor time, anchor value), constant outside; 0 without anchors.

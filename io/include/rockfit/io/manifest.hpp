@@ -6,6 +6,8 @@
 //   b2 = 0.03            # half-depth along y [m]
 //   h  = 0.20            # COM height above the base = half the block height [m]
 //   density = 2692       # [kg/m³] — or mass = … [kg], exactly one of the two
+//   format = "csv"       # optional: the default format, columns, rate and mounting of this block's trials
+//   columns = "phyphox"  #   (each trial may set its own, which wins)
 //
 //   [[trials]]
 //   id = "B3-A-1"
@@ -15,6 +17,8 @@
 //   format = "auto"      # optional: auto, ximu-gui, ximu3, generic-csv (or csv), rockfit-hdf5
 //   rate = 256           # optional: sample rate [Hz] when the files do not say
 //   mounting = "x,-y,-z" # optional: sensor axes on the block (mounting.hpp), identity by default
+//   columns = "time=t@ms;gyro=gx,gy,gz@dps;accel=ax,ay,az@g"  # optional: generic CSV column map or preset
+//                        # (column_map.hpp: which columns, their units; "phyphox", "sensor-logger")
 //   notes = "…"          # optional
 //
 // Every mistake is a BadInput naming the manifest, line and column: syntax errors, unknown or misspelt keys
@@ -45,6 +49,11 @@ struct BlockSpec {
   std::optional<double> density_kg_m3;
   std::optional<double> mass_kg;
   std::string notes;
+  // Defaults for the trials of this block (a trial's own key wins); empty / nullopt: not given.
+  std::string format;
+  std::string columns;
+  std::string mounting;
+  std::optional<double> rate_hz;
   SourcePosition where;
   core::Block ToBlock() const;
 };
@@ -58,6 +67,7 @@ struct TrialSpec {
   std::string format = "auto";
   std::optional<double> rate_hz;
   std::string mounting;             // as written; empty: the sensor axes are the block axes
+  std::string columns;              // generic CSV column map or preset as written (column_map.hpp); empty: detected
   std::string notes;
   SourcePosition where;
 };

@@ -67,6 +67,7 @@ struct Recording {
   MountingCheck mounting_check;       // the data's view of the mounting
 
   std::vector<std::string> columns;   // source columns that were read, as "file: header"
+  std::vector<std::string> recognised;  // how the reader understood the files (layout, units, time), for inspect
   std::vector<Gap> gaps;              // dropped samples
   std::vector<std::string> warnings;  // documented repairs that were applied
 

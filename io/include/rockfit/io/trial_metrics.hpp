@@ -31,7 +31,7 @@ struct MetricsSummary {
 };
 
 // Without a block only the OPMF is computed, and the AVRF status says that the block geometry is missing
-// (status "no_block"). Throws BadInput for a recording without Euler angles.
+// (status "no_block"). A recording without Euler angles gets them from its gyro (gyro_attitude.hpp).
 MetricsSummary ComputeTrialMetrics(const Recording& recording, const std::optional<core::Block>& block,
                                    const MetricsOptions& options);
 

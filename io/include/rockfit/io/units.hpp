@@ -20,7 +20,7 @@ inline constexpr double kMetresPerSecond2PerG = core::kStandardGravity;
 enum class AngularRateUnit { kDegreesPerSecond, kRadiansPerSecond };
 enum class AngleUnit { kDegrees, kRadians };
 enum class AccelerationUnit { kG, kMetresPerSecond2 };
-enum class TimeUnit { kSeconds, kMilliseconds, kMicroseconds };
+enum class TimeUnit { kSeconds, kMilliseconds, kMicroseconds, kNanoseconds };
 
 // Factor from the unit to SI (rad/s, rad, m/s², s).
 double ToSi(AngularRateUnit unit);
@@ -28,15 +28,15 @@ double ToSi(AngleUnit unit);
 double ToSi(AccelerationUnit unit);
 double ToSi(TimeUnit unit);
 
-// Spellings accepted in headers ("Gyroscope X (deg/s)") and column maps; case-insensitive.
-// Angular rate: deg/s, dps, °/s, degrees/s, rad/s. Angle: deg, degrees, °, rad, radians.
-// Acceleration: g, m/s2, m/s^2, m/s². Time: s, ms, us, µs.
+// Spellings accepted in headers ("Gyroscope X (deg/s)", "gx [dps]") and column maps; case-insensitive.
+// Angular rate: deg/s, dps, °/s, degrees/s, deg/sec, rad/s, rad/sec. Angle: deg, degrees, °, rad, radians.
+// Acceleration: g, m/s2, m/s^2, m/s², ms^-2, m/s/s. Time: s, sec, ms, us, µs, ns.
 std::optional<AngularRateUnit> ParseAngularRateUnit(std::string_view text);
 std::optional<AngleUnit> ParseAngleUnit(std::string_view text);
 std::optional<AccelerationUnit> ParseAccelerationUnit(std::string_view text);
 std::optional<TimeUnit> ParseTimeUnit(std::string_view text);
 
-// Canonical spelling: "deg/s", "rad/s", "deg", "rad", "g", "m/s^2", "s", "ms", "us".
+// Canonical spelling: "deg/s", "rad/s", "deg", "rad", "g", "m/s^2", "s", "ms", "us", "ns".
 std::string UnitName(AngularRateUnit unit);
 std::string UnitName(AngleUnit unit);
 std::string UnitName(AccelerationUnit unit);

@@ -1,0 +1,38 @@
+"""CSV recordings as labs bring them (data-samples/csv/): phyphox, Sensor Logger, a microcontroller log and a quoted
+spreadsheet export, read from their campaign manifest, with the attitude integrated from the gyro for the metrics,
+equal to what the program prints."""
+import pytest
+
+from conftest import MANIFEST, SAMPLES, as_plain, requires_optimised_build, run_cli
+
+CSV_MANIFEST = SAMPLES / "csv" / "manifest.toml"
+TRIALS = ["block1-A-1", "block1-B-1", "block2-A-1", "block3-A-1"]
+
+
+@pytest.mark.parametrize("trial", TRIALS)
+def test_each_csv_trial_is_read_with_its_column_map(rockfit, trial):
+    rec = rockfit.load_recording(str(CSV_MANIFEST), trial=trial)
+    original = rockfit.load_recording(str(MANIFEST), trial=trial)
+    assert rec.format == "generic-csv"
+    assert rec.rate_hz == pytest.approx(256.0, rel=1e-4)
+    assert len(rec.t) == len(original.t)
+
+
+@pytest.mark.parametrize("trial", TRIALS)
+def test_metrics_of_a_csv_trial_equal_the_program(rockfit, trial):
+    result = rockfit.metrics(rockfit.load_recording(str(CSV_MANIFEST), trial=trial))
+    cli = run_cli("metrics", CSV_MANIFEST, "--trial", trial)
+    for key, expected in cli.items():
+        assert as_plain(result[key]) == expected, key
+    assert result.status == "ok"
+
+
+@requires_optimised_build
+def test_a_phyphox_trial_fits_like_the_program(rockfit):
+    result = rockfit.fit(rockfit.load_recording(str(CSV_MANIFEST), trial="block2-A-1"))
+    cli = run_cli("fit", CSV_MANIFEST, "--trial", "block2-A-1")
+    assert result.epsilon == cli["epsilon"]
+    # The truth of the synthetic trial (data-samples/README.md): the paper's Fig. 14 parameters, within the bounds
+    # test_fit.py holds the x-IMU files of the same trial to.
+    assert abs(result.values["alpha"] - 0.197) < 2e-3
+    assert abs(result.values["lambda_lat"] - -2.032) < 0.2032
