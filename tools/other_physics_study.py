@@ -25,6 +25,11 @@ Usage (from the repository root, after building the targets rockfit and rockfit_
       --family mujoco --trials 30 --seed 1 --out build/other-physics-mujoco-1
 
 Writes OUT/trials.jsonl and prints the table (also OUT/report.md); `--report-only` re-prints it.
+
+`--metrics` (with or after a run) checks that the fitted model reproduces each recording's OPMF and AVRF (paper
+Sect. 3.2, `rockfit metrics`): the recording's are measured as recorded; the model's on a `rockfit synth`
+recording of the fitted t0, α, λ, λ_lat, λ_lon with the same measurement model and seed. Targets: AVRF within
+2 % (relative), OPMF within 0.003 (absolute). Writes OUT/metrics.jsonl and adds the table to the report.
 """
 import argparse
 import json
@@ -79,6 +84,55 @@ def width(interval):
     return interval[1] - interval[0]
 
 
+AVRF_RELATIVE_TOLERANCE = 0.02  # the fitted model's AVRF within 2 % of the recording's (the study's target)
+OPMF_TOLERANCE = 0.003          # the fitted model's OPMF within 0.003 of the recording's (the study's target)
+
+
+def metrics_of(args, prefix, b2):
+    out = subprocess.run([args.rockfit, "metrics", prefix, "--json", "--b1", repr(B1), "--b2", repr(b2), "--h", repr(H),
+                          "--density", repr(DENSITY)], capture_output=True, text=True)
+    if not out.stdout.strip():
+        return {"status": "error", "message": out.stderr.strip()}
+    m = json.loads(out.stdout)
+    return {k: m.get(k) for k in ("opmf", "avrf", "status", "opmf_status", "avrf_status")}
+
+
+def metrics_trial(args, trial, out_dir):
+    """OPMF and AVRF of the recording and of the fitted model (synth with the fitted parameters, same seed)."""
+    prefix = os.path.join(out_dir, "recordings", f"trial{trial['index']:03d}")
+    row = {"index": trial["index"], "recording": metrics_of(args, prefix, trial["b2"])}
+    p = trial["fit"]["parameters"]
+    model = os.path.join(out_dir, "recordings", f"model{trial['index']:03d}")
+    synth = subprocess.run([args.rockfit, "synth", "-o", model, "--t0", repr(p["t0"]["value"]), "--duration", "3",
+                            "--alpha", repr(p["alpha"]["value"]), "--lambda", repr(p["lambda"]["value"]),
+                            "--lambda-lat", repr(p["lambda_lat"]["value"]), "--lambda-lon", repr(p["lambda_lon"]["value"]),
+                            "--b1", repr(B1), "--b2", repr(trial["b2"]), "--h", repr(H), "--density", repr(DENSITY),
+                            "--seed", str(trial["seed"]), "--no-rotation-matrix"], capture_output=True, text=True)
+    row["model"] = metrics_of(args, model, trial["b2"]) if synth.returncode == 0 else {"status": "error",
+                                                                                      "message": synth.stderr.strip()}
+    return row
+
+
+def metrics_report(rows):
+    ok = [r for r in rows if r["recording"].get("avrf") is not None and r["model"].get("avrf") is not None]
+    lines = [f"\nOPMF and AVRF of the fitted model against the recording's ({len(ok)} of {len(rows)} trials with both):"]
+    if not ok:
+        return lines
+    avrf = [abs(r["model"]["avrf"] / r["recording"]["avrf"] - 1.0) for r in ok]
+    opmf = [abs(r["model"]["opmf"] - r["recording"]["opmf"]) for r in ok
+            if r["model"].get("opmf") is not None and r["recording"].get("opmf") is not None]
+    q = lambda v: statistics.quantiles(v, n=10) if len(v) > 1 else v * 9
+    lines.append(f"  AVRF within {100 * AVRF_RELATIVE_TOLERANCE:.0f} %: {sum(a <= AVRF_RELATIVE_TOLERANCE for a in avrf)}/"
+                 f"{len(avrf)}; relative difference median {statistics.median(avrf):.4f}, 90th percentile "
+                 f"{q(avrf)[8]:.4f}, max {max(avrf):.4f}")
+    if opmf:
+        lines.append(f"  OPMF within {OPMF_TOLERANCE}: {sum(o <= OPMF_TOLERANCE for o in opmf)}/{len(opmf)}; "
+                     f"difference median {statistics.median(opmf):.4f}, 90th percentile {q(opmf)[8]:.4f}, "
+                     f"max {max(opmf):.4f}; recording's OPMF median "
+                     f"{statistics.median(r['recording']['opmf'] for r in ok if r['recording'].get('opmf') is not None):.4f}")
+    return lines
+
+
 def report(trials):
     fitted = [t for t in trials if t.get("fit")]
     lines = [f"{len(fitted)} of {len(trials)} trials fitted"]
@@ -130,6 +184,8 @@ def main():
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--out", required=True)
     parser.add_argument("--report-only", action="store_true")
+    parser.add_argument("--metrics", action="store_true",
+                        help="also compare the OPMF and AVRF of the fitted model with the recording's (OUT/metrics.jsonl)")
     args = parser.parse_args()
     path = os.path.join(args.out, "trials.jsonl")
     if not args.report_only:
@@ -143,6 +199,15 @@ def main():
                 print(f"[{i + 1}/{args.trials}]", file=sys.stderr)
     trials = [json.loads(line) for line in open(path)]
     text = f"family {args.family}, seed {args.seed}, model-error widening {args.model_error_widening:g}\n" + report(trials)
+    if args.metrics:
+        metrics_path = os.path.join(args.out, "metrics.jsonl")
+        if not os.path.exists(metrics_path):
+            with open(metrics_path, "w") as f:
+                for t in trials:
+                    if t.get("fit"):
+                        f.write(json.dumps(metrics_trial(args, t, args.out)) + "\n")
+                        f.flush()
+        text += "\n".join(metrics_report([json.loads(line) for line in open(metrics_path)]))
     open(os.path.join(args.out, "report.md"), "w").write(text + "\n")
     print(text)
 
