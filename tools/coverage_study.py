@@ -191,6 +191,16 @@ def perturb_gyro(prefix, family, rng, impacts=None):
         f.write("\n".join([header] + rows) + "\n")
 
 
+def widening_args(args):
+    """The widening options of `rockfit fit` that were given (none: rockfit's calibrated defaults)."""
+    out = []
+    if args.model_error_widening is not None:
+        out += ["--model-error-widening", repr(args.model_error_widening)]
+    if args.t0_floor_samples is not None:
+        out += ["--t0-floor-samples", repr(args.t0_floor_samples)]
+    return out
+
+
 def study_trial(args, t, workdir):
     prefix = os.path.join(workdir, f"trial{t['index']:03d}")
     synth = [args.rockfit, "synth", "-o", prefix, "--t0", repr(t["t0"]), "--duration", repr(t["t0"] + 2.5),
@@ -223,8 +233,8 @@ def study_trial(args, t, workdir):
     rows = []
     for method in args.methods:
         started = time.time()
-        code, out, err = run([args.rockfit, "fit", prefix, "--json", "--threads", "1", "--intervals", method,
-                              "--model-error-widening", repr(args.model_error_widening)] + block_args(t))
+        code, out, err = run([args.rockfit, "fit", prefix, "--json", "--threads", "1", "--intervals", method] + widening_args(args)
+                             + block_args(t))
         wall = time.time() - started
         if code != 0:
             rows.append({"trial": t, "method": method, "error": f"fit exit {code}: {err.strip()}"})
@@ -372,8 +382,10 @@ def main():
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--methods", default="fast,thorough")
     parser.add_argument("--ringing-scale", type=float, default=1.0)
-    parser.add_argument("--model-error-widening", type=float, default=0.0,
-                        help="rockfit fit --model-error-widening K (0: off, the default)")
+    parser.add_argument("--model-error-widening", type=float, default=None,
+                        help="rockfit fit --model-error-widening C (default: rockfit's; 0: off)")
+    parser.add_argument("--t0-floor-samples", type=float, default=None,
+                        help="rockfit fit --t0-floor-samples Q (default: rockfit's; 0: off)")
     parser.add_argument("--sensor-family", default=None, choices=SENSOR_FAMILIES)
     parser.add_argument("--out", required=True)
     parser.add_argument("--report-only", action="store_true")

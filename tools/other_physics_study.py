@@ -56,6 +56,16 @@ def random_trial(rng, index, family):
     return trial
 
 
+def widening_args(args):
+    """The widening options of `rockfit fit` that were given (none: rockfit's calibrated defaults)."""
+    out = []
+    if args.model_error_widening is not None:
+        out += ["--model-error-widening", repr(args.model_error_widening)]
+    if args.t0_floor_samples is not None:
+        out += ["--t0-floor-samples", repr(args.t0_floor_samples)]
+    return out
+
+
 def run_trial(args, trial, out_dir):
     prefix = os.path.join(out_dir, "recordings", f"trial{trial['index']:03d}")
     subprocess.run([args.generator, "-o", prefix, "--alpha", repr(trial["alpha"]), "--roll", repr(trial["roll"]),
@@ -63,8 +73,7 @@ def run_trial(args, trial, out_dir):
                     "--com-offset-y", repr(trial["com_offset_y"]), "--proud-vertex", str(trial["proud_vertex"]),
                     "--seed", str(trial["seed"])], check=True, capture_output=True)
     fit = subprocess.run([args.rockfit, "fit", prefix, "--rate", "256", "--b1", repr(B1), "--b2", repr(trial["b2"]),
-                          "--h", repr(H), "--density", repr(DENSITY), "--threads", "1", "--json",
-                          "--model-error-widening", repr(args.model_error_widening)],
+                          "--h", repr(H), "--density", repr(DENSITY), "--threads", "1", "--json"] + widening_args(args),
                          capture_output=True, text=True)
     trial["exit_code"] = fit.returncode
     trial["fit"] = json.loads(fit.stdout) if fit.stdout.strip() else None
@@ -179,8 +188,10 @@ def main():
     parser.add_argument("--generator", default="build/tests/rockfit_mujoco_synth")
     parser.add_argument("--family", default="mujoco", choices=["mujoco", "mujoco-perturbed", "mujoco-planar"])
     parser.add_argument("--trials", type=int, default=30)
-    parser.add_argument("--model-error-widening", type=float, default=0.0,
-                        help="rockfit fit --model-error-widening K (0: off, the default)")
+    parser.add_argument("--model-error-widening", type=float, default=None,
+                        help="rockfit fit --model-error-widening C (default: rockfit's; 0: off)")
+    parser.add_argument("--t0-floor-samples", type=float, default=None,
+                        help="rockfit fit --t0-floor-samples Q (default: rockfit's; 0: off)")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--out", required=True)
     parser.add_argument("--report-only", action="store_true")
@@ -198,7 +209,7 @@ def main():
                 f.flush()
                 print(f"[{i + 1}/{args.trials}]", file=sys.stderr)
     trials = [json.loads(line) for line in open(path)]
-    text = f"family {args.family}, seed {args.seed}, model-error widening {args.model_error_widening:g}\n" + report(trials)
+    text = f"family {args.family}, seed {args.seed}, widening {args.model_error_widening}, t0 floor {args.t0_floor_samples} (None: rockfit's defaults)\n" + report(trials)
     if args.metrics:
         metrics_path = os.path.join(args.out, "metrics.jsonl")
         if not os.path.exists(metrics_path):

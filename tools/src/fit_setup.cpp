@@ -78,8 +78,11 @@ void AddFitOptions(CLI::App& app, FitArgs& args) {
                  "(standard errors only)")
       ->capture_default_str();
   app.add_option("--model-error-widening", args.model_error_widening,
-                 "Widen every 95 % interval by max(1, K·ε/ε_noise), ε_noise the noise floor at rest (0: off; measured, "
-                 "not calibrated: fitting/README.md, \"Recordings made by other physics\")")
+                 "Widen every 95 % interval for model error by √(1 + K²·(r² − 1)), r = ε/ε_noise over the noise floor at "
+                 "rest (0: off; the default is calibrated: fitting/README.md, \"Intervals under model error\")")
+      ->capture_default_str();
+  app.add_option("--t0-floor-samples", args.t0_floor_samples,
+                 "Floor of t0's 95 % half-widths in sample periods, added in quadrature (0: off)")
       ->capture_default_str();
 }
 
@@ -129,6 +132,7 @@ PreparedFit PrepareFit(const io::Recording& recording, const core::Block& block,
   options.num_threads = args.threads;
   options.intervals.method = fitting::ParseIntervalMethod(args.intervals);
   options.intervals.model_error_widening = args.model_error_widening;
+  options.intervals.t0_floor_samples = args.t0_floor_samples;
   options.Validate();
 
   fitting::ParameterSet set = MakeParameterSet(args);
@@ -162,7 +166,8 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   // v5: the 68 % intervals at the bulk noise level of the standard errors.
   // v6: the lateral rescan.
   // v7: the model-error statement is stored with each fit (the fitted values are those of v6).
-  std::string settings = fmt::format("rockfit-fit v7; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
+  // v8: the 95 % intervals widened for model error by default (the fitted values are those of v7).
+  std::string settings = fmt::format("rockfit-fit v8; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
                                      "global={}; keep_bias={}; block=({:.17g},{:.17g},{:.17g},{:.17g})",
                                      fitting::ToString(fitting::ParseFitMethod(args.method)),
                                      fitting::ToString(fitting::ParseIntervalMethod(args.intervals)), args.bounds,
@@ -177,7 +182,8 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   for (const FixEntry& fix : ParseFixEntries(args)) {
     if (!fix.value) settings += fmt::format("; {}:fixed at the data estimate", fitting::Name(fix.id));
   }
-  if (args.model_error_widening != 0.0) settings += fmt::format("; model_error_widening={:.17g}", args.model_error_widening);
+  settings += fmt::format("; model_error_widening={:.17g}; t0_floor_samples={:.17g}", args.model_error_widening,
+                          args.t0_floor_samples);
   return settings;
 }
 
