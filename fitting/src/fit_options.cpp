@@ -109,8 +109,12 @@ IntervalMethod ParseIntervalMethod(const std::string& name) {
 
 void IntervalOptions::Validate() const {
   if (!(std::isfinite(model_error_widening) && model_error_widening >= 0.0)) {
-    throw InvalidArgument(fmt::format("intervals: model_error_widening must be a finite factor ≥ 0, got {}",
+    throw InvalidArgument(fmt::format("intervals: model_error_widening must be a finite coefficient ≥ 0, got {}",
                                       model_error_widening));
+  }
+  if (!(std::isfinite(t0_floor_samples) && t0_floor_samples >= 0.0)) {
+    throw InvalidArgument(fmt::format("intervals: t0_floor_samples must be a finite number of sample periods ≥ 0, got {}",
+                                      t0_floor_samples));
   }
   RequirePositive(noise_correlation_window_s, "intervals.noise_correlation_window_s");
   if (!(model_error_allowance >= 1.0 && std::isfinite(model_error_allowance))) {
