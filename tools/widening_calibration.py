@@ -14,9 +14,9 @@ widths. The fitted values do not depend on c and q, so one run of each study ser
   tools/widening_calibration.py --c 0.5 --q 0.5 build/study/*/trials.jsonl
   tools/widening_calibration.py --grid build/study/sensor-reference-26/trials.jsonl ...   # the smallest c, q
 
-`--grid` prints, for each q of a grid, the smallest c (step 0.05) with which the 95 % intervals of t0 and α
-hold the truth in at least --target of the fits of every study given (the calibration: give it the tuning
-families only).
+`--grid` prints, for each q of a grid, the smallest c (step 0.05) with which the 95 % intervals of t0 and α,
+and of the λ's where the study has their truth, hold the truth in at least --target of the fits of every study
+given (the calibration: give it the tuning families only).
 """
 import argparse
 import json
@@ -127,7 +127,7 @@ def smallest_c(paths, q, target):
         c = 0.05 * k
         if all(held >= target * total
                for pairs in studies
-               for name, (held, total, _, _, _) in coverage(pairs, c, q, ["t0", "alpha"]).items() if total):
+               for name, (held, total, _, _, _) in coverage(pairs, c, q, names_of(pairs)).items() if total):
             return c
     return None
 
