@@ -114,9 +114,9 @@ enum class IntervalMethod { kNone, kFast, kThorough };
 const char* ToString(IntervalMethod method);                // "none", "fast", "thorough"
 IntervalMethod ParseIntervalMethod(const std::string& name);  // throws InvalidArgument
 
-// The calibrated defaults of IntervalOptions::model_error_widening and t0_floor_samples.
-inline constexpr double kDefaultModelErrorWidening = 0.5;
-inline constexpr double kDefaultT0FloorSamples = 0.5;
+// The calibrated defaults of IntervalOptions::model_error_widening and t0_floor_samples (fit_options.cpp).
+extern const double kDefaultModelErrorWidening;
+extern const double kDefaultT0FloorSamples;
 
 struct IntervalOptions {
   IntervalMethod method = IntervalMethod::kFast;  // the command line defaults to kThorough (--intervals)
