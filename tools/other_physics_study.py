@@ -123,22 +123,28 @@ def metrics_trial(args, trial, out_dir):
 
 
 def metrics_report(rows):
-    ok = [r for r in rows if r["recording"].get("avrf") is not None and r["model"].get("avrf") is not None]
-    lines = [f"\nOPMF and AVRF of the fitted model against the recording's ({len(ok)} of {len(rows)} trials with both):"]
-    if not ok:
-        return lines
-    avrf = [abs(r["model"]["avrf"] / r["recording"]["avrf"] - 1.0) for r in ok]
-    opmf = [abs(r["model"]["opmf"] - r["recording"]["opmf"]) for r in ok
-            if r["model"].get("opmf") is not None and r["recording"].get("opmf") is not None]
-    q = lambda v: statistics.quantiles(v, n=10) if len(v) > 1 else v * 9
-    lines.append(f"  AVRF within {100 * AVRF_RELATIVE_TOLERANCE:.0f} %: {sum(a <= AVRF_RELATIVE_TOLERANCE for a in avrf)}/"
-                 f"{len(avrf)}; relative difference median {statistics.median(avrf):.4f}, 90th percentile "
-                 f"{q(avrf)[8]:.4f}, max {max(avrf):.4f}")
-    if opmf:
-        lines.append(f"  OPMF within {OPMF_TOLERANCE}: {sum(o <= OPMF_TOLERANCE for o in opmf)}/{len(opmf)}; "
-                     f"difference median {statistics.median(opmf):.4f}, 90th percentile {q(opmf)[8]:.4f}, "
-                     f"max {max(opmf):.4f}; recording's OPMF median "
-                     f"{statistics.median(r['recording']['opmf'] for r in ok if r['recording'].get('opmf') is not None):.4f}")
+    both = lambda key: [r for r in rows if r["recording"].get(key) is not None and r["model"].get(key) is not None]
+    q90 = lambda v: statistics.quantiles(v, n=10)[8] if len(v) > 1 else v[0]
+    lines = ["\nOPMF and AVRF of the fitted model against the recording's:"]
+    ok = both("avrf")
+    if ok:
+        avrf = [abs(r["model"]["avrf"] / r["recording"]["avrf"] - 1.0) for r in ok]
+        lines.append(f"  AVRF ({len(ok)} of {len(rows)} trials where both have one): within "
+                     f"{100 * AVRF_RELATIVE_TOLERANCE:.0f} % in {sum(a <= AVRF_RELATIVE_TOLERANCE for a in avrf)}/{len(avrf)}; "
+                     f"relative difference median {statistics.median(avrf):.4f}, 90th percentile {q90(avrf):.4f}, "
+                     f"max {max(avrf):.4f}")
+    else:
+        lines.append(f"  AVRF: none of {len(rows)} trials has one in both (recording: "
+                     f"{sum(r['recording'].get('avrf') is not None for r in rows)}, model: "
+                     f"{sum(r['model'].get('avrf') is not None for r in rows)})")
+    ok = both("opmf")
+    if ok:
+        opmf = [abs(r["model"]["opmf"] - r["recording"]["opmf"]) for r in ok]
+        lines.append(f"  OPMF ({len(ok)} trials): within {OPMF_TOLERANCE} in {sum(o <= OPMF_TOLERANCE for o in opmf)}/"
+                     f"{len(opmf)}; difference median {statistics.median(opmf):.4f}, 90th percentile {q90(opmf):.4f}, "
+                     f"max {max(opmf):.4f}; the recording's OPMF median "
+                     f"{statistics.median(r['recording']['opmf'] for r in ok):.4f}, the model's "
+                     f"{statistics.median(r['model']['opmf'] for r in ok):.4f}")
     return lines
 
 
