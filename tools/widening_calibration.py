@@ -13,6 +13,7 @@ widths. The fitted values do not depend on c and q, so one run of each study ser
 
   tools/widening_calibration.py --c 0.5 --q 0.5 build/study/*/trials.jsonl
   tools/widening_calibration.py --grid build/study/sensor-reference-26/trials.jsonl ...   # the smallest c, q
+  tools/widening_calibration.py --compare --c 0.75 --q 0.5 build/study/*/trials.jsonl     # off → (c, q)
 
 `--grid` prints, for each q of a grid, the smallest c (step 0.05) with which the 95 % intervals of t0 and α,
 and of the λ's where the study has their truth, hold the truth in at least --target of the fits of every study
@@ -121,6 +122,29 @@ def table(paths, c, q):
     return "\n".join(lines)
 
 
+def compare(paths, c, q):
+    """One row per study: coverage over every fit and median width, widening off → (c, q)."""
+    lines = [f"widening off → c = {c:g}, q = {q:g}",
+             "| study | fits | " + " | ".join(PARAMETERS) + " | median 95 % widths t0 / α / λ / λ_lat / λ_lon |",
+             "|---|---|" + "---|" * len(PARAMETERS) + "---|"]
+    fmt_w = lambda name, w: (f"{w * 1e3:.3g} ms" if name == "t0" else f"{w * 1e3:.3g} mrad" if name == "alpha"
+                             else f"{w:.2g}")
+    for path in paths:
+        pairs = load(path)
+        names = names_of(pairs)
+        before, after = coverage(pairs, 0.0, 0.0, names), coverage(pairs, c, q, names)
+        cells, widths = [], []
+        for name in PARAMETERS:
+            if name not in names:
+                cells.append("—")
+                continue
+            (h0, n0, _, _, w0), (h1, n1, _, _, w1) = before[name], after[name]
+            cells.append(f"{100 * h0 / n0:.0f} → {100 * h1 / n1:.0f} %")
+            widths.append(f"{fmt_w(name, w0)} → {fmt_w(name, w1)}")
+        lines.append(f"| {label(path)} | {len(pairs)} | " + " | ".join(cells) + " | " + "; ".join(widths) + " |")
+    return "\n".join(lines)
+
+
 def smallest_c(paths, q, target):
     studies = [load(p) for p in paths]
     for k in range(0, 101):
@@ -139,6 +163,7 @@ def main():
     parser.add_argument("--q", type=float, default=0.0, help="t0's floor in sample periods")
     parser.add_argument("--grid", action="store_true", help="the smallest c for each q of 0, 0.25, …, 1.5")
     parser.add_argument("--target", type=float, default=0.9)
+    parser.add_argument("--compare", action="store_true", help="coverage and widths with the widening off → (c, q)")
     args = parser.parse_args()
     if args.grid:
         for i in range(7):
@@ -146,7 +171,7 @@ def main():
             c = smallest_c(args.studies, q, args.target)
             print(f"q = {q:g}: smallest c = {'none ≤ 5' if c is None else f'{c:.2f}'}")
         return 0
-    print(table(args.studies, args.c, args.q))
+    print(compare(args.studies, args.c, args.q) if args.compare else table(args.studies, args.c, args.q))
     return 0
 
 
