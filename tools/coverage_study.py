@@ -28,6 +28,16 @@ that of the motion), for sensor errors the measurement model does not make:
                    s = ±sin 0.5°, random signs)
   dropped-samples  0.5 % of the inertial rows removed at random (the x-IMU's files carry no time: a reader that
                    trusts the rate shifts everything after a drop by one sample)
+  clock            the sensor's clock off by ±100 ppm and each sample taken with a timing jitter of σ = 0.3 ms
+                   (the gyro resampled linearly at the true sample times; the file still says 256 Hz)
+  saturation       every gyro axis clipped at a full scale of 0.6–0.9 × the recording's largest |ω| (a gyro
+                   whose range is too small for the block)
+  ringing-two-mode synth's ringing replaced by two modes per impact: gain 0.15–0.25 at 25–45 Hz decaying in
+                   20–40 ms plus gain 0.08–0.18 at 60–110 Hz decaying in 5–15 ms (random phase)
+  ringing-hammer   synth's ringing replaced by a hammer-like blow: gain 0.2–0.35 × the jump, a cosine of 20–60 Hz
+                   starting at its peak, under a power-law envelope (1 + t/T)^-3, T = 5–15 ms
+  The two ringing families locate the impacts in a noiseless run of the same trial (`synth --no-noise`) by the
+  jumps of ω and ring with the jump each shows.
 
 Usage (from the repository root, after building):
 
@@ -81,15 +91,85 @@ def block_args(t):
     return ["--b1", repr(t["b1"]), "--b2", repr(t["b2"]), "--h", repr(t["h"]), "--density", "2692"]
 
 
-def perturb_gyro(prefix, family, rng):
-    """Rewrites <prefix>_CalInertialAndMag.csv with the sensor error of `family` (see the module's help)."""
-    path = prefix + "_CalInertialAndMag.csv"
+SENSOR_FAMILIES = ["gyro-scale", "non-orthogonal", "dropped-samples", "clock", "saturation", "ringing-two-mode",
+                   "ringing-hammer"]
+RINGING_FAMILIES = ["ringing-two-mode", "ringing-hammer"]
+RATE_HZ = 256.0
+CLOCK_ERROR = 100e-6          # relative clock-rate error of the `clock` family
+JITTER_S = 0.3e-3             # σ of the sample-time jitter of the `clock` family [s]
+IMPACT_JUMP_DPS = 2.0        # a jump of ω above this marks an impact in a noiseless run [°/s] (20 × its 1/16 °/s step)
+
+
+def read_gyro(path):
     with open(path) as f:
         header, *rows = f.read().splitlines()
     columns = [c.strip() for c in header.split(",")]
     gyro = [columns.index(f"Gyroscope {axis} (deg/s)") for axis in "XYZ"]
+    return header, rows, gyro
+
+
+def impacts_from_clean(path):
+    """(sample index, jump in °/s per axis) where the noiseless ω of `path` jumps: the step into the sample less
+    the mean of the steps either side, at its local maxima in size above IMPACT_JUMP_DPS."""
+    _, rows, gyro = read_gyro(path)
+    w = [[float(r.split(",")[i]) for i in gyro] for r in rows]
+    step = [[w[k][a] - w[k - 1][a] for a in range(3)] for k in range(1, len(w))]  # step[k-1]: into sample k
+    jump = {}
+    for k in range(2, len(w) - 1):
+        j = [step[k - 1][a] - 0.5 * (step[k - 2][a] + step[k][a]) for a in range(3)]
+        jump[k] = (math.sqrt(sum(x * x for x in j)), j)
+    out = []
+    for k, (size, j) in jump.items():
+        if size > IMPACT_JUMP_DPS and size >= jump.get(k - 1, (0,))[0] and size >= jump.get(k + 1, (0,))[0]:
+            out.append((k, j))
+    return out
+
+
+def ringing_shape(family, rng):
+    """A function of (time since the impact [s]) → gain, the ringing of `family` per unit jump."""
+    if family == "ringing-two-mode":
+        g1, f1, t1 = rng.uniform(0.15, 0.25), rng.uniform(25, 45), rng.uniform(0.02, 0.04)
+        g2, f2, t2, phase = rng.uniform(0.08, 0.18), rng.uniform(60, 110), rng.uniform(0.005, 0.015), rng.uniform(0, 2 * math.pi)
+        return lambda dt: (g1 * math.exp(-dt / t1) * math.sin(2 * math.pi * f1 * dt)
+                           + g2 * math.exp(-dt / t2) * math.sin(2 * math.pi * f2 * dt + phase))
+    g, f, t = rng.uniform(0.2, 0.35), rng.uniform(20, 60), rng.uniform(0.005, 0.015)
+    return lambda dt: g * (1.0 + dt / t) ** -3 * math.cos(2 * math.pi * f * dt)
+
+
+def perturb_gyro(prefix, family, rng, impacts=None):
+    """Rewrites <prefix>_CalInertialAndMag.csv with the sensor error of `family` (see the module's help)."""
+    path = prefix + "_CalInertialAndMag.csv"
+    header, rows, gyro = read_gyro(path)
     if family == "dropped-samples":
         rows = [r for r in rows if rng.random() >= 0.005]
+    elif family in ("clock", "saturation") or family in RINGING_FAMILIES:
+        cells = [r.split(",") for r in rows]
+        w = [[float(c[i]) for i in gyro] for c in cells]
+        n = len(w)
+        if family == "clock":
+            rate_error = CLOCK_ERROR * rng.choice([-1.0, 1.0])
+            new = []
+            for k in range(n):
+                x = k * (1.0 - rate_error) + rng.gauss(0.0, JITTER_S * RATE_HZ)  # true time in samples
+                x = min(max(x, 0.0), n - 1.0)
+                j = min(int(x), n - 2)
+                f = x - j
+                new.append([(1 - f) * w[j][a] + f * w[j + 1][a] for a in range(3)])
+            w = new
+        elif family == "saturation":
+            full_scale = rng.uniform(0.6, 0.9) * max(abs(v) for row in w for v in row)
+            w = [[min(max(v, -full_scale), full_scale) for v in row] for row in w]
+        else:
+            shape = ringing_shape(family, rng)
+            for k0, jump in impacts or []:
+                for k in range(k0, min(n, k0 + int(0.3 * RATE_HZ))):
+                    g = shape((k - k0) / RATE_HZ)
+                    for a in range(3):
+                        w[k][a] += g * jump[a]
+        for c, row in zip(cells, w):
+            for a, i in enumerate(gyro):
+                c[i] = repr(round(row[a] * 16.0) / 16.0 if family in RINGING_FAMILIES else row[a])
+        rows = [",".join(c) for c in cells]
     else:
         if family == "gyro-scale":
             scale = [1.0 + rng.uniform(0.01, 0.02) * rng.choice([-1.0, 1.0]) for _ in range(3)]
@@ -111,6 +191,16 @@ def perturb_gyro(prefix, family, rng):
         f.write("\n".join([header] + rows) + "\n")
 
 
+def widening_args(args):
+    """The widening options of `rockfit fit` that were given (none: rockfit's calibrated defaults)."""
+    out = []
+    if args.model_error_widening is not None:
+        out += ["--model-error-widening", repr(args.model_error_widening)]
+    if args.t0_floor_samples is not None:
+        out += ["--t0-floor-samples", repr(args.t0_floor_samples)]
+    return out
+
+
 def study_trial(args, t, workdir):
     prefix = os.path.join(workdir, f"trial{t['index']:03d}")
     synth = [args.rockfit, "synth", "-o", prefix, "--t0", repr(t["t0"]), "--duration", repr(t["t0"] + 2.5),
@@ -120,16 +210,31 @@ def study_trial(args, t, workdir):
     if args.ringing_scale != 1.0:
         for option, value in SYNTH_RINGING.items():
             synth += [option, repr(value * args.ringing_scale)]
+    impacts = None
+    if args.sensor_family in RINGING_FAMILIES:
+        clean = prefix + "_clean"
+        code, _, err = run([c if c != prefix else clean for c in synth if not c.startswith("--gyro-bias-dps")]
+                           + ["--no-noise"])
+        if code != 0:
+            return [{"trial": t, "error": "synth --no-noise: " + err.strip()}]
+        impacts = impacts_from_clean(clean + "_CalInertialAndMag.csv")
+        for suffix in ["_CalInertialAndMag.csv", "_EulerAngles.csv", "_Quaternion.csv", "_Registers.csv",
+                       "_DateTime.csv", "_CalBattAndTherm.csv", "_truth.json"]:
+            try:
+                os.remove(clean + suffix)
+            except OSError:
+                pass
+        synth += ["--no-ringing"]
     code, _, err = run(synth)
     if code != 0:
         return [{"trial": t, "error": "synth: " + err.strip()}]
     if args.sensor_family:
-        perturb_gyro(prefix, args.sensor_family, random.Random(t["seed"]))
+        perturb_gyro(prefix, args.sensor_family, random.Random(t["seed"]), impacts)
     rows = []
     for method in args.methods:
         started = time.time()
-        code, out, err = run([args.rockfit, "fit", prefix, "--json", "--threads", "1", "--intervals", method,
-                              "--model-error-widening", repr(args.model_error_widening)] + block_args(t))
+        code, out, err = run([args.rockfit, "fit", prefix, "--json", "--threads", "1", "--intervals", method] + widening_args(args)
+                             + block_args(t))
         wall = time.time() - started
         if code != 0:
             rows.append({"trial": t, "method": method, "error": f"fit exit {code}: {err.strip()}"})
@@ -142,7 +247,7 @@ def study_trial(args, t, workdir):
         truth_eps = json.loads(out)["epsilon"] if code == 0 else None
         rows.append({"trial": t, "method": method, "fit": fit, "epsilon_truth": truth_eps, "process_wall_s": wall})
     for suffix in ["_CalInertialAndMag.csv", "_EulerAngles.csv", "_Quaternion.csv", "_Registers.csv",
-                   "_DateTime.csv", "_truth.json"]:
+                   "_DateTime.csv", "_CalBattAndTherm.csv", "_truth.json"]:
         try:
             os.remove(prefix + suffix)
         except OSError:
@@ -277,9 +382,11 @@ def main():
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--methods", default="fast,thorough")
     parser.add_argument("--ringing-scale", type=float, default=1.0)
-    parser.add_argument("--model-error-widening", type=float, default=0.0,
-                        help="rockfit fit --model-error-widening K (0: off, the default)")
-    parser.add_argument("--sensor-family", default=None, choices=["gyro-scale", "non-orthogonal", "dropped-samples"])
+    parser.add_argument("--model-error-widening", type=float, default=None,
+                        help="rockfit fit --model-error-widening C (default: rockfit's; 0: off)")
+    parser.add_argument("--t0-floor-samples", type=float, default=None,
+                        help="rockfit fit --t0-floor-samples Q (default: rockfit's; 0: off)")
+    parser.add_argument("--sensor-family", default=None, choices=SENSOR_FAMILIES)
     parser.add_argument("--out", required=True)
     parser.add_argument("--report-only", action="store_true")
     parser.add_argument("--check-coverage-95", type=float, default=None,

@@ -25,6 +25,11 @@ Usage (from the repository root, after building the targets rockfit and rockfit_
       --family mujoco --trials 30 --seed 1 --out build/other-physics-mujoco-1
 
 Writes OUT/trials.jsonl and prints the table (also OUT/report.md); `--report-only` re-prints it.
+
+`--metrics` (with or after a run) checks that the fitted model reproduces each recording's OPMF and AVRF (paper
+Sect. 3.2, `rockfit metrics`): the recording's are measured as recorded; the model's on a `rockfit synth`
+recording of the fitted t0, α, λ, λ_lat, λ_lon with the same measurement model and seed. Targets: AVRF within
+2 % (relative), OPMF within 0.003 (absolute). Writes OUT/metrics.jsonl and adds the table to the report.
 """
 import argparse
 import json
@@ -51,6 +56,16 @@ def random_trial(rng, index, family):
     return trial
 
 
+def widening_args(args):
+    """The widening options of `rockfit fit` that were given (none: rockfit's calibrated defaults)."""
+    out = []
+    if args.model_error_widening is not None:
+        out += ["--model-error-widening", repr(args.model_error_widening)]
+    if args.t0_floor_samples is not None:
+        out += ["--t0-floor-samples", repr(args.t0_floor_samples)]
+    return out
+
+
 def run_trial(args, trial, out_dir):
     prefix = os.path.join(out_dir, "recordings", f"trial{trial['index']:03d}")
     subprocess.run([args.generator, "-o", prefix, "--alpha", repr(trial["alpha"]), "--roll", repr(trial["roll"]),
@@ -58,8 +73,7 @@ def run_trial(args, trial, out_dir):
                     "--com-offset-y", repr(trial["com_offset_y"]), "--proud-vertex", str(trial["proud_vertex"]),
                     "--seed", str(trial["seed"])], check=True, capture_output=True)
     fit = subprocess.run([args.rockfit, "fit", prefix, "--rate", "256", "--b1", repr(B1), "--b2", repr(trial["b2"]),
-                          "--h", repr(H), "--density", repr(DENSITY), "--threads", "1", "--json",
-                          "--model-error-widening", repr(args.model_error_widening)],
+                          "--h", repr(H), "--density", repr(DENSITY), "--threads", "1", "--json"] + widening_args(args),
                          capture_output=True, text=True)
     trial["exit_code"] = fit.returncode
     trial["fit"] = json.loads(fit.stdout) if fit.stdout.strip() else None
@@ -77,6 +91,61 @@ def width(interval):
     if interval is None or interval[0] is None or interval[1] is None:
         return math.inf
     return interval[1] - interval[0]
+
+
+AVRF_RELATIVE_TOLERANCE = 0.02  # the fitted model's AVRF within 2 % of the recording's (the study's target)
+OPMF_TOLERANCE = 0.003          # the fitted model's OPMF within 0.003 of the recording's (the study's target)
+
+
+def metrics_of(args, prefix, b2):
+    out = subprocess.run([args.rockfit, "metrics", prefix, "--json", "--b1", repr(B1), "--b2", repr(b2), "--h", repr(H),
+                          "--density", repr(DENSITY)], capture_output=True, text=True)
+    if not out.stdout.strip():
+        return {"status": "error", "message": out.stderr.strip()}
+    m = json.loads(out.stdout)
+    return {k: m.get(k) for k in ("opmf", "avrf", "status", "opmf_status", "avrf_status")}
+
+
+def metrics_trial(args, trial, out_dir):
+    """OPMF and AVRF of the recording and of the fitted model (synth with the fitted parameters, same seed)."""
+    prefix = os.path.join(out_dir, "recordings", f"trial{trial['index']:03d}")
+    row = {"index": trial["index"], "recording": metrics_of(args, prefix, trial["b2"])}
+    p = trial["fit"]["parameters"]
+    model = os.path.join(out_dir, "recordings", f"model{trial['index']:03d}")
+    synth = subprocess.run([args.rockfit, "synth", "-o", model, "--t0", repr(p["t0"]["value"]), "--duration", "3",
+                            "--alpha", repr(p["alpha"]["value"]), "--lambda", repr(p["lambda"]["value"]),
+                            "--lambda-lat", repr(p["lambda_lat"]["value"]), "--lambda-lon", repr(p["lambda_lon"]["value"]),
+                            "--b1", repr(B1), "--b2", repr(trial["b2"]), "--h", repr(H), "--density", repr(DENSITY),
+                            "--seed", str(trial["seed"]), "--no-rotation-matrix"], capture_output=True, text=True)
+    row["model"] = metrics_of(args, model, trial["b2"]) if synth.returncode == 0 else {"status": "error",
+                                                                                      "message": synth.stderr.strip()}
+    return row
+
+
+def metrics_report(rows):
+    both = lambda key: [r for r in rows if r["recording"].get(key) is not None and r["model"].get(key) is not None]
+    q90 = lambda v: statistics.quantiles(v, n=10)[8] if len(v) > 1 else v[0]
+    lines = ["\nOPMF and AVRF of the fitted model against the recording's:"]
+    ok = both("avrf")
+    if ok:
+        avrf = [abs(r["model"]["avrf"] / r["recording"]["avrf"] - 1.0) for r in ok]
+        lines.append(f"  AVRF ({len(ok)} of {len(rows)} trials where both have one): within "
+                     f"{100 * AVRF_RELATIVE_TOLERANCE:.0f} % in {sum(a <= AVRF_RELATIVE_TOLERANCE for a in avrf)}/{len(avrf)}; "
+                     f"relative difference median {statistics.median(avrf):.4f}, 90th percentile {q90(avrf):.4f}, "
+                     f"max {max(avrf):.4f}")
+    else:
+        lines.append(f"  AVRF: none of {len(rows)} trials has one in both (recording: "
+                     f"{sum(r['recording'].get('avrf') is not None for r in rows)}, model: "
+                     f"{sum(r['model'].get('avrf') is not None for r in rows)})")
+    ok = both("opmf")
+    if ok:
+        opmf = [abs(r["model"]["opmf"] - r["recording"]["opmf"]) for r in ok]
+        lines.append(f"  OPMF ({len(ok)} trials): within {OPMF_TOLERANCE} in {sum(o <= OPMF_TOLERANCE for o in opmf)}/"
+                     f"{len(opmf)}; difference median {statistics.median(opmf):.4f}, 90th percentile {q90(opmf):.4f}, "
+                     f"max {max(opmf):.4f}; the recording's OPMF median "
+                     f"{statistics.median(r['recording']['opmf'] for r in ok):.4f}, the model's "
+                     f"{statistics.median(r['model']['opmf'] for r in ok):.4f}")
+    return lines
 
 
 def report(trials):
@@ -125,11 +194,15 @@ def main():
     parser.add_argument("--generator", default="build/tests/rockfit_mujoco_synth")
     parser.add_argument("--family", default="mujoco", choices=["mujoco", "mujoco-perturbed", "mujoco-planar"])
     parser.add_argument("--trials", type=int, default=30)
-    parser.add_argument("--model-error-widening", type=float, default=0.0,
-                        help="rockfit fit --model-error-widening K (0: off, the default)")
+    parser.add_argument("--model-error-widening", type=float, default=None,
+                        help="rockfit fit --model-error-widening C (default: rockfit's; 0: off)")
+    parser.add_argument("--t0-floor-samples", type=float, default=None,
+                        help="rockfit fit --t0-floor-samples Q (default: rockfit's; 0: off)")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--out", required=True)
     parser.add_argument("--report-only", action="store_true")
+    parser.add_argument("--metrics", action="store_true",
+                        help="also compare the OPMF and AVRF of the fitted model with the recording's (OUT/metrics.jsonl)")
     args = parser.parse_args()
     path = os.path.join(args.out, "trials.jsonl")
     if not args.report_only:
@@ -142,7 +215,16 @@ def main():
                 f.flush()
                 print(f"[{i + 1}/{args.trials}]", file=sys.stderr)
     trials = [json.loads(line) for line in open(path)]
-    text = f"family {args.family}, seed {args.seed}, model-error widening {args.model_error_widening:g}\n" + report(trials)
+    text = f"family {args.family}, seed {args.seed}, widening {args.model_error_widening}, t0 floor {args.t0_floor_samples} (None: rockfit's defaults)\n" + report(trials)
+    if args.metrics:
+        metrics_path = os.path.join(args.out, "metrics.jsonl")
+        if not os.path.exists(metrics_path):
+            with open(metrics_path, "w") as f:
+                for t in trials:
+                    if t.get("fit"):
+                        f.write(json.dumps(metrics_trial(args, t, args.out)) + "\n")
+                        f.flush()
+        text += "\n".join(metrics_report([json.loads(line) for line in open(metrics_path)]))
     open(os.path.join(args.out, "report.md"), "w").write(text + "\n")
     print(text)
 

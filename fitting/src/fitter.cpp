@@ -17,6 +17,7 @@
 #include "rockfit/fitting/lateral_motion_check.hpp"
 #include "rockfit/fitting/lateral_rescan.hpp"
 #include "rockfit/fitting/model_error.hpp"
+#include "rockfit/fitting/model_error_widening.hpp"
 #include "rockfit/fitting/uncertainty.hpp"
 
 namespace rockfit::fitting {
@@ -310,25 +311,35 @@ void AddModelErrorStatement(const Objective& objective, const FitOptions& option
 }
 
 void WidenForModelError(const Objective& objective, const FitOptions& options, FitSummary* summary) {
-  // IntervalOptions::model_error_widening: the 95 % half-widths × max(1, k·ε/ε_noise), clipped to the bounds.
-  const double k = options.intervals.model_error_widening;
+  // Intervals under model error (model_error_widening.hpp): the 95 % half-widths × f(ε/ε_noise), t0's with a
+  // floor of t0_floor_samples sample periods in quadrature, clipped to the bounds.
+  const IntervalOptions& io = options.intervals;
   const ModelErrorStatement& m = summary->model_error;
-  if (!(k > 0.0) || !m.available || !std::isfinite(m.ratio)) return;
-  const double factor = std::max(1.0, k * m.ratio);
-  if (factor == 1.0) return;
+  const double factor =
+      m.available ? ModelErrorWideningFactor(m.ratio, io.model_error_widening) : 1.0;
+  const std::vector<double>& t_s = objective.signal().t_s;
+  const double sample_period_s =
+      t_s.size() > 1 ? (t_s.back() - t_s.front()) / static_cast<double>(t_s.size() - 1) : 0.0;
+  const double t0_floor_s = io.t0_floor_samples * sample_period_s;
+  if (factor == 1.0 && !(t0_floor_s > 0.0)) return;
   UncertaintySummary& u = summary->uncertainty;
+  bool widened_any = false;
   for (ParameterId id : objective.free_ids()) {
     const std::size_t i = static_cast<std::size_t>(id);
     if (!u.determined[i]) continue;
     const Parameter& p = summary->parameters[id];
-    Interval& interval = u.interval_95[i];
-    if (!std::isnan(interval[0])) interval[0] = std::max(p.lower, p.value - factor * (p.value - interval[0]));
-    if (!std::isnan(interval[1])) interval[1] = std::min(p.upper, p.value + factor * (interval[1] - p.value));
-    const Determination widened = Determine(interval, p.lower, p.upper, options.intervals.undetermined_range_fraction);
+    const double floor = id == ParameterId::kT0 ? t0_floor_s : 0.0;
+    if (factor == 1.0 && floor == 0.0) continue;
+    u.interval_95[i] = WidenInterval(u.interval_95[i], p.value, factor, floor, p.lower, p.upper);
+    widened_any = true;
+    const Determination widened = Determine(u.interval_95[i], p.lower, p.upper, io.undetermined_range_fraction);
     if (static_cast<int>(widened) > static_cast<int>(*u.determined[i])) u.determined[i] = widened;
   }
-  u.description += fmt::format("; 95 % intervals widened × {:.3g} for model error (ε = {:.3g} × the noise floor)",
-                               factor, m.ratio);
+  if (!widened_any) return;
+  u.description += fmt::format("; 95 % intervals widened for model error × {:.3g} (ε = {} the noise floor, "
+                               "coefficient {:.3g}), t0's with a floor of {:.3g} ms",
+                               factor, m.available ? fmt::format("{:.3g} ×", m.ratio) : std::string("? ×, no rest for"),
+                               io.model_error_widening, 1e3 * t0_floor_s);
   u.statements = DescribeUncertainty(u, summary->parameters);
 }
 

@@ -179,7 +179,7 @@ TEST(FitSummary, JsonCarriesTheDocumentedKeys) {
 namespace rockfit::fitting {
 namespace {
 
-TEST(Fit, ModelErrorWideningScalesThe95PercentHalfWidthsByTheRatioToTheNoiseFloor) {
+TEST(Fit, ModelErrorWideningScalesThe95PercentHalfWidthsByTheModelErrorOverTheNoiseFloor) {
   // Strong ringing, which the analytic model lacks, puts ε well above the noise floor at rest.
   testing::SyntheticSignalOptions disturbances = testing::RealisticDisturbances(5);
   disturbances.ringing_fraction = 1.0;
@@ -187,12 +187,18 @@ TEST(Fit, ModelErrorWideningScalesThe95PercentHalfWidthsByTheRatioToTheNoiseFloo
   const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
   FitOptions options;
   options.global.enabled = false;  // the same local search twice: only the widening differs
+  options.intervals.model_error_widening = 0.0;
+  options.intervals.t0_floor_samples = 0.0;
   const FitSummary plain = Fit(objective, trial.truth, options);
   options.intervals.model_error_widening = 0.5;
+  options.intervals.t0_floor_samples = 0.5;
   const FitSummary widened = Fit(objective, trial.truth, options);
   ASSERT_TRUE(plain.model_error.available);
-  ASSERT_GT(0.5 * plain.model_error.ratio, 1.0) << "the premise: ε > 2 × the noise floor";
-  const double factor = 0.5 * plain.model_error.ratio;
+  const double r = plain.model_error.ratio;
+  ASSERT_GT(r, 2.0) << "the premise: ε > 2 × the noise floor";
+  const double factor = std::sqrt(1.0 + 0.25 * (r * r - 1.0));
+  const std::vector<double>& t_s = objective.signal().t_s;
+  const double t0_floor_s = 0.5 * (t_s.back() - t_s.front()) / static_cast<double>(t_s.size() - 1);
   for (ParameterId id : {ParameterId::kT0, ParameterId::kAlpha, ParameterId::kLambdaLon}) {
     const std::size_t k = static_cast<std::size_t>(id);
     const double v = plain.parameters.value(id);
@@ -200,12 +206,16 @@ TEST(Fit, ModelErrorWideningScalesThe95PercentHalfWidthsByTheRatioToTheNoiseFloo
     const Interval& a = plain.uncertainty.interval_95[k];
     const Interval& b = widened.uncertainty.interval_95[k];
     const Parameter& p = plain.parameters[id];
-    EXPECT_NEAR(b[0], std::max(p.lower, v - factor * (v - a[0])), 1e-12) << Name(id);
-    EXPECT_NEAR(b[1], std::min(p.upper, v + factor * (a[1] - v)), 1e-12) << Name(id);
+    const double floor = id == ParameterId::kT0 ? t0_floor_s : 0.0;
+    EXPECT_NEAR(b[0], std::max(p.lower, v - std::hypot(factor * (v - a[0]), floor)), 1e-12) << Name(id);
+    EXPECT_NEAR(b[1], std::min(p.upper, v + std::hypot(factor * (a[1] - v), floor)), 1e-12) << Name(id);
     EXPECT_EQ(widened.uncertainty.interval_68[k], plain.uncertainty.interval_68[k]) << Name(id);
   }
   EXPECT_NE(widened.uncertainty.description.find("widened"), std::string::npos);
   options.intervals.model_error_widening = -1.0;
+  EXPECT_THROW(options.Validate(), InvalidArgument);
+  options.intervals.model_error_widening = 0.5;
+  options.intervals.t0_floor_samples = -1.0;
   EXPECT_THROW(options.Validate(), InvalidArgument);
 }
 

@@ -124,6 +124,9 @@ TEST(LateralMotionCheck, AFitThatLeavesTheLateralMotionUnexplainedWarnsAndDeterm
   options.global.enabled = false;
   options.method = FitMethod::kNelderMead;
   options.nelder_mead.max_evaluations = 200;  // the warning does not need a converged fit
+  // Without the widening for model error, which would widen λ's interval of this poor fit to "no" by itself.
+  options.intervals.model_error_widening = 0.0;
+  options.intervals.t0_floor_samples = 0.0;
   ParameterSet start = truth;
   start[ParameterId::kLambdaLat] = held[ParameterId::kLambdaLat];
   const FitSummary s = Fit(p.objective.WithParameters(held), start, options);

@@ -37,8 +37,11 @@ void AddFitOptions(CLI::App& app, FitArgs& args) {
                  "(standard errors only)")
       ->capture_default_str();
   app.add_option("--model-error-widening", args.model_error_widening,
-                 "Widen every 95 % interval by max(1, K·ε/ε_noise), ε_noise the noise floor at rest (0: off; measured, "
-                 "not calibrated: fitting/README.md, \"Recordings made by other physics\")")
+                 "Widen every 95 % interval for model error by √(1 + K²·(r² − 1)), r = ε/ε_noise over the noise floor at "
+                 "rest (0: off; the default is calibrated: fitting/README.md, \"Intervals under model error\")")
+      ->capture_default_str();
+  app.add_option("--t0-floor-samples", args.t0_floor_samples,
+                 "Floor of t0's 95 % half-widths in sample periods, added in quadrature (0: off)")
       ->capture_default_str();
 }
 

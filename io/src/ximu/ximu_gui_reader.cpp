@@ -12,6 +12,7 @@
 #include "recording/recording_assembly.hpp"
 #include "recording/time_base.hpp"
 #include "rockfit/io/units.hpp"
+#include "ximu/ximu_dropped_rows.hpp"
 #include "ximu/ximu_inertial_columns.hpp"
 #include "ximu/rotation_matrix_row.hpp"
 #include "ximu/ximu_registers.hpp"
@@ -421,18 +422,34 @@ Recording ReadXimuGuiRecording(const XimuGuiFileSet& files, const LoadOptions& o
   if (files.registers) registers = ReadXimuRegisters(CsvTable::ReadFile(*files.registers, warnings));
   DetermineRate(files, registers, options, packets, inertial_name, &recording);
 
-  // Gyroscope and accelerometer in SI, sensor axes.
+  const std::optional<AttitudeRows> attitude = ReadAttitude(files, options.orientation, recording);
+
+  // Gyroscope and accelerometer in SI, sensor axes; rows that the attitude packets show missing are skipped
+  // in the time base (ximu_dropped_rows.hpp).
   SensorSamples samples;
-  samples.t_s = UniformTimes(n, recording.rate_hz);
+  const std::vector<MissingRows> missing =
+      attitude ? FindMissingInertialRows(packets, attitude->packets) : std::vector<MissingRows>{};
+  samples.t_s = TimesWithMissingRows(n, recording.rate_hz, missing);
+  std::size_t missing_total = 0;
+  for (const MissingRows& m : missing) {
+    samples.gaps.push_back({m.after_index, samples.t_s[m.after_index],
+                            samples.t_s[m.after_index + 1] - samples.t_s[m.after_index], m.missing});
+    missing_total += m.missing;
+  }
+  if (missing_total > 0) {
+    warnings.push_back(fmt::format(
+        "{}: {} inertial row(s) missing in {} place(s), first after line {} (t = {:.4f} s): {} holds two or more "
+        "attitude packets between those rows where it holds one elsewhere; the time base skips the missing rows",
+        inertial_name, missing_total, missing.size(), inertial.Line(missing.front().after_index),
+        samples.t_s[missing.front().after_index], attitude->file));
+  }
   ReadXimuInertialColumns(inertial, c, 1, samples);
   for (std::size_t k = 1; k < c.size(); ++k) {
     if (c[k]) recording.columns.push_back(inertial_name + ": " + inertial.header()[*c[k]]);
   }
   WarnClippedGyro(registers, samples, inertial, inertial_name, warnings);
 
-  if (const std::optional<AttitudeRows> attitude = ReadAttitude(files, options.orientation, recording)) {
-    PairAttitude(files, *attitude, packets, registers, inertial_name, samples, &recording);
-  }
+  if (attitude) PairAttitude(files, *attitude, packets, registers, inertial_name, samples, &recording);
   AssembleRecording(std::move(samples), options.mounting, recording);
   return recording;
 }

@@ -67,6 +67,26 @@ TEST(ReadXimuGuiRecording, TimeIsRowOverRateAndAttitudeIsTheSpinThatWasWritten) 
   EXPECT_TRUE(r.warnings.empty());
 }
 
+TEST(ReadXimuGuiRecording, AnInertialRowMissingBetweenTwoAttitudePacketsIsAGapInTheTimeBase) {
+  const ScratchDir dir("gui_dropped_row");
+  const GuiSpin spin = MakeGuiSpin(300, 256.0, 40.0);
+  std::istringstream lines(spin.inertial);
+  std::string line, inertial;
+  for (int row = -1; std::getline(lines, line); ++row) {  // row −1: the header
+    if (row != 100) inertial += line + "\n";
+  }
+  dir.Write("S_CalInertialAndMag.csv", inertial);
+  dir.Write("S_Quaternion.csv", spin.quaternion);
+  const Recording r = ReadXimuGuiRecording(XimuGuiFileSet::Find(dir / "S"), WithRate(256.0));
+  ASSERT_EQ(r.size(), 299u);
+  ASSERT_EQ(r.gaps.size(), 1u);
+  EXPECT_EQ(r.gaps[0].index, 99u);
+  EXPECT_EQ(r.gaps[0].missing, 1u);
+  EXPECT_DOUBLE_EQ(r.t_s[100], 101.0 / 256.0);  // the row after the gap at its own time
+  EXPECT_DOUBLE_EQ(r.t_s[298], 299.0 / 256.0);
+  EXPECT_THAT(r.warnings.front(), HasSubstr("1 inertial row(s) missing"));
+}
+
 TEST(ReadXimuGuiRecording, TheQuaternionFileIsTheConjugateOfTheAttitude) {
   const ScratchDir dir("gui_quaternion");
   const GuiSpin spin = MakeGuiSpin(300, 256.0, 40.0);

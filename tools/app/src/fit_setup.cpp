@@ -104,6 +104,7 @@ PreparedFit PrepareFit(const io::Recording& recording, const core::Block& block,
   options.num_threads = args.threads;
   options.intervals.method = fitting::ParseIntervalMethod(args.intervals);
   options.intervals.model_error_widening = args.model_error_widening;
+  options.intervals.t0_floor_samples = args.t0_floor_samples;
   options.Validate();
 
   fitting::ParameterSet set = MakeParameterSet(args);
@@ -137,7 +138,8 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   // v5: the 68 % intervals at the bulk noise level of the standard errors.
   // v6: the lateral rescan.
   // v7: the model-error statement is stored with each fit (the fitted values are those of v6).
-  std::string settings = fmt::format("rockfit-fit v7; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
+  // v8: the 95 % intervals widened for model error by default (the fitted values are those of v7).
+  std::string settings = fmt::format("rockfit-fit v8; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
                                      "global={}; keep_bias={}; block=({:.17g},{:.17g},{:.17g},{:.17g})",
                                      fitting::ToString(fitting::ParseFitMethod(args.method)),
                                      fitting::ToString(fitting::ParseIntervalMethod(args.intervals)), args.bounds,
@@ -152,7 +154,8 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   for (const FixEntry& fix : ParseFixEntries(args)) {
     if (!fix.value) settings += fmt::format("; {}:fixed at the data estimate", fitting::Name(fix.id));
   }
-  if (args.model_error_widening != 0.0) settings += fmt::format("; model_error_widening={:.17g}", args.model_error_widening);
+  settings += fmt::format("; model_error_widening={:.17g}; t0_floor_samples={:.17g}", args.model_error_widening,
+                          args.t0_floor_samples);
   return settings;
 }
 

@@ -36,11 +36,12 @@ struct FitArgs {
   bool keep_bias = false;  // do not subtract the gyro bias measured at rest
   int threads = 0;
   std::string intervals = "thorough";  // none | fast | thorough (fitting::IntervalMethod)
-  double model_error_widening = 0.0;   // fitting::IntervalOptions::model_error_widening (0: off)
+  double model_error_widening = fitting::kDefaultModelErrorWidening;  // fitting::IntervalOptions (0: off)
+  double t0_floor_samples = fitting::kDefaultT0FloorSamples;          // fitting::IntervalOptions (0: off)
 };
 
 // --method, --bounds, --free, --fix, --lower, --upper, --t-end, --max-evaluations, --no-global, --keep-bias,
-// --threads, --intervals, --model-error-widening.
+// --threads, --intervals, --model-error-widening, --t0-floor-samples (declared by tools/src/cli_common.cpp).
 
 struct PreparedFit {
   fitting::Objective objective;
