@@ -11,8 +11,10 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <utility>
 
+#include "detail/analytic_edge_segment.hpp"
 #include "detail/contact_modes.hpp"
 #include "detail/ground_modes.hpp"
 #include "detail/hybrid_segment.hpp"
@@ -235,6 +237,9 @@ class HybridRun {
   Next RunVertexIn(const ModeT& mode);
   template <class ModeT>
   Next RunEdgeIn(const ModeT& mode);
+  // The transition at the end of an Edge segment of `mode` (integrated or in closed form).
+  template <class ModeT>
+  Next AfterEdgeSegment(const ModeT& mode, const SegmentOutcome<ModeT>& outcome);
   // Under ground motion: the end vertex `lifting` of the edge of `mode` unloads; rocking continues about the
   // other end vertex with the same ω.
   Next EdgeToVertex(const EdgeMode& mode, double t, const EdgeDynamics::State& y, int lifting);
@@ -434,8 +439,21 @@ HybridRun::Next HybridRun::RunEdgeIn(const ModeT& mode) {
   for (int g = EdgeMode::kNumGuards; g < ModeT::kNumGuards; ++g) {
     on_surface[g] = mode.Guard(g, t_start_, edge_start_.y).value <= kLoadZeroTol;
   }
-  const auto outcome = RunSegment(mode, t_start_, edge_start_.y, on_surface, settings_, step_hint_s_, polisher_,
-                                  sampler_, &out_->segments.back());
+  if constexpr (std::is_same_v<ModeT, EdgeMode>) {
+    // Free rocking: a swing that lands again needs no integrator.
+    if (options_.analytic_edge_phases) {
+      if (const auto outcome = detail::RunAnalyticEdgeSegment(mode, t_start_, edge_start_.y, settings_, step_hint_s_,
+                                                              sampler_, &out_->segments.back())) {
+        return AfterEdgeSegment(mode, *outcome);
+      }
+    }
+  }
+  return AfterEdgeSegment(mode, RunSegment(mode, t_start_, edge_start_.y, on_surface, settings_, step_hint_s_,
+                                           polisher_, sampler_, &out_->segments.back()));
+}
+
+template <class ModeT>
+HybridRun::Next HybridRun::AfterEdgeSegment(const ModeT& mode, const SegmentOutcome<ModeT>& outcome) {
   AddCounts(outcome);
   if (const auto stopped = StopUnlessEvent(mode, outcome)) return *stopped;
   if (outcome.guard >= EdgeMode::kNumGuards) {
