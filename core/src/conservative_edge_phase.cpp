@@ -73,11 +73,6 @@ JacobiTriple ConservativeEdgePhase::Advance(const JacobiTriple& a, const JacobiT
           (a.dn * b.dn - m_ * a.sn * b.sn * a.cn * b.cn) * inv};
 }
 
-EdgeDynamics::State ConservativeEdgePhase::FromJacobi(const JacobiTriple& j) const {
-  const double sin_half_phi = k_ / j.dn;
-  return EdgeDynamics::State(theta_c_ - 2.0 * std::asin(sin_half_phi), -2.0 * omega_ * k_ * k_prime_ * j.sn / j.dn);
-}
-
 EdgeLoadPerMass ConservativeEdgePhase::LoadPerMass(double cos_phi, double arm_m, double gravity_m_s2) const {
   const double sin2_phi = std::max(0.0, 1.0 - cos_phi * cos_phi);
   const double cos_apex = cos_apex_angle();
@@ -91,7 +86,7 @@ EdgeLoadPerMass ConservativeEdgePhase::LoadPerMass(double cos_phi, double arm_m,
 EvenSwingSamples::EvenSwingSamples(const ConservativeEdgePhase& phase, double dt_s)
     : phase_(phase), step_(phase.JacobiStep(dt_s)) {}
 
-EdgeDynamics::State EvenSwingSamples::Next(double t_s) {
+JacobiTriple EvenSwingSamples::Next(double t_s) {
   if (since_exact_ >= kExactEvery) {
     now_ = phase_.JacobiAt(t_s);
     since_exact_ = 0;
@@ -99,7 +94,7 @@ EdgeDynamics::State EvenSwingSamples::Next(double t_s) {
     now_ = phase_.Advance(now_, step_);
   }
   ++since_exact_;
-  return phase_.FromJacobi(now_);
+  return now_;
 }
 
 }  // namespace rockfit::core

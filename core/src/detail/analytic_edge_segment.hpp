@@ -47,13 +47,29 @@ inline std::optional<SegmentOutcome<EdgeMode>> RunAnalyticEdgeSegment(const Edge
   };
   while (sampler.pending() && sampler.next_time() <= t_start) emit(y_start);
   // Samples strictly before the end (one at the landing instant belongs to the next segment, as in RunSegment).
+  // The rate comes from sn and dn alone; the tilt (an arcsine) only when the attitude is sampled.
+  const auto emit_jacobi = [&](const JacobiTriple& j) {
+    const double rate = phase->RateFromJacobi(j);
+    EdgeMode::State y(0.0, rate);
+    sampler.Emit(
+        mode_label, rate * dynamics.axis_B(),
+        [&] {
+          y[0] = phase->TiltFromJacobi(j);
+          return mode.Attitude(y);
+        },
+        [&](const Eigen::Quaterniond& q_WB) { return mode.EulerZyx(q_WB, y); });
+  };
   if (sampler.pending() && sampler.next_time() < outcome.t_s) {
     const double dt = sampler.even_step_s();
     if (dt > 0.0) {
       EvenSwingSamples samples(*phase, dt);
-      while (sampler.pending() && sampler.next_time() < outcome.t_s) emit(samples.Next(sampler.next_time() - t_start));
+      while (sampler.pending() && sampler.next_time() < outcome.t_s) {
+        emit_jacobi(samples.Next(sampler.next_time() - t_start));
+      }
     } else {
-      while (sampler.pending() && sampler.next_time() < outcome.t_s) emit(phase->At(sampler.next_time() - t_start));
+      while (sampler.pending() && sampler.next_time() < outcome.t_s) {
+        emit_jacobi(phase->JacobiAt(sampler.next_time() - t_start));
+      }
     }
   }
 

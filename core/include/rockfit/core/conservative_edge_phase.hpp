@@ -11,6 +11,7 @@
 // A swing is bounded (it returns to ψ = 0 without passing θ_c) when the energy leaves k > 0.
 #pragma once
 
+#include <cmath>
 #include <optional>
 
 #include "rockfit/core/edge_dynamics.hpp"
@@ -56,7 +57,9 @@ class ConservativeEdgePhase {
   JacobiTriple JacobiStep(double dt_s) const { return JacobiOf(omega_ * dt_s); }
   // The addition theorem: the Jacobi triple dt later, from the one now and JacobiStep(dt) (a few flops).
   JacobiTriple Advance(const JacobiTriple& now, const JacobiTriple& step) const;
-  EdgeDynamics::State FromJacobi(const JacobiTriple& j) const;
+  EdgeDynamics::State FromJacobi(const JacobiTriple& j) const { return {TiltFromJacobi(j), RateFromJacobi(j)}; }
+  double TiltFromJacobi(const JacobiTriple& j) const { return theta_c_ - 2.0 * std::asin(k_ / j.dn); }
+  double RateFromJacobi(const JacobiTriple& j) const { return -2.0 * omega_ * k_ * k_prime_ * j.sn / j.dn; }
 
   // The ground force per unit mass where the COM is at angle φ (cos φ = cos_phi) from the vertical, R the arm [m],
   // g [m/s²]: N = g − (K R/2) sin²φ − K R cos φ (cos φ_m − cos φ), |F_t| = K R sin φ |1.5 cos φ − cos φ_m|.
@@ -86,8 +89,8 @@ class EvenSwingSamples {
  public:
   static constexpr int kExactEvery = 16;
   EvenSwingSamples(const ConservativeEdgePhase& phase, double dt_s);
-  // The state at t_s, which is dt after the time of the previous call (any t_s at the first call).
-  EdgeDynamics::State Next(double t_s);
+  // sn, cn, dn at t_s, which is dt after the time of the previous call (any t_s at the first call).
+  JacobiTriple Next(double t_s);
 
  private:
   const ConservativeEdgePhase& phase_;
