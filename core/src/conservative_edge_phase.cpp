@@ -25,6 +25,8 @@ std::optional<ConservativeEdgePhase> ConservativeEdgePhase::Make(double K_1_s2, 
   if (psi0_rad == 0.0 && psi_dot0_rad_s <= 0.0) return std::nullopt;
   ConservativeEdgePhase phase;
   phase.theta_c_ = theta_c_rad;
+  phase.sin_half_theta_c_ = std::sin(0.5 * theta_c_rad);
+  phase.cos_half_theta_c_ = std::cos(0.5 * theta_c_rad);
   phase.K_ = K_1_s2;
   phase.omega_ = std::sqrt(0.5 * K_1_s2);
   // Energy at the start: x0² − k² = ψ̇0² / (2K).
@@ -44,8 +46,7 @@ std::optional<ConservativeEdgePhase> ConservativeEdgePhase::Make(double K_1_s2, 
   // x_c² − x0² = sin((θ_c − φ0)/2) sin((θ_c + φ0)/2) = sin(ψ0/2) sin(θ_c − ψ0/2).
   const double flat_term = std::sin(0.5 * psi0_rad) * std::sin(theta_c_rad - 0.5 * psi0_rad) + rate_term;
   const double tau_flat = psi0_rad == 0.0 ? tau0
-                                          : phase.TimeFromApex(std::sin(0.5 * theta_c_rad), std::cos(0.5 * theta_c_rad),
-                                                               flat_term);
+                                          : phase.TimeFromApex(phase.sin_half_theta_c_, phase.cos_half_theta_c_, flat_term);
   phase.time_to_flat_s_ = phase.apex_time_s_ + tau_flat;
   phase.landing_rate_rad_s_ = psi0_rad == 0.0 ? psi_dot0_rad_s : std::sqrt(2.0 * K_1_s2 * flat_term);
   if (!(std::isfinite(phase.time_to_flat_s_) && phase.time_to_flat_s_ > 0.0)) return std::nullopt;

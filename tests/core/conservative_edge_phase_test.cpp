@@ -127,6 +127,19 @@ TEST(ConservativeEdgePhase, EvenSamplesByTheAdditionTheoremMatchExactEvaluations
   EXPECT_GT(n, 2 * EvenSwingSamples::kExactEvery);
 }
 
+TEST(ConservativeEdgePhase, HalfTiltWithoutTrigonometryIsThatOfTheTilt) {
+  const EdgeDynamics edge = Fig14Edge();
+  const auto swing = Swing(edge, 0.05, 0.4);
+  ASSERT_TRUE(swing.has_value());
+  for (int i = 0; i <= 20; ++i) {
+    const double t = swing->time_to_flat_s() * i / 20.0;
+    const double psi = swing->At(t)[0];
+    const Eigen::Vector2d half = swing->HalfTiltCosSinFromJacobi(swing->JacobiAt(t));
+    EXPECT_NEAR(half[0], std::cos(0.5 * psi), 1e-15) << i;
+    EXPECT_NEAR(half[1], std::sin(0.5 * psi), 1e-15) << i;
+  }
+}
+
 TEST(ConservativeEdgePhase, UnboundedOrLandingStartsAreLeftToTheIntegrator) {
   const EdgeDynamics edge = Fig14Edge();
   const PlanarRocker rocker = PlanarRockerAboutEdge(testing::Fig14Block(), 1, 2);

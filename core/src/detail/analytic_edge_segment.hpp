@@ -55,7 +55,9 @@ inline std::optional<SegmentOutcome<EdgeMode>> RunAnalyticEdgeSegment(const Edge
         mode_label, rate * dynamics.axis_B(),
         [&] {
           y[0] = phase->TiltFromJacobi(j);
-          return mode.Attitude(y);
+          const Eigen::Vector2d half = phase->HalfTiltCosSinFromJacobi(j);
+          const Eigen::Vector3d v = half[1] * dynamics.axis_B();
+          return mode.q_yaw() * Eigen::Quaterniond(half[0], v.x(), v.y(), v.z());  // q_yaw · Tilt(ψ)
         },
         [&](const Eigen::Quaterniond& q_WB) { return mode.EulerZyx(q_WB, y); });
   };

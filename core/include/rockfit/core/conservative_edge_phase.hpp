@@ -60,6 +60,12 @@ class ConservativeEdgePhase {
   EdgeDynamics::State FromJacobi(const JacobiTriple& j) const { return {TiltFromJacobi(j), RateFromJacobi(j)}; }
   double TiltFromJacobi(const JacobiTriple& j) const { return theta_c_ - 2.0 * std::asin(k_ / j.dn); }
   double RateFromJacobi(const JacobiTriple& j) const { return -2.0 * omega_ * k_ * k_prime_ * j.sn / j.dn; }
+  // (cos(ψ/2), sin(ψ/2)) without trigonometric calls: ψ/2 = θ_c/2 − φ/2 with sin(φ/2) = k/dn.
+  Eigen::Vector2d HalfTiltCosSinFromJacobi(const JacobiTriple& j) const {
+    const double x = k_ / j.dn;
+    const double c = std::sqrt((j.dn - k_) * (j.dn + k_)) / j.dn;
+    return {cos_half_theta_c_ * c + sin_half_theta_c_ * x, sin_half_theta_c_ * c - cos_half_theta_c_ * x};
+  }
 
   // The ground force per unit mass where the COM is at angle φ (cos φ = cos_phi) from the vertical, R the arm [m],
   // g [m/s²]: N = g − (K R/2) sin²φ − K R cos φ (cos φ_m − cos φ), |F_t| = K R sin φ |1.5 cos φ − cos φ_m|.
@@ -73,6 +79,8 @@ class ConservativeEdgePhase {
   double TimeFromApex(double x, double c, double x2_minus_k2) const;
 
   double theta_c_ = 0.0;
+  double sin_half_theta_c_ = 0.0;
+  double cos_half_theta_c_ = 1.0;
   double omega_ = 0.0;    // √(K/2) [1/s]
   double k_ = 0.0;        // sin(φ_m/2)
   double k_prime_ = 0.0;  // cos(φ_m/2)
@@ -87,7 +95,7 @@ class ConservativeEdgePhase {
 // samples (and at the first) so that round-off cannot accumulate.
 class EvenSwingSamples {
  public:
-  static constexpr int kExactEvery = 16;
+  static constexpr int kExactEvery = 64;
   EvenSwingSamples(const ConservativeEdgePhase& phase, double dt_s);
   // sn, cn, dn at t_s, which is dt after the time of the previous call (any t_s at the first call).
   JacobiTriple Next(double t_s);
