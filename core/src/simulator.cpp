@@ -314,6 +314,7 @@ class HybridRun {
   double t_lift_off_ = std::numeric_limits<double>::infinity();
   double end_lift_t_s_ = -std::numeric_limits<double>::infinity();  // the last Edge → Vertex switch
   RecentTimes recent_impacts_;  // of edge and facet impacts, under ground motion
+  std::array<std::optional<FacetNoSpinOperators>, 4> facet_operators_;  // by pivot vertex b − 1, made when first needed
 };
 
 EdgeStart HybridRun::MakeEdgeStart(const Contact& edge, const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B,
@@ -737,7 +738,15 @@ HybridRun::Next HybridRun::AfterFacetImpact(const EdgeMode& mode, double t, cons
   facet.tau = 0.0;
   // The pre-impact edge is V_{b−1}V_b in the cyclic order of Contact::Edge.
   const int pivot_b = mode.second();
-  const ImpactOutcome map = FacetImpact(block_, pivot_b, w_minus_B, facet);
+  ImpactOutcome map;
+  if (facet.tau_rule == FacetTauRule::kNoSpin) {
+    // The no-spin map is linear in ω⁻: its candidates' operators are computed once per pivot edge and run.
+    std::optional<FacetNoSpinOperators>& operators = facet_operators_[Block::WrapVertex(pivot_b) - 1];
+    if (!operators) operators = MakeFacetNoSpinOperators(block_, pivot_b, facet);
+    map = FacetImpact(block_, *operators, w_minus_B, facet);
+  } else {
+    map = FacetImpact(block_, pivot_b, w_minus_B, facet);
+  }
 
   ImpactRecord record;
   record.t_s = t;
