@@ -74,6 +74,8 @@ constexpr double kMicroChatterRate_rad_s = 1e-6;
 // velocity: a numerical floor (a rocking amplitude of ~1e-19 rad at the table's accelerations), not a physical
 // threshold (docs/design.md §11a).
 constexpr double kRestRateFloor_rad_s = 1e-9;
+// (27): the facet impact's resultant lies on the base for |λ_lat| ≤ this (and |λ_lon| ≤ this).
+constexpr double kLateralBound = 1.0;
 
 // The free mode of a segment's mode (the impact transitions work on the geometry alone).
 const VertexMode& FreeMode(const VertexMode& mode) { return mode; }
@@ -547,16 +549,15 @@ HybridRun::Next HybridRun::AfterFacetImpactOnTable(double t, const Eigen::Quater
   // if the moment of gravity and of −m·a_g keeps every base edge down. An impact that leaves the block rocking
   // is never cut short by an energy threshold.
   //
-  // Impact parameters beyond the paper's bounds — a facet impact that adds energy (26), or a resultant off the base
-  // (27), as fitted parameters often are — sustain chatters of sub-nanometre hops that never accumulate (the map
-  // hands the block from one side of its base to the other at an ever-similar rate), a motion the rigid model
-  // does not resolve. There, a facet impact that leaves less kinetic energy than lifts the COM by
-  // rest_energy_height (the free-rocking threshold) drops its velocity and the contact decides (docs/design.md §11a,
-  // "Parameters beyond the bounds").
+  // Impact parameters beyond the paper's bounds — a facet impact that adds energy (26), or a resultant beyond a
+  // side edge of the base (|λ_lat| > 1, (27)), as fitted parameters often are — sustain chatters of sub-nanometre
+  // hops that never accumulate (the map hands the block across its base to the opposite vertex at an ever-similar
+  // rate), a motion the rigid model does not resolve. There, a facet impact that leaves less kinetic energy than
+  // lifts the COM by rest_energy_height (the free-rocking threshold) drops its velocity and the contact decides
+  // (docs/design.md §11a, "Parameters beyond the bounds"). Planar motion (λ_lat = 0) keeps the contact rule alone.
   const Contact& contact = trigger.contact_after;
   const bool stopped = !contact.is_vertex() && !contact.is_edge();
-  const bool beyond_bounds =
-      trigger.delta_energy_J > 0.0 || !WithinFacetBounds(params_.lambda_lat, params_.lambda_lon);
+  const bool beyond_bounds = trigger.delta_energy_J > 0.0 || std::abs(params_.lambda_lat) > kLateralBound;
   const bool below_resolution =
       beyond_bounds && KineticEnergyAfterLanding(block_, gravity_, contact, q_flat, trigger.w_plus_B) <
                            block_.mass() * gravity_ * options_.rest_energy_height_m;
