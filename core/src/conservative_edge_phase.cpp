@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_mode.h>
@@ -84,17 +85,24 @@ EdgeLoadPerMass ConservativeEdgePhase::LoadPerMass(double cos_phi, double arm_m,
   return load;
 }
 
-EvenSwingSamples::EvenSwingSamples(const ConservativeEdgePhase& phase, double dt_s)
-    : phase_(phase), step_(phase.JacobiStep(dt_s)) {}
-
-JacobiTriple EvenSwingSamples::Next(double t_s) {
-  if (since_exact_ >= kExactEvery) {
+JacobiTriple SwingSamples::At(double t_s) {
+  const double dt = t_s - t_previous_s_;
+  const double round_off_s =
+      kSameSpacingUlps * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_s));
+  const bool first = since_exact_ < 0;
+  if (!first && since_exact_ < kExactEvery && dt_s_ >= 0.0 && std::abs(dt - dt_s_) <= round_off_s) {
+    now_ = phase_.Advance(now_, step_);
+    ++since_exact_;
+  } else {
     now_ = phase_.JacobiAt(t_s);
     since_exact_ = 0;
-  } else {
-    now_ = phase_.Advance(now_, step_);
+    // A new spacing: the step for the next sample, if it keeps it (one more evaluation only when it does).
+    if (!first && std::abs(dt - dt_s_) > round_off_s) {
+      dt_s_ = dt;
+      step_ = phase_.JacobiStep(dt);
+    }
   }
-  ++since_exact_;
+  t_previous_s_ = t_s;
   return now_;
 }
 

@@ -116,15 +116,30 @@ TEST(ConservativeEdgePhase, EvenSamplesByTheAdditionTheoremMatchExactEvaluations
   const auto swing = Swing(edge, 0.0, 0.5 * LandingRate(PlanarRockerAboutEdge(testing::Fig14Block(), 1, 2), 0.245));
   ASSERT_TRUE(swing.has_value());
   const double dt = 1.0 / 256.0 / 7.0;  // many samples in one swing
-  EvenSwingSamples samples(*swing, dt);
+  SwingSamples samples(*swing);
   int n = 0;
   for (double t = 0.3 * dt; t < swing->time_to_flat_s(); t = 0.3 * dt + (++n) * dt) {
-    const EdgeDynamics::State stepped = swing->FromJacobi(samples.Next(t));
+    const EdgeDynamics::State stepped = swing->FromJacobi(samples.At(t));
     const EdgeDynamics::State exact = swing->At(t);
     EXPECT_NEAR(stepped[0], exact[0], kTiltTol_rad) << n;
     EXPECT_NEAR(stepped[1], exact[1], kRateTol_rad_s) << n;
   }
-  EXPECT_GT(n, 2 * EvenSwingSamples::kExactEvery);
+  EXPECT_GT(n, 2 * SwingSamples::kExactEvery);
+}
+
+TEST(ConservativeEdgePhase, UnevenSamplesAreEvaluatedExactly) {
+  const EdgeDynamics edge = Fig14Edge();
+  const auto swing = Swing(edge, 0.0, 0.5 * LandingRate(PlanarRockerAboutEdge(testing::Fig14Block(), 1, 2), 0.245));
+  ASSERT_TRUE(swing.has_value());
+  SwingSamples samples(*swing);
+  double t = 0.0;
+  for (int n = 0; t < swing->time_to_flat_s(); ++n) {
+    const EdgeDynamics::State got = swing->FromJacobi(samples.At(t));
+    const EdgeDynamics::State exact = swing->At(t);
+    EXPECT_NEAR(got[0], exact[0], kTiltTol_rad) << n;
+    EXPECT_NEAR(got[1], exact[1], kRateTol_rad_s) << n;
+    t += (n % 3 == 0) ? 1e-3 : 2.5e-3;  // spacings that change from sample to sample
+  }
 }
 
 TEST(ConservativeEdgePhase, HalfTiltWithoutTrigonometryIsThatOfTheTilt) {

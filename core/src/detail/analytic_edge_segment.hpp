@@ -61,18 +61,9 @@ inline std::optional<SegmentOutcome<EdgeMode>> RunAnalyticEdgeSegment(const Edge
         },
         [&](const Eigen::Quaterniond& q_WB) { return mode.EulerZyx(q_WB, y); });
   };
-  if (sampler.pending() && sampler.next_time() < outcome.t_s) {
-    const double dt = sampler.even_step_s();
-    if (dt > 0.0) {
-      EvenSwingSamples samples(*phase, dt);
-      while (sampler.pending() && sampler.next_time() < outcome.t_s) {
-        emit_jacobi(samples.Next(sampler.next_time() - t_start));
-      }
-    } else {
-      while (sampler.pending() && sampler.next_time() < outcome.t_s) {
-        emit_jacobi(phase->JacobiAt(sampler.next_time() - t_start));
-      }
-    }
+  SwingSamples samples(*phase);
+  while (sampler.pending() && sampler.next_time() < outcome.t_s) {
+    emit_jacobi(samples.At(sampler.next_time() - t_start));
   }
 
   // Diagnostics: the force is a function of cos φ along the swing; the normal force is a convex quadratic in it

@@ -21,8 +21,6 @@ class TrajectorySampler {
 
   bool pending() const { return pending_; }
   double next_time() const { return next_time_; }
-  // The spacing of the samples when they are k / rate (1 / rate), 0 when the times are given.
-  double even_step_s() const { return times_ == nullptr ? 1.0 / rate_hz_ : 0.0; }
 
   // Appends the sample at next_time() and moves on. `attitude()` returns q_WB and `euler(q_WB)` its Euler
   // angles (φz, φy, φx) (a mode may know them without conversion); they are only called when the options ask

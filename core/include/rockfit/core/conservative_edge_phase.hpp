@@ -91,20 +91,25 @@ class ConservativeEdgePhase {
   double landing_rate_rad_s_ = 0.0;
 };
 
-// States of a swing at times dt apart, by the addition theorem, with an exact evaluation every kExactEvery
-// samples (and at the first) so that round-off cannot accumulate.
-class EvenSwingSamples {
+// States of a swing at increasing times: where consecutive times are evenly spaced (to the round-off of the times),
+// by the addition theorem from the previous one; exactly at the first time, every kExactEvery samples and wherever
+// the spacing changes, so that round-off cannot accumulate.
+class SwingSamples {
  public:
   static constexpr int kExactEvery = 64;
-  EvenSwingSamples(const ConservativeEdgePhase& phase, double dt_s);
-  // sn, cn, dn at t_s, which is dt after the time of the previous call (any t_s at the first call).
-  JacobiTriple Next(double t_s);
+  // Two spacings count as one when they differ by at most this many units of round-off of the time.
+  static constexpr double kSameSpacingUlps = 8.0;
+  explicit SwingSamples(const ConservativeEdgePhase& phase) : phase_(phase) {}
+  // sn, cn, dn at t_s (after the time of the previous call).
+  JacobiTriple At(double t_s);
 
  private:
   const ConservativeEdgePhase& phase_;
+  double t_previous_s_ = 0.0;
+  double dt_s_ = -1.0;  // the spacing of step_ (negative: none yet)
   JacobiTriple step_;
   JacobiTriple now_;
-  int since_exact_ = kExactEvery;
+  int since_exact_ = -1;  // −1: no sample yet
 };
 
 }  // namespace rockfit::core
