@@ -14,6 +14,29 @@ namespace {
 
 // One candidate post-impact vertex a: ω⁺ and τ from (18), either with the given τ or with the no-spin
 // postulate (24).
+// (18) with (24): the system for x = (ω⁺_x, ω⁺_y, τ), (Θ − m R_R R_a) ω⁺ − τ u_z = (Θ − m R_R R_b) ω⁻.
+void NoSpinSystem(const ImpactGeometry& g, Eigen::Matrix3d* system, Eigen::Matrix3d* rhs_of_w_minus) {
+  const Eigen::Matrix3d R_R = SkewOf(g.p_R, g.p_C);
+  const Eigen::Matrix3d M = g.inertia_C - g.mass_kg * R_R * SkewOf(g.p_a, g.p_C);
+  *rhs_of_w_minus = g.inertia_C - g.mass_kg * R_R * SkewOf(g.p_b, g.p_C);
+  system->col(0) = M.col(0);
+  system->col(1) = M.col(1);
+  system->col(2) = -Eigen::Vector3d::UnitZ();
+}
+
+// The candidate from a precomputed operator of the no-spin rule.
+FacetCandidate CandidateFromOperator(const FacetNoSpinOperators& operators, int a, const Eigen::Vector3d& w_minus) {
+  FacetCandidate c;
+  const Eigen::Vector3d x = operators.x_from_w_minus[a - 1] * w_minus;
+  if (!operators.solvable[a - 1] || !x.allFinite()) {
+    c.status = ImpactStatus::kSingular;
+    return c;
+  }
+  c.w_plus = Eigen::Vector3d(x(0), x(1), 0.0);
+  c.tau = x(2);
+  return c;
+}
+
 FacetCandidate SolveCandidate(const ImpactGeometry& g, const Eigen::Vector3d& w_minus, const FacetImpactParameters& params) {
   FacetCandidate c;
   if (params.tau_rule == FacetTauRule::kFixed) {
@@ -23,14 +46,11 @@ FacetCandidate SolveCandidate(const ImpactGeometry& g, const Eigen::Vector3d& w_
     c.tau = params.tau;
     return c;
   }
-  // (18) with (24) u_zᵀω⁺ = 0: (Θ − m R_R R_a) ω⁺ − τ u_z = (Θ − m R_R R_b) ω⁻ for x = (ω⁺_x, ω⁺_y, τ).
-  const Eigen::Matrix3d R_R = SkewOf(g.p_R, g.p_C);
-  const Eigen::Matrix3d M = g.inertia_C - g.mass_kg * R_R * SkewOf(g.p_a, g.p_C);
-  const Eigen::Vector3d rhs = (g.inertia_C - g.mass_kg * R_R * SkewOf(g.p_b, g.p_C)) * w_minus;
+  // (18) with (24) u_zᵀω⁺ = 0.
   Eigen::Matrix3d system;
-  system.col(0) = M.col(0);
-  system.col(1) = M.col(1);
-  system.col(2) = -Eigen::Vector3d::UnitZ();
+  Eigen::Matrix3d rhs_of_w_minus;
+  NoSpinSystem(g, &system, &rhs_of_w_minus);
+  const Eigen::Vector3d rhs = rhs_of_w_minus * w_minus;
   Eigen::Vector3d x;
   if (!detail::SolveConditioned3(system, rhs, kImpactMinReciprocalCondition, &x)) {
     c.status = ImpactStatus::kSingular;
@@ -94,18 +114,26 @@ Eigen::Vector3d FacetResultantPoint(const Block& block, int pivot_b, double lamb
          0.5 * lambda_lat * (block.p_BV_B(pivot_b) - block.p_BV_B(pivot_b - 1));  // (21)
 }
 
-ImpactOutcome FacetImpact(const Block& block, int pivot_b, const Eigen::Vector3d& w_minus_B,
-                          const FacetImpactParameters& params) {
-  params.Validate();
-  if (!w_minus_B.allFinite()) throw InvalidArgument("facet impact: ω⁻ must be finite");
-  const int b = Block::WrapVertex(pivot_b);
+namespace {
 
+ImpactGeometry FacetGeometry(const Block& block, int b, const FacetImpactParameters& params) {
   ImpactGeometry g;
   g.mass_kg = block.mass();
   g.inertia_C = block.inertia_C_B();  // the block is flat: W and B coincide (up to a yaw)
   g.p_C = block.p_BC_B();
   g.p_b = block.p_BV_B(b);
   g.p_R = FacetResultantPoint(block, b, params.lambda_lat, params.lambda_lon);
+  return g;
+}
+
+template <class CandidateFn>
+ImpactOutcome FacetImpactWith(const Block& block, int pivot_b, const Eigen::Vector3d& w_minus_B,
+                              const FacetImpactParameters& params, const CandidateFn& solve_candidate) {
+  params.Validate();
+  if (!w_minus_B.allFinite()) throw InvalidArgument("facet impact: ω⁻ must be finite");
+  const int b = Block::WrapVertex(pivot_b);
+
+  ImpactGeometry g = FacetGeometry(block, b, params);
   const Eigen::Vector3d v_minus = w_minus_B.cross(g.p_C - g.p_b);  // (11)
   // L: the distance from the COM to any base vertex.
   const double length_m = (g.p_C - g.p_b).norm();
@@ -121,7 +149,7 @@ ImpactOutcome FacetImpact(const Block& block, int pivot_b, const Eigen::Vector3d
   bool any_singular = false;
   for (int a = 1; a <= 4; ++a) {
     g.p_a = block.p_BV_B(a);
-    FacetCandidate c = SolveCandidate(g, w_minus_B, params);
+    FacetCandidate c = solve_candidate(g, a);
     c.contact = Contact::Vertex(a);
     if (c.status == ImpactStatus::kOk) {
       const double v_tol = kContactVelocityRelTol * (w_minus_B.norm() + c.w_plus.norm()) * length_m;
@@ -179,6 +207,48 @@ ImpactOutcome FacetImpact(const Block& block, int pivot_b, const Eigen::Vector3d
   out.delta_energy_J = out.energy_after_J - out.energy_before_J;  // (26)
   out.energy_nonincreasing = out.delta_energy_J <= kEnergyRelTol * out.energy_before_J;
   return out;
+}
+
+}  // namespace
+
+ImpactOutcome FacetImpact(const Block& block, int pivot_b, const Eigen::Vector3d& w_minus_B,
+                          const FacetImpactParameters& params) {
+  return FacetImpactWith(block, pivot_b, w_minus_B, params,
+                         [&](const ImpactGeometry& g, int /*a*/) { return SolveCandidate(g, w_minus_B, params); });
+}
+
+FacetNoSpinOperators MakeFacetNoSpinOperators(const Block& block, int pivot_b, const FacetImpactParameters& params) {
+  params.Validate();
+  if (params.tau_rule != FacetTauRule::kNoSpin) {
+    throw InvalidArgument("facet impact operators exist for the no-spin rule (24) only");
+  }
+  FacetNoSpinOperators operators;
+  operators.pivot_b = Block::WrapVertex(pivot_b);
+  ImpactGeometry g = FacetGeometry(block, operators.pivot_b, params);
+  for (int a = 1; a <= 4; ++a) {
+    g.p_a = block.p_BV_B(a);
+    Eigen::Matrix3d system;
+    Eigen::Matrix3d rhs_of_w_minus;
+    NoSpinSystem(g, &system, &rhs_of_w_minus);
+    // Column by column, the conditioned solve of (18)+(24) for each unit ω⁻: the same test as for one ω⁻.
+    bool solvable = true;
+    Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
+    for (int k = 0; k < 3 && solvable; ++k) {
+      Eigen::Vector3d column;
+      solvable = detail::SolveConditioned3(system, rhs_of_w_minus.col(k), kImpactMinReciprocalCondition, &column);
+      M.col(k) = column;
+    }
+    operators.x_from_w_minus[a - 1] = solvable ? M : Eigen::Matrix3d::Zero();
+    operators.solvable[a - 1] = solvable;
+  }
+  return operators;
+}
+
+ImpactOutcome FacetImpact(const Block& block, const FacetNoSpinOperators& operators, const Eigen::Vector3d& w_minus_B,
+                          const FacetImpactParameters& params) {
+  return FacetImpactWith(block, operators.pivot_b, w_minus_B, params, [&](const ImpactGeometry& /*g*/, int a) {
+    return CandidateFromOperator(operators, a, w_minus_B);
+  });
 }
 
 }  // namespace rockfit::core

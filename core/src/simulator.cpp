@@ -11,8 +11,10 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <utility>
 
+#include "detail/analytic_edge_segment.hpp"
 #include "detail/contact_modes.hpp"
 #include "detail/ground_modes.hpp"
 #include "detail/hybrid_segment.hpp"
@@ -72,6 +74,8 @@ constexpr double kMicroChatterRate_rad_s = 1e-6;
 // velocity: a numerical floor (a rocking amplitude of ~1e-19 rad at the table's accelerations), not a physical
 // threshold (docs/design.md §11a).
 constexpr double kRestRateFloor_rad_s = 1e-9;
+// (27): the facet impact's resultant lies on the base for |λ_lat| ≤ this (and |λ_lon| ≤ this).
+constexpr double kLateralBound = 1.0;
 
 // The free mode of a segment's mode (the impact transitions work on the geometry alone).
 const VertexMode& FreeMode(const VertexMode& mode) { return mode; }
@@ -235,6 +239,9 @@ class HybridRun {
   Next RunVertexIn(const ModeT& mode);
   template <class ModeT>
   Next RunEdgeIn(const ModeT& mode);
+  // The transition at the end of an Edge segment of `mode` (integrated or in closed form).
+  template <class ModeT>
+  Next AfterEdgeSegment(const ModeT& mode, const SegmentOutcome<ModeT>& outcome);
   // Under ground motion: the end vertex `lifting` of the edge of `mode` unloads; rocking continues about the
   // other end vertex with the same ω.
   Next EdgeToVertex(const EdgeMode& mode, double t, const EdgeDynamics::State& y, int lifting);
@@ -309,6 +316,7 @@ class HybridRun {
   double t_lift_off_ = std::numeric_limits<double>::infinity();
   double end_lift_t_s_ = -std::numeric_limits<double>::infinity();  // the last Edge → Vertex switch
   RecentTimes recent_impacts_;  // of edge and facet impacts, under ground motion
+  std::array<std::optional<FacetNoSpinOperators>, 4> facet_operators_;  // by pivot vertex b − 1, made when first needed
 };
 
 EdgeStart HybridRun::MakeEdgeStart(const Contact& edge, const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B,
@@ -434,8 +442,21 @@ HybridRun::Next HybridRun::RunEdgeIn(const ModeT& mode) {
   for (int g = EdgeMode::kNumGuards; g < ModeT::kNumGuards; ++g) {
     on_surface[g] = mode.Guard(g, t_start_, edge_start_.y).value <= kLoadZeroTol;
   }
-  const auto outcome = RunSegment(mode, t_start_, edge_start_.y, on_surface, settings_, step_hint_s_, polisher_,
-                                  sampler_, &out_->segments.back());
+  if constexpr (std::is_same_v<ModeT, EdgeMode>) {
+    // Free rocking: a swing that lands again needs no integrator.
+    if (options_.analytic_edge_phases) {
+      if (const auto outcome = detail::RunAnalyticEdgeSegment(mode, t_start_, edge_start_.y, settings_, step_hint_s_,
+                                                              sampler_, &out_->segments.back())) {
+        return AfterEdgeSegment(mode, *outcome);
+      }
+    }
+  }
+  return AfterEdgeSegment(mode, RunSegment(mode, t_start_, edge_start_.y, on_surface, settings_, step_hint_s_,
+                                           polisher_, sampler_, &out_->segments.back()));
+}
+
+template <class ModeT>
+HybridRun::Next HybridRun::AfterEdgeSegment(const ModeT& mode, const SegmentOutcome<ModeT>& outcome) {
   AddCounts(outcome);
   if (const auto stopped = StopUnlessEvent(mode, outcome)) return *stopped;
   if (outcome.guard >= EdgeMode::kNumGuards) {
@@ -527,10 +548,22 @@ HybridRun::Next HybridRun::AfterFacetImpactOnTable(double t, const Eigen::Quater
   // Zeno sequence of facet impacts, or a micro-chatter below the integrator's resolution — and there rests only
   // if the moment of gravity and of −m·a_g keeps every base edge down. An impact that leaves the block rocking
   // is never cut short by an energy threshold.
+  //
+  // Impact parameters beyond the paper's bounds — a facet impact that adds energy (26), or a resultant beyond a
+  // side edge of the base (|λ_lat| > 1, (27)), as fitted parameters often are — sustain chatters of sub-nanometre
+  // hops that never accumulate (the map hands the block across its base to the opposite vertex at an ever-similar
+  // rate), a motion the rigid model does not resolve. There, a facet impact that leaves less kinetic energy than
+  // lifts the COM by rest_energy_height (the free-rocking threshold) drops its velocity and the contact decides
+  // (docs/design.md §11a, "Parameters beyond the bounds"). Planar motion (λ_lat = 0) keeps the contact rule alone.
   const Contact& contact = trigger.contact_after;
   const bool stopped = !contact.is_vertex() && !contact.is_edge();
+  const bool beyond_bounds = trigger.delta_energy_J > 0.0 || std::abs(params_.lambda_lat) > kLateralBound;
+  const bool below_resolution =
+      beyond_bounds && KineticEnergyAfterLanding(block_, gravity_, contact, q_flat, trigger.w_plus_B) <
+                           block_.mass() * gravity_ * options_.rest_energy_height_m;
   double accumulates_in_s = 0.0;
-  if (!stopped && trigger.w_plus_B.norm() > kRestRateFloor_rad_s && !MicroChatter(q_flat, trigger.w_plus_B)) {
+  if (!stopped && !below_resolution && trigger.w_plus_B.norm() > kRestRateFloor_rad_s &&
+      !MicroChatter(q_flat, trigger.w_plus_B)) {
     const std::optional<double> remaining = facet_impacts_.Accumulation(options_.zeno_dt_s);
     if (!remaining) return Continue(contact, t, q_flat, trigger.w_plus_B, contact.first, -1, -1);
     accumulates_in_s = *remaining;
@@ -706,7 +739,15 @@ HybridRun::Next HybridRun::AfterFacetImpact(const EdgeMode& mode, double t, cons
   facet.tau = 0.0;
   // The pre-impact edge is V_{b−1}V_b in the cyclic order of Contact::Edge.
   const int pivot_b = mode.second();
-  const ImpactOutcome map = FacetImpact(block_, pivot_b, w_minus_B, facet);
+  ImpactOutcome map;
+  if (facet.tau_rule == FacetTauRule::kNoSpin) {
+    // The no-spin map is linear in ω⁻: its candidates' operators are computed once per pivot edge and run.
+    std::optional<FacetNoSpinOperators>& operators = facet_operators_[Block::WrapVertex(pivot_b) - 1];
+    if (!operators) operators = MakeFacetNoSpinOperators(block_, pivot_b, facet);
+    map = FacetImpact(block_, *operators, w_minus_B, facet);
+  } else {
+    map = FacetImpact(block_, pivot_b, w_minus_B, facet);
+  }
 
   ImpactRecord record;
   record.t_s = t;

@@ -351,6 +351,40 @@ TEST(FacetImpact, SingularMapIsAStatusNotNaN) {
   }
 }
 
+TEST(FacetImpact, PrecomputedNoSpinOperatorsGiveTheSameOutcome) {
+  const Block block = Fig11Block();
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> lambda(-3.0, 3.0);
+  std::uniform_real_distribution<double> component(-1.0, 1.0);
+  int decided = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    FacetImpactParameters params;
+    params.lambda_lat = lambda(rng);
+    params.lambda_lon = lambda(rng);
+    const int b = 1 + trial % 4;
+    const FacetNoSpinOperators operators = MakeFacetNoSpinOperators(block, b, params);
+    const Eigen::Vector3d w_minus(component(rng), component(rng), component(rng));
+    const ImpactOutcome direct = FacetImpact(block, b, w_minus, params);
+    const ImpactOutcome cached = FacetImpact(block, operators, w_minus, params);
+    ASSERT_EQ(direct.status, cached.status) << trial;
+    ASSERT_EQ(direct.candidates.size(), cached.candidates.size()) << trial;
+    for (std::size_t a = 0; a < direct.candidates.size(); ++a) {
+      EXPECT_EQ(direct.candidates[a].status, cached.candidates[a].status) << trial;
+      EXPECT_EQ(direct.candidates[a].feasible, cached.candidates[a].feasible) << trial;
+      EXPECT_NEAR((direct.candidates[a].w_plus - cached.candidates[a].w_plus).norm(), 0.0, 1e-12) << trial;
+    }
+    if (direct.status != ImpactStatus::kOk) continue;
+    ++decided;
+    EXPECT_EQ(direct.contact_after, cached.contact_after) << trial;
+    EXPECT_NEAR((direct.w_plus_B - cached.w_plus_B).norm(), 0.0, 1e-12) << trial;
+    EXPECT_NEAR(direct.tau, cached.tau, 1e-12) << trial;
+  }
+  EXPECT_GT(decided, 20);
+  FacetImpactParameters fixed;
+  fixed.tau_rule = FacetTauRule::kFixed;
+  EXPECT_THROW(MakeFacetNoSpinOperators(block, 2, fixed), InvalidArgument);
+}
+
 TEST(FacetImpact, GeometricBound27) {
   EXPECT_TRUE(WithinFacetBounds(1.0, -1.0));
   EXPECT_FALSE(WithinFacetBounds(1.01, 0.0));

@@ -41,6 +41,9 @@ class EdgeDynamics {
   double critical_angle_rad() const { return std::atan2(d_m_, h_m_); } // θ_c: the COM above the edge
   double arm_m() const { return std::hypot(d_m_, h_m_); }              // R
   double offset_m() const { return d_m_; }                             // d
+  double mass_kg() const { return mass_kg_; }
+  double gravity_m_s2() const { return gravity_m_s2_; }
+  double swing_constant_1_s2() const { return 2.0 * torque_scale_ * arm_m(); }  // K = 2 m g R / J_e
 
   // Rot(a_B, ψ) as a quaternion; R_WB = R_yaw · Tilt(ψ).
   Eigen::Quaterniond Tilt(double psi_rad) const;

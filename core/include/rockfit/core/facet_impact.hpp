@@ -3,6 +3,7 @@
 // takes τ from the no-spin postulate (24). The errata of docs/design.md §3 apply.
 #pragma once
 
+#include <array>
 #include <string>
 
 #include <Eigen/Core>
@@ -41,6 +42,20 @@ Eigen::Vector3d FacetResultantPoint(const Block& block, int pivot_b, double lamb
 // kInfeasible (none), or kSingular (none feasible and some candidate singular).
 // Throws InvalidArgument if ω⁻ or a parameter is not finite.
 ImpactOutcome FacetImpact(const Block& block, int pivot_b, const Eigen::Vector3d& w_minus_B,
+                          const FacetImpactParameters& params);
+
+// Under the no-spin rule (24) every candidate of (18) is linear in ω⁻: x_a = (ω⁺_x, ω⁺_y, τ) = M_a ω⁻, with M_a and
+// the conditioning test of its system independent of ω⁻. A simulation computes them once per pivot edge.
+struct FacetNoSpinOperators {
+  int pivot_b = 0;                              // wrapped to 1..4
+  std::array<Eigen::Matrix3d, 4> x_from_w_minus;  // candidate a = 1..4 at index a − 1
+  std::array<bool, 4> solvable{};               // false: the candidate's system is singular
+};
+// Throws InvalidArgument unless params.tau_rule is kNoSpin (and for non-finite parameters).
+FacetNoSpinOperators MakeFacetNoSpinOperators(const Block& block, int pivot_b, const FacetImpactParameters& params);
+// FacetImpact with the candidates from `operators` (made for this block, pivot and parameters): the same outcome
+// to round-off.
+ImpactOutcome FacetImpact(const Block& block, const FacetNoSpinOperators& operators, const Eigen::Vector3d& w_minus_B,
                           const FacetImpactParameters& params);
 
 bool WithinFacetBounds(double lambda_lat, double lambda_lon);  // (27): |λ_lat| ≤ 1, |λ_lon| ≤ 1

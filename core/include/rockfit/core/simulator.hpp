@@ -110,6 +110,10 @@ struct SimulationOptions {
   // support (past it a block on a still table only falls further).
   OverturnRule overturn = OverturnRule::kComOverSupport;
   bool sample_attitude = true;          // false: fill only t, w_B and mode (faster, for fitting)
+  // Free runs: a swing about an edge that lands again is evaluated in closed form (landing time by an elliptic
+  // integral, samples by Jacobi elliptic functions; docs/design.md §4, "Analytic edge phases") instead of being
+  // integrated. false integrates it like every other phase (for checks). Runs under ground motion always integrate.
+  bool analytic_edge_phases = true;
   std::optional<InitialState> initial_state;
   // Throws InvalidArgument naming the bad option.
   void Validate() const;
