@@ -40,6 +40,8 @@ import statistics
 import subprocess
 import sys
 
+from coverage_study import widening_args  # the widening options of `rockfit fit`, as the coverage study passes them
+
 B1, H, DENSITY = 0.05000453, 0.2, 2692.0
 
 
@@ -54,16 +56,6 @@ def random_trial(rng, index, family):
         trial["com_offset_y"] = rng.uniform(0.01, 0.02) * rng.choice([-1.0, 1.0])
         trial["proud_vertex"] = rng.randint(1, 4)
     return trial
-
-
-def widening_args(args):
-    """The widening options of `rockfit fit` that were given (none: rockfit's calibrated defaults)."""
-    out = []
-    if args.model_error_widening is not None:
-        out += ["--model-error-widening", repr(args.model_error_widening)]
-    if args.t0_floor_samples is not None:
-        out += ["--t0-floor-samples", repr(args.t0_floor_samples)]
-    return out
 
 
 def run_trial(args, trial, out_dir):

@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "rockfit/app/html_escape.hpp"
 #include "rockfit/app/report_figures.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/atomic_file.hpp"
@@ -20,22 +21,6 @@ namespace rockfit::app {
 namespace {
 
 // ------------------------------------------------------------------ text helpers
-
-std::string Escape(const std::string& text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 // An id usable in HTML and in a URL fragment: letters, digits, '-' and '_' kept, anything else as '_'.
 std::string Slug(const std::string& text) {
@@ -62,19 +47,19 @@ std::string NumCell(double v, int digits = 4) {
   return fmt::format("<td class=\"num\" data-sort=\"{}\">{}</td>", std::isfinite(v) ? fmt::format("{}", v) : "", Num(v, digits));
 }
 std::string NumCell(const std::optional<double>& v, int digits = 4) { return NumCell(v.value_or(std::nan("")), digits); }
-std::string TextCell(const std::string& text) { return "<td>" + Escape(text) + "</td>"; }
+std::string TextCell(const std::string& text) { return "<td>" + EscapeHtml(text) + "</td>"; }
 // A cell sorted by `value` and showing `text` (a value with its interval).
 std::string ValueCell(double value, const std::string& text) {
   return fmt::format("<td class=\"interval\" data-sort=\"{}\">{}</td>", std::isfinite(value) ? fmt::format("{}", value) : "",
-                     Escape(text));
+                     EscapeHtml(text));
 }
-std::string IntervalCell(const std::string& text) { return "<td class=\"interval\">" + Escape(text) + "</td>"; }
+std::string IntervalCell(const std::string& text) { return "<td class=\"interval\">" + EscapeHtml(text) + "</td>"; }
 
 // <table> with caption and header row; `sortable` adds the sort buttons (script below).
 std::string TableStart(const std::string& caption, const std::vector<std::string>& headers, bool sortable = true) {
   std::string out = fmt::format("<div class=\"table-wrap\"><table{}>\n<caption>{}</caption>\n<thead><tr>",
-                                sortable ? " class=\"sortable\"" : "", Escape(caption));
-  for (const std::string& h : headers) out += "<th scope=\"col\">" + Escape(h) + "</th>";
+                                sortable ? " class=\"sortable\"" : "", EscapeHtml(caption));
+  for (const std::string& h : headers) out += "<th scope=\"col\">" + EscapeHtml(h) + "</th>";
   return out + "</tr></thead>\n<tbody>\n";
 }
 const char* kTableEnd = "</tbody></table></div>\n";
@@ -207,12 +192,12 @@ class Page {
       ++summary_.figures;
       out_ << fmt::format("<figure class=\"figure\" data-figure=\"{}\">\n{}\n<figcaption><strong>{}</strong> {}</figcaption>"
                           "</figure>\n",
-                          Escape(name), figure.svg, label, Escape(caption));
+                          EscapeHtml(name), figure.svg, label, EscapeHtml(caption));
     } else {
       summary_.figures_missing.push_back(name + ": " + figure.missing);
       out_ << fmt::format("<figure class=\"figure figure-missing\" data-figure=\"{}\">\n<p class=\"missing\" role=\"note\">"
                           "Figure missing: {}</p>\n<figcaption><strong>{}</strong> {}</figcaption></figure>\n",
-                          Escape(name), Escape(figure.missing), label, Escape(caption));
+                          EscapeHtml(name), EscapeHtml(figure.missing), label, EscapeHtml(caption));
     }
   }
   ReportFigure Draw(const std::function<ReportFigure()>& draw) {
@@ -238,7 +223,7 @@ void WriteGaps(Page& page, const std::vector<Gap>& gaps) {
   auto& out = page.out();
   out << "<section class=\"notice\" id=\"missing\" aria-labelledby=\"missing-title\">\n"
          "<h3 id=\"missing-title\">What this report could not show</h3>\n<ul>\n";
-  for (const Gap& g : gaps) out << "<li><strong>" << Escape(g.where) << "</strong> " << Escape(g.what) << "</li>\n";
+  for (const Gap& g : gaps) out << "<li><strong>" << EscapeHtml(g.where) << "</strong> " << EscapeHtml(g.what) << "</li>\n";
   out << "</ul></section>\n";
 }
 
@@ -378,7 +363,7 @@ void WriteEarthquake(Page& page, const ReportData& data) {
   out << "<section id=\"earthquake\" aria-labelledby=\"earthquake-title\">\n<h2 id=\"earthquake-title\">Earthquake "
          "side</h2>\n";
   for (const FragilityBlock& b : data.fragility) {
-    out << "<h3>Fragility of " << Escape(b.block_id) << "</h3>\n";
+    out << "<h3>Fragility of " << EscapeHtml(b.block_id) << "</h3>\n";
     out << TableStart("Lognormal fragility curves of " + b.block_id + " (" + b.file + ")",
                       {"limit state", "curve", b.intensity_is_pga_g ? "median θ [g]" : "median θ [1]", "β [1]", "note"});
     for (const FragilityLimitState& s : b.limit_states) {
@@ -393,9 +378,9 @@ void WriteEarthquake(Page& page, const ReportData& data) {
   }
   for (const ResponseHistory& r : data.responses) {
     const std::string name = r.block_id.empty() ? "a block of another size" : r.block_id;
-    out << "<h3>Response of " << Escape(name) << "</h3>\n";
-    out << fmt::format("<p>{}: {}; peak tilt {} rad ({} % of the critical tilt {} rad); {}.</p>\n", Escape(r.file),
-                       Escape(r.end_reason.empty() ? "end not recorded" : r.end_reason), Num(r.peak_tilt_rad),
+    out << "<h3>Response of " << EscapeHtml(name) << "</h3>\n";
+    out << fmt::format("<p>{}: {}; peak tilt {} rad ({} % of the critical tilt {} rad); {}.</p>\n", EscapeHtml(r.file),
+                       EscapeHtml(r.end_reason.empty() ? "end not recorded" : r.end_reason), Num(r.peak_tilt_rad),
                        r.critical_tilt_rad > 0 ? Num(100.0 * r.peak_tilt_rad / r.critical_tilt_rad, 3) : "–",
                        Num(r.critical_tilt_rad), r.overturned ? "the block overturned" : "the block did not overturn");
     page.Figure("response-" + Slug(r.file), page.Draw([&] { return ResponseFigure(r, page.NextId()); }),
@@ -410,15 +395,15 @@ void WriteTrial(Page& page, const ReportTrial& t) {
   const std::string id = "trial-" + Slug(r.trial_id);
   out << fmt::format("<section class=\"trial\" id=\"{}\" data-trial=\"{}\" aria-labelledby=\"{}-title\">\n"
                      "<h3 id=\"{}-title\">Trial {}</h3>\n",
-                     id, Escape(r.trial_id), id, id, Escape(r.trial_id));
+                     id, EscapeHtml(r.trial_id), id, id, EscapeHtml(r.trial_id));
   out << "<dl class=\"facts\">\n";
-  out << "<dt>block, position</dt><dd>" << Escape(r.block_id) << ", " << Escape(r.position) << "</dd>\n";
-  out << "<dt>metrics</dt><dd>" << Escape(r.status) << (r.message.empty() ? "" : " — " + Escape(r.message)) << "</dd>\n";
+  out << "<dt>block, position</dt><dd>" << EscapeHtml(r.block_id) << ", " << EscapeHtml(r.position) << "</dd>\n";
+  out << "<dt>metrics</dt><dd>" << EscapeHtml(r.status) << (r.message.empty() ? "" : " — " + EscapeHtml(r.message)) << "</dd>\n";
   out << fmt::format("<dt>OPMF, AVRF</dt><dd>Φ = {}, r = {} ({} impacts detected)</dd>\n", Num(r.opmf), Num(r.avrf), r.impacts);
   std::string mounting = r.mounting + (r.mounting_check.estimated ? " (estimated from the data)" : " (given)");
   if (r.mounting_check.status != "not_checked") mounting += "; check: " + r.mounting_check.status;
   if (!r.mounting_check.message.empty()) mounting += " — " + r.mounting_check.message;
-  out << "<dt>mounting</dt><dd>" << Escape(mounting) << "</dd>\n";
+  out << "<dt>mounting</dt><dd>" << EscapeHtml(mounting) << "</dd>\n";
   if (t.fit) {
     const fitting::StoredFitLabels& l = t.fit->labels;
     std::string split;
@@ -432,9 +417,9 @@ void WriteTrial(Page& page, const ReportTrial& t) {
       split = fmt::format("ε = {} rad/s; its split into noise and model error was not measured (no rest before the "
                           "release, or a fit written before the split existed).", Num(l.epsilon_rad_s));
     }
-    out << "<dt>error (28)</dt><dd>" << Escape(split) << "</dd>\n";
+    out << "<dt>error (28)</dt><dd>" << EscapeHtml(split) << "</dd>\n";
     out << "<dt>fit</dt><dd>" << (l.feasible ? "feasible" : "infeasible") << ", " << l.simulations << " simulations"
-        << (t.fit->termination.empty() ? "" : ", " + Escape(t.fit->termination)) << "</dd>\n";
+        << (t.fit->termination.empty() ? "" : ", " + EscapeHtml(t.fit->termination)) << "</dd>\n";
   }
   out << "</dl>\n";
 
@@ -444,7 +429,7 @@ void WriteTrial(Page& page, const ReportTrial& t) {
   if (t.fit) warnings.insert(warnings.end(), t.fit->warnings.begin(), t.fit->warnings.end());
   if (!warnings.empty()) {
     out << "<h4>Warnings</h4>\n<ul class=\"warnings\">\n";
-    for (const std::string& w : warnings) out << "<li>" << Escape(w) << "</li>\n";
+    for (const std::string& w : warnings) out << "<li>" << EscapeHtml(w) << "</li>\n";
     out << "</ul>\n";
   }
 
@@ -462,7 +447,7 @@ void WriteTrial(Page& page, const ReportTrial& t) {
                       {"parameter", "unit", "value", "68 % interval", "95 % interval", "determined"}, false);
     for (std::size_t k = 0; k < p.size(); ++k) {
       const bool intervals = p.has_intervals && k < p.interval_95_lower.size();
-      out << "<tr><th scope=\"row\">" << Escape(ParameterLabel(p.name[k])) << "</th>" << TextCell(p.unit[k])
+      out << "<tr><th scope=\"row\">" << EscapeHtml(ParameterLabel(p.name[k])) << "</th>" << TextCell(p.unit[k])
           << NumCell(p.value[k], 5)
           << IntervalCell(intervals ? IntervalText(p.interval_68_lower[k], p.interval_68_upper[k]) : "–")
           << IntervalCell(intervals ? IntervalText(p.interval_95_lower[k], p.interval_95_upper[k]) : "–")
@@ -481,9 +466,9 @@ void WriteProvenance(Page& page, const ReportData& data, const ReportOptions& op
   auto& out = page.out();
   out << "<section id=\"provenance\" aria-labelledby=\"provenance-title\">\n<h2 id=\"provenance-title\">Provenance</h2>\n"
          "<dl class=\"facts\">\n";
-  out << "<dt>written</dt><dd>" << Escape(date) << "</dd>\n";
-  out << "<dt>rockfit</dt><dd>" << Escape(options.rockfit_version.empty() ? "unknown" : options.rockfit_version) << "</dd>\n";
-  out << "<dt>command</dt><dd><code>" << Escape(options.command_line.empty() ? "(not given)" : options.command_line)
+  out << "<dt>written</dt><dd>" << EscapeHtml(date) << "</dd>\n";
+  out << "<dt>rockfit</dt><dd>" << EscapeHtml(options.rockfit_version.empty() ? "unknown" : options.rockfit_version) << "</dd>\n";
+  out << "<dt>command</dt><dd><code>" << EscapeHtml(options.command_line.empty() ? "(not given)" : options.command_line)
       << "</code></dd>\n";
   out << "</dl>\n";
   if (!data.fit_settings.empty()) {
@@ -492,18 +477,18 @@ void WriteProvenance(Page& page, const ReportData& data, const ReportOptions& op
     for (const auto& [hash, settings] : data.fit_settings) {
       std::string trials;
       for (const std::string& t : settings.trials) trials += (trials.empty() ? "" : ", ") + t;
-      out << "<tr><td><code>" << Escape(hash) << "</code></td>" << TextCell(trials) << "<td><code>"
-          << Escape(settings.text) << "</code></td></tr>\n";
+      out << "<tr><td><code>" << EscapeHtml(hash) << "</code></td>" << TextCell(trials) << "<td><code>"
+          << EscapeHtml(settings.text) << "</code></td></tr>\n";
     }
     out << kTableEnd;
   }
   out << TableStart("Input files (content hash: FNV-1a 64 of the bytes)",
                     {"role", "file", "size [bytes]", "content hash", "written by rockfit", "study settings hash"}, false);
   for (const InputFile& f : data.files) {
-    out << "<tr>" << TextCell(f.role) << "<td><code>" << Escape(f.path.string()) << "</code></td>"
-        << NumCell(static_cast<double>(f.size_bytes), 12) << "<td><code>" << Escape(f.content_hash) << "</code></td>"
+    out << "<tr>" << TextCell(f.role) << "<td><code>" << EscapeHtml(f.path.string()) << "</code></td>"
+        << NumCell(static_cast<double>(f.size_bytes), 12) << "<td><code>" << EscapeHtml(f.content_hash) << "</code></td>"
         << TextCell(f.rockfit_version.empty() ? "–" : f.rockfit_version) << "<td><code>"
-        << Escape(f.settings_hash.empty() ? "–" : f.settings_hash) << "</code></td></tr>\n";
+        << EscapeHtml(f.settings_hash.empty() ? "–" : f.settings_hash) << "</code></td></tr>\n";
   }
   out << kTableEnd << "</section>\n";
 }
@@ -539,11 +524,11 @@ std::string BuildReportHtml(const ReportOptions& options, ReportSummary* summary
   std::ostringstream html;
   html << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
           "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-       << "<meta name=\"generator\" content=\"rockfit " << Escape(options.rockfit_version) << "\">\n"
-       << "<title>" << Escape(options.title) << "</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n";
-  html << "<header>\n<h1>" << Escape(options.title) << "</h1>\n<p class=\"meta\">Written " << Escape(date)
-       << " by rockfit " << Escape(options.rockfit_version) << " from " << Escape(options.inputs.summary.filename().string())
-       << (options.inputs.fits.empty() ? "" : " and " + Escape(options.inputs.fits.filename().string()))
+       << "<meta name=\"generator\" content=\"rockfit " << EscapeHtml(options.rockfit_version) << "\">\n"
+       << "<title>" << EscapeHtml(options.title) << "</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n";
+  html << "<header>\n<h1>" << EscapeHtml(options.title) << "</h1>\n<p class=\"meta\">Written " << EscapeHtml(date)
+       << " by rockfit " << EscapeHtml(options.rockfit_version) << " from " << EscapeHtml(options.inputs.summary.filename().string())
+       << (options.inputs.fits.empty() ? "" : " and " + EscapeHtml(options.inputs.fits.filename().string()))
        << " (all inputs under <a href=\"#provenance\">Provenance</a>).</p>\n</header>\n";
   html << "<nav aria-label=\"Contents\"><ol>\n<li><a href=\"#overview\">Overview</a></li>\n";
   if (page.out().str().find("id=\"model-error\"") != std::string::npos) html << "<li><a href=\"#model-error\">Model error</a></li>\n";
@@ -551,7 +536,7 @@ std::string BuildReportHtml(const ReportOptions& options, ReportSummary* summary
   if (!data.fragility.empty() || !data.responses.empty()) html << "<li><a href=\"#earthquake\">Earthquake side</a></li>\n";
   html << "<li><a href=\"#trials\">Trials</a><ol>\n";
   for (const ReportTrial& t : data.trials) {
-    html << "<li><a href=\"#trial-" << Slug(t.row.trial_id) << "\">" << Escape(t.row.trial_id) << "</a></li>\n";
+    html << "<li><a href=\"#trial-" << Slug(t.row.trial_id) << "\">" << EscapeHtml(t.row.trial_id) << "</a></li>\n";
   }
   html << "</ol></li>\n<li><a href=\"#provenance\">Provenance</a></li>\n</ol></nav>\n<main>\n"
        << page.out().str() << "</main>\n<script>" << kScript << "</script>\n</body>\n</html>\n";

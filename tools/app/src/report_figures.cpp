@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "rockfit/app/gnuplot.hpp"
+#include "rockfit/app/html_escape.hpp"
 
 namespace rockfit::app {
 namespace {
@@ -35,19 +36,6 @@ std::string Join(const std::vector<std::string>& parts, const std::string& separ
   return out;
 }
 
-std::string EscapeXml(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 // Draws `body` on `figure` and returns the inline SVG, or the reason it could not.
 ReportFigure Draw(const GnuplotFigure& figure, const std::string& body, int height_px, const std::string& id_prefix,
@@ -85,9 +73,9 @@ std::string InlineSvg(const std::string& gnuplot_svg, const std::string& id_pref
   const std::size_t tag_end = svg.find('>');
   std::string tag = svg.substr(0, tag_end);
   tag = std::regex_replace(tag, std::regex(R"(\s(width|height)="[^"]*")"), "");
-  tag += fmt::format(" role=\"img\" aria-label=\"{}\" class=\"plot\"", EscapeXml(label));
+  tag += fmt::format(" role=\"img\" aria-label=\"{}\" class=\"plot\"", EscapeHtml(label));
   svg = tag + svg.substr(tag_end);
-  svg = std::regex_replace(svg, std::regex(R"(<title>[^<]*</title>)"), "<title>" + EscapeXml(label) + "</title>");
+  svg = std::regex_replace(svg, std::regex(R"(<title>[^<]*</title>)"), "<title>" + EscapeHtml(label) + "</title>");
   svg = std::regex_replace(svg, std::regex(R"(<desc>[^<]*</desc>)"), "");
   // Unique ids: id='x' → id='P-x', href='#x' → href='#P-x', url(#x) → url(#P-x).
   // gnuplot repeats the ids of its plot groups in every panel of a multiplot: a repeated id gets a suffix.
