@@ -20,6 +20,7 @@
 #include "rockfit/io/avrf.hpp"
 #include "rockfit/io/drift_correction.hpp"
 #include "rockfit/io/hdf5_file.hpp"
+#include "rockfit/io/load_options.hpp"
 #include "rockfit/io/opmf.hpp"
 #include "rockfit/io/recording.hpp"
 #include "rockfit/quake/fragility_study.hpp"
@@ -32,15 +33,15 @@ namespace {
 using testing::ScratchDir;
 
 // Every value of `values` survives text, JSON and HDF5, and the names are distinct.
-template <class Enum, class Parse>
-void ExpectRoundTrips(const char* enum_name, std::initializer_list<Enum> list, Parse parse) {
+template <class Enum, class Parse, class Name>
+void ExpectRoundTripsNamed(const char* enum_name, std::initializer_list<Enum> list, Parse parse, Name name_of) {
   const std::vector<Enum> values(list);
   const ScratchDir dir(std::string("enum_") + enum_name);
   io::hdf5::File file = io::hdf5::File::Create(dir / "enums.h5");
   const io::hdf5::Group root = file.Root();
   std::vector<std::string> names;
   for (std::size_t k = 0; k < values.size(); ++k) {
-    const std::string name = ToString(values[k]);
+    const std::string name = name_of(values[k]);
     for (const std::string& other : names) EXPECT_NE(name, other) << enum_name << ": two values share a name";
     names.push_back(name);
     EXPECT_EQ(parse(name), values[k]) << enum_name << " '" << name << "' from text";
@@ -55,6 +56,11 @@ void ExpectRoundTrips(const char* enum_name, std::initializer_list<Enum> list, P
     ASSERT_TRUE(stored.has_value());
     EXPECT_EQ(parse(*stored), values[k]) << enum_name << " '" << *stored << "' from HDF5";
   }
+}
+
+template <class Enum, class Parse>
+void ExpectRoundTrips(const char* enum_name, std::initializer_list<Enum> list, Parse parse) {
+  ExpectRoundTripsNamed(enum_name, list, parse, [](Enum value) { return std::string(ToString(value)); });
 }
 
 // FromString as a function of the name; an unknown name fails and leaves the value alone.
@@ -100,6 +106,17 @@ TEST(EnumNames, IoEnumsRoundTripThroughTextJsonAndHdf5) {
   ExpectRoundTrips("AnchorSource", {AnchorSource::kOmegaY, AnchorSource::kOmegaX}, ByFromString(AnchorSource::kOmegaY));
   ExpectRoundTrips("AvrfStatus", {AvrfStatus::kOk, AvrfStatus::kNoImpact, AvrfStatus::kTooFewPeaks,
                                   AvrfStatus::kInvalidUplift, AvrfStatus::kNoBlock}, ByFromString(AvrfStatus::kOk));
+  // The option values of the readers (--format, --orientation) have their own name pairs.
+  ExpectRoundTripsNamed("RecordingFormat",
+                        {RecordingFormat::kAuto, RecordingFormat::kXimuGui, RecordingFormat::kXimu3,
+                         RecordingFormat::kGenericCsv, RecordingFormat::kRockfitHdf5},
+                        [](const std::string& name) { return ParseFormatName(name).value(); },
+                        [](RecordingFormat f) { return FormatName(f); });
+  ExpectRoundTripsNamed("OrientationChoice",
+                        {OrientationChoice::kAuto, OrientationChoice::kEulerAngles, OrientationChoice::kQuaternion,
+                         OrientationChoice::kRotationMatrix, OrientationChoice::kNone},
+                        [](const std::string& name) { return ParseOrientationChoice(name).value(); },
+                        [](OrientationChoice c) { return OrientationChoiceName(c); });
   ExpectRoundTrips("OpmfStatus", {OpmfStatus::kOk, OpmfStatus::kNoImpact, OpmfStatus::kNoInPlaneMotion},
                    ByFromString(OpmfStatus::kOk));
 }
@@ -112,6 +129,11 @@ TEST(EnumNames, FittingAndQuakeEnumsRoundTripThroughTextJsonAndHdf5) {
                    [](const std::string& name) { return ParseIntervalMethod(name); });
   ExpectRoundTrips("BoundsSet", {BoundsSet::kEmpirical, BoundsSet::kTheoretical},
                    [](const std::string& name) { return ParseBoundsSet(name); });
+  ExpectRoundTripsNamed("ParameterId",
+                        {ParameterId::kT0, ParameterId::kAlpha, ParameterId::kLambda, ParameterId::kLambdaLat,
+                         ParameterId::kLambdaLon, ParameterId::kTauEdge},
+                        [](const std::string& name) { return ParseParameterName(name); },
+                        [](ParameterId id) { return std::string(Name(id)); });
   ExpectRoundTrips("WarningKind",
                    {WarningKind::kAtBound, WarningKind::kNotIdentifiable, WarningKind::kSimulationFailures,
                     WarningKind::kNotConverged, WarningKind::kStdErrorUnavailable, WarningKind::kInfeasible,
