@@ -71,7 +71,7 @@ int RunMetrics(const MetricsCommand& cmd) {
     } else {
       std::cout << fmt::format("AVRF       —        ({})\n", io::ToString(m.avrf.status));
     }
-    std::cout << "status     " << m.status << (m.message.empty() ? "" : ": " + m.message) << "\n";
+    std::cout << "status     " << io::ToString(m.status) << (m.message.empty() ? "" : ": " + m.message) << "\n";
   }
   PrintMountingWarning(rec);
   for (const std::string& w : m.correction.warnings) std::cerr << "rockfit: warning: " << w << "\n";

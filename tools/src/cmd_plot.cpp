@@ -192,7 +192,7 @@ io::CampaignSummary SummaryFor(const SummaryPlotCommand& cmd) {
   if (LowerCaseExtension(cmd.path) == ".toml") {
     const CampaignRun run = RunCampaign(io::ReadManifest(cmd.path), MakeMetricsOptions(cmd.metrics));
     for (const io::TrialRow& t : run.summary.trials) {
-      if (t.status == "load_error") std::cerr << "rockfit: warning: trial " << t.trial_id << " left out: " << t.message << "\n";
+      if (t.status == io::MetricsStatus::kLoadError) std::cerr << "rockfit: warning: trial " << t.trial_id << " left out: " << t.message << "\n";
     }
     return run.summary;
   }

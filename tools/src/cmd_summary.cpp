@@ -49,7 +49,7 @@ void PrintTables(const io::CampaignSummary& s) {
                            "status", "OPMF", "AVRF", "λ (6)", "peaks", "mounting (data vs given: x, y, z [°])");
   for (const io::TrialRow& t : s.trials) {
     std::cout << fmt::format("{:<16} {:<8} {:<4} {:<15} {:>7} {:>7} {:>7} {:>5}  {}\n", t.trial_id, t.block_id,
-                             t.position, t.status, Cell(t.opmf, 4), Cell(t.avrf, 4), Cell(t.lambda_equivalent, 3),
+                             t.position, io::ToString(t.status), Cell(t.opmf, 4), Cell(t.avrf, 4), Cell(t.lambda_equivalent, 3),
                              t.avrf_peaks_used, MountingCell(t));
   }
   std::cout << "\n"
@@ -105,12 +105,12 @@ int RunSummary(const SummaryCommand& cmd) {
     out["trials"] = nlohmann::json::array();
     for (const io::TrialRow& t : run.summary.trials) {
       out["trials"].push_back({{"trial_id", t.trial_id}, {"block_id", t.block_id}, {"position", t.position},
-                               {"b1", t.b1_m}, {"b2", t.b2_m}, {"h", t.h_m}, {"status", t.status},
+                               {"b1", t.b1_m}, {"b2", t.b2_m}, {"h", t.h_m}, {"status", io::ToString(t.status)},
                                {"message", t.message}, {"opmf", OrNull(t.opmf)}, {"avrf", OrNull(t.avrf)},
                                {"lambda_equivalent", OrNull(t.lambda_equivalent)},
                                {"avrf_peaks_used", t.avrf_peaks_used}, {"impacts", t.impacts},
                                {"mounting", t.mounting}, {"mounting_estimated", t.mounting_check.estimated},
-                               {"mounting_status", t.mounting_check.status},
+                               {"mounting_status", io::ToString(t.mounting_check.status)},
                                {"mounting_angles_deg",
                                 {OrNull(t.mounting_check.angles_deg.x()), OrNull(t.mounting_check.angles_deg.y()),
                                  OrNull(t.mounting_check.angles_deg.z())}},
@@ -137,7 +137,7 @@ int RunSummary(const SummaryCommand& cmd) {
   }
   if (run.load_errors > 0) {
     for (const io::TrialRow& t : run.summary.trials) {
-      if (t.status == "load_error") std::cerr << "rockfit: trial " << t.trial_id << ": " << t.message << "\n";
+      if (t.status == io::MetricsStatus::kLoadError) std::cerr << "rockfit: trial " << t.trial_id << ": " << t.message << "\n";
     }
     std::cerr << fmt::format("rockfit: {} of {} trials could not be read (listed above, status load_error); fix their "
                              "files or entries in {} and run again\n",

@@ -15,6 +15,17 @@ namespace rockfit::io {
 
 namespace {
 
+// A stored metrics status; BadInput naming the file and the object for a name rockfit never writes.
+MetricsStatus ReadMetricsStatus(const std::string& text, const std::filesystem::path& path, const std::string& where) {
+  MetricsStatus status = MetricsStatus::kOk;
+  if (!FromString(text, &status)) {
+    throw BadInput(fmt::format("{}: {} holds the metrics status '{}', which is none of ok, no_impact, "
+                               "no_in_plane_motion, too_few_peaks, invalid_uplift, no_block, load_error; rewrite the "
+                               "file with `rockfit summary`", path.string(), where, text));
+  }
+  return status;
+}
+
 constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
 const char* kVectorColumns = "x, y, z";
 const char* kEulerColumns = "phi_z, phi_y, phi_x";
@@ -86,7 +97,7 @@ void WriteMountingHdf5(const hdf5::Group& g, const Recording& recording) {
   g.SetString("mounting", recording.mounting);
   g.SetString("mounting_given", c.given);
   g.SetInt("mounting_estimated", c.estimated ? 1 : 0);
-  g.SetString("mounting_status", c.status);
+  g.SetString("mounting_status", ToString(c.status));
   g.SetString("mounting_message", c.message);
   g.SetString("mounting_warning", c.warning);
   g.SetDouble("mounting_disagreement_deg", MountingDisagreementDeg(c));
@@ -159,7 +170,7 @@ void WriteTrialHdf5(const hdf5::Group& root, const std::string& trial_id, const 
   write_anchors(g.CreateGroup("phi_x_anchors"), metrics.correction.anchors_x, "phi_x_anchor_rad");
 
   const hdf5::Group m = g.CreateGroup("metrics");
-  m.SetString("status", metrics.status);
+  m.SetString("status", ToString(metrics.status));
   m.SetString("message", metrics.message);
   m.SetString("opmf_status", ToString(metrics.opmf.status));
   m.SetString("opmf_message", metrics.opmf.message);
@@ -265,7 +276,7 @@ StoredTrial ReadTrialHdf5(const std::filesystem::path& path, const std::string& 
   if (g.IsGroup("phi_x_anchors")) stored.phi_x_anchor_times_s = g.OpenGroup("phi_x_anchors").ReadDoubles("time_s");
   if (g.IsGroup("metrics")) {
     const hdf5::Group m = g.OpenGroup("metrics");
-    stored.status = m.GetString("status").value_or("");
+    stored.status = ReadMetricsStatus(m.GetString("status").value_or("ok"), path, g.path() + "/metrics");
     stored.message = m.GetString("message").value_or("");
     if (const auto v = m.GetDouble("opmf")) stored.opmf = FromStored(*v);
     if (const auto v = m.GetDouble("avrf")) stored.avrf = FromStored(*v);
@@ -291,12 +302,12 @@ void WriteSummaryHdf5(const hdf5::Group& root, const CampaignSummary& summary) {
   std::vector<std::string> mounting, mounting_status;
   std::vector<double> mounting_x, mounting_y, mounting_z;
   for (const TrialRow& r : summary.trials) {
-    mounting.push_back(r.mounting), mounting_status.push_back(r.mounting_check.status);
+    mounting.push_back(r.mounting), mounting_status.push_back(ToString(r.mounting_check.status));
     mounting_estimated.push_back(r.mounting_check.estimated ? 1 : 0);
     mounting_x.push_back(r.mounting_check.angles_deg.x()), mounting_y.push_back(r.mounting_check.angles_deg.y());
     mounting_z.push_back(r.mounting_check.angles_deg.z());
     trial_id.push_back(r.trial_id), block_id.push_back(r.block_id), position.push_back(r.position);
-    status.push_back(r.status), message.push_back(r.message);
+    status.push_back(ToString(r.status)), message.push_back(r.message);
     b1.push_back(r.b1_m), b2.push_back(r.b2_m), h.push_back(r.h_m);
     opmf.push_back(OrMissing(r.opmf)), avrf.push_back(OrMissing(r.avrf)), lambda.push_back(OrMissing(r.lambda_equivalent));
     peaks.push_back(static_cast<std::int64_t>(r.avrf_peaks_used)), impacts.push_back(static_cast<std::int64_t>(r.impacts));
@@ -383,7 +394,7 @@ CampaignSummary ReadSummaryHdf5(const std::filesystem::path& path) {
     for (std::size_t i = 0; i < n; ++i) {
       TrialRow r;
       r.trial_id = trial_id[i], r.block_id = block_id[i], r.position = position[i];
-      r.status = status[i], r.message = message[i];
+      r.status = ReadMetricsStatus(status[i], path, "/summary/trials/status"), r.message = message[i];
       r.b1_m = b1[i], r.b2_m = b2[i], r.h_m = h[i];
       r.opmf = FromStored(opmf[i]), r.avrf = FromStored(avrf[i]), r.lambda_equivalent = FromStored(lambda[i]);
       r.avrf_peaks_used = static_cast<std::size_t>(std::max<std::int64_t>(0, peaks[i]));

@@ -79,7 +79,7 @@ Recording LoadRecording(const std::filesystem::path& path, const LoadOptions& op
   corrected.estimate_mounting = false;
   Recording result = ReadRecording(path, source, corrected);
   check.estimated = true;
-  if (check.status == "partial") {
+  if (check.status == MountingStatus::kPartial) {
     check.warning = "mounting estimate: " + check.message;
     result.warnings.push_back(check.warning);
   }

@@ -72,7 +72,7 @@ void WriteSummaryCsv(const std::filesystem::path& groups_path, const std::filesy
       const Eigen::Vector3d& a = t.mounting_check.angles_deg;
       const auto angle = [](double v) { return std::isfinite(v) ? std::optional<double>(v) : std::nullopt; };
       out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", Text(t.trial_id), Text(t.block_id),
-                         Text(t.position), t.b1_m, t.b2_m, t.h_m, Text(t.status), Number(t.opmf), Number(t.avrf),
+                         Text(t.position), t.b1_m, t.b2_m, t.h_m, Text(ToString(t.status)), Number(t.opmf), Number(t.avrf),
                          Number(t.lambda_equivalent), t.avrf_peaks_used, t.impacts, Text(t.message), Text(t.mounting),
                          t.mounting_check.estimated ? 1 : 0, Number(angle(a.x())), Number(angle(a.y())),
                          Number(angle(a.z())));

@@ -57,7 +57,7 @@ TrialRow MakeTrialRow(const TrialSpec& trial, const BlockSpec& block, const Metr
 
 TrialRow MakeFailedTrialRow(const TrialSpec& trial, const BlockSpec& block, const std::string& message) {
   TrialRow row = BaseRow(trial, block);
-  row.status = "load_error";
+  row.status = MetricsStatus::kLoadError;
   row.message = message;
   return row;
 }

@@ -107,7 +107,7 @@ double AngleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
 }
 
-MountingEstimate Fail(MountingEstimate e, const std::string& status, const std::string& message) {
+MountingEstimate Fail(MountingEstimate e, MountingStatus status, const std::string& message) {
   e.check.status = status;
   e.check.message = message;
   return e;
@@ -152,21 +152,21 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
   MountingEstimate e;
   e.check.given = r.mounting;
   if (!r.has_accel()) {
-    return Fail(e, "no_accelerometer", "the recording has no accelerometer, which shows the block's tilt at rest");
+    return Fail(e, MountingStatus::kNoAccelerometer, "the recording has no accelerometer, which shows the block's tilt at rest");
   }
   const std::size_t n = r.size();
   const double rate_hz = r.rate_hz > 0.0 ? r.rate_hz : 1.0;
   const auto samples = [&](double seconds) { return static_cast<std::size_t>(std::ceil(seconds * rate_hz)); };
   const std::size_t min_rest = samples(o.min_rest_s);
   const std::size_t margin = samples(o.rest_margin_s);
-  if (n < 2 * min_rest + 3) return Fail(e, "no_release", fmt::format("the recording has only {} samples", n));
+  if (n < 2 * min_rest + 3) return Fail(e, MountingStatus::kNoRelease, fmt::format("the recording has only {} samples", n));
 
   // First impact: the first local maximum of |ω| of at least a fraction of the largest.
   std::vector<double> rate(n);
   for (std::size_t k = 0; k < n; ++k) rate[k] = r.w_B[k].norm();
   const double max_rate = *std::max_element(rate.begin(), rate.end());
   if (!(max_rate > 5.0 * o.rest_rate_rad_s)) {
-    return Fail(e, "no_release",
+    return Fail(e, MountingStatus::kNoRelease,
                 fmt::format("|ω| never exceeds {:.3g} rad/s: the recording shows no release", 5.0 * o.rest_rate_rad_s));
   }
   std::size_t k_impact = n;
@@ -177,7 +177,7 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
     }
   }
   if (k_impact == n || k_impact < min_rest) {
-    return Fail(e, "no_release", "the first impact comes too early in the recording to see the block at rest before it");
+    return Fail(e, MountingStatus::kNoRelease, "the first impact comes too early in the recording to see the block at rest before it");
   }
 
   // Rest before the release: the bias first from the median over everything before the impact, then the
@@ -195,7 +195,7 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
   before.begin = before.end;
   while (before.begin > 0 && still(before.begin - 1)) --before.begin;
   if (before.size() < min_rest) {
-    return Fail(e, "no_rest",
+    return Fail(e, MountingStatus::kNoRest,
                 fmt::format("the block is still for only {:.3f} s before the motion that ends in the first impact "
                             "(from {:.3f} s); the tilt at rest needs at least {:.2f} s",
                             static_cast<double>(before.size()) / rate_hz, r.t_s[release], o.min_rest_s));
@@ -216,7 +216,7 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
   }
   constexpr std::size_t kMinPhase1Samples = 5;  // a direction from fewer is noise
   if (phase1.size() < kMinPhase1Samples) {
-    return Fail(e, "no_release", fmt::format("phase 1 before the first impact at {:.3f} s has only {} samples",
+    return Fail(e, MountingStatus::kNoRelease, fmt::format("phase 1 before the first impact at {:.3f} s has only {} samples",
                                              r.t_s[k_impact], phase1.size()));
   }
   e.phase1_samples = phase1.size();
@@ -305,14 +305,14 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
     if (!c.determined[static_cast<std::size_t>(i)]) free_axes.emplace_back(kAxisNames[i]);
   }
   if (free_axes.empty()) {
-    c.status = "ok";
+    c.status = MountingStatus::kOk;
     c.message = fmt::format("from {:.2f} s at rest before the release, {} samples of phase 1{}", 
                             static_cast<double>(before.size()) / rate_hz, phase1.size(),
                             has_after ? fmt::format(" and {:.2f} s at rest after the rocking",
                                                     static_cast<double>(after.size()) / rate_hz)
                                       : std::string());
   } else {
-    c.status = "partial";
+    c.status = MountingStatus::kPartial;
     std::string which;
     for (const std::string& a : free_axes) which += (which.empty() ? "" : ", ") + a;
     c.message = fmt::format(
@@ -356,7 +356,7 @@ std::string MountingWarning(const MountingCheck& check, const Mounting& suggeste
       "is turned on the block. Estimate the mounting with --mounting {} (manifest: mounting = \"{}\"), or give it "
       "as --mounting={}",
       check.given, off_deg, AngleList(check.angles_deg), std_deg,
-      check.status == "partial" ? "; " + check.message : std::string(), start, start,
+      check.status == MountingStatus::kPartial ? "; " + check.message : std::string(), start, start,
       permutation ? *permutation + " (the data agree with it within 1°)" : suggested.text());
 }
 

@@ -62,7 +62,7 @@ TEST(CampaignHdf5, TrialRoundTripsIntoARecording) {
   EXPECT_EQ(r.columns, trial.recording.columns);
   EXPECT_EQ(stored.euler_corrected_zyx, trial.metrics.correction.euler_corrected_zyx);
   ASSERT_EQ(stored.impact_times_s.size(), trial.metrics.correction.impacts_y.size());
-  EXPECT_EQ(stored.status, "ok");
+  EXPECT_EQ(stored.status, MetricsStatus::kOk);
   EXPECT_EQ(stored.avrf, trial.metrics.avrf.avrf);
   EXPECT_EQ(stored.opmf, trial.metrics.opmf.opmf);
   // Processing the stored recording again gives the same metrics.
@@ -126,12 +126,12 @@ TEST(CampaignHdf5, SummaryTablesRoundTripWithMissingValuesAsNaN) {
   const ScratchDir dir("campaign_hdf5");
   CampaignSummary summary;
   TrialRow a;
-  a.trial_id = "T1", a.block_id = "B1", a.position = "A", a.status = "ok", a.b2_m = 0.03;
+  a.trial_id = "T1", a.block_id = "B1", a.position = "A", a.status = MetricsStatus::kOk, a.b2_m = 0.03;
   a.opmf = 0.05, a.avrf = 0.93, a.lambda_equivalent = 0.8, a.avrf_peaks_used = 10, a.impacts = 30;
   TrialRow b = a;
-  b.trial_id = "T2", b.status = "too_few_peaks", b.message = "only 2 peaks", b.avrf.reset(), b.lambda_equivalent.reset();
+  b.trial_id = "T2", b.status = MetricsStatus::kTooFewPeaks, b.message = "only 2 peaks", b.avrf.reset(), b.lambda_equivalent.reset();
   b.mounting = "-x,-y,z";
-  b.mounting_check.status = "ok";
+  b.mounting_check.status = MountingStatus::kOk;
   b.mounting_check.angles_deg = {0.1, -0.2, 1.5};
   summary.trials = {a, b};
   summary.groups = GroupTrials(summary.trials);
@@ -240,7 +240,7 @@ TEST(CampaignHdf5, TheMountingAndItsEstimateAreStoredWithTheTrial) {
   Trial trial = MakeTrial();
   trial.recording.mounting = "0.999657325,0,0,0.0261769483";
   MountingCheck& c = trial.recording.mounting_check;
-  c.status = "ok";
+  c.status = MountingStatus::kOk;
   c.given = "identity";
   c.estimated = true;
   c.angles_deg = {0.01, -0.02, 3.0};

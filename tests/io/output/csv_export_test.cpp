@@ -58,7 +58,7 @@ TEST(CsvExport, SummaryCsvLeavesMissingValuesEmptyAndQuotesText) {
   const testing::ScratchDir dir("csv");
   CampaignSummary s;
   TrialRow t;
-  t.trial_id = "T1", t.block_id = "B1", t.position = "A", t.status = "too_few_peaks";
+  t.trial_id = "T1", t.block_id = "B1", t.position = "A", t.status = MetricsStatus::kTooFewPeaks;
   t.message = "only 2 peaks, need 3";
   t.opmf = 0.05;
   s.trials = {t};

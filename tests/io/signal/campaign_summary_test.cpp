@@ -16,7 +16,7 @@ TrialRow Row(const std::string& trial, const std::string& block, const std::stri
   r.b2_m = block == "B1" ? 0.03 : 0.06;
   r.opmf = opmf;
   r.avrf = avrf;
-  r.status = avrf ? "ok" : "too_few_peaks";
+  r.status = avrf ? MetricsStatus::kOk : MetricsStatus::kTooFewPeaks;
   return r;
 }
 
@@ -62,7 +62,7 @@ TEST(CampaignSummary, FailedTrialKeepsItsMessage) {
   b.id = "B1";
   b.b2_m = 0.03;
   const TrialRow r = MakeFailedTrialRow(t, b, "raw/T9: no such file");
-  EXPECT_EQ(r.status, "load_error");
+  EXPECT_EQ(r.status, MetricsStatus::kLoadError);
   EXPECT_EQ(r.message, "raw/T9: no such file");
   EXPECT_FALSE(r.opmf.has_value());
 }

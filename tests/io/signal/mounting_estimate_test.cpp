@@ -88,7 +88,7 @@ TEST(MountingEstimate, RecoversASmallRotationAboutEachAxisWithItsStandardError) 
   for (const Eigen::Vector3d& truth_deg :
        {Eigen::Vector3d(0, 0, 3), Eigen::Vector3d(2, 0, 0), Eigen::Vector3d(0, -2.5, 0), Eigen::Vector3d(1.2, -3, 2.2)}) {
     const MountingEstimate e = EstimateMounting(MakeRecording({}, RotationFromDeg(truth_deg)));
-    ASSERT_EQ(e.check.status, "ok") << e.check.message;
+    ASSERT_EQ(e.check.status, MountingStatus::kOk) << e.check.message;
     for (int i = 0; i < 3; ++i) {
       EXPECT_NEAR(e.check.angles_deg[i], truth_deg[i], kAngleTolerance_deg) << truth_deg.transpose();
       EXPECT_GT(e.check.std_error_deg[i], 0.0);
@@ -105,7 +105,7 @@ TEST(MountingEstimate, TheGyroBiasAtRestDoesNotTiltThePhaseOneAxis) {
   HandMadeTrial t;
   t.bias_rad_s = Eigen::Vector3d(0.3, -0.25, 0.3) * kRadPerDeg;  // 0.3 °/s ≈ 0.2° of a 1.4 rad/s axis unremoved
   const MountingEstimate e = EstimateMounting(MakeRecording(t, Eigen::Matrix3d::Identity()));
-  ASSERT_EQ(e.check.status, "ok") << e.check.message;
+  ASSERT_EQ(e.check.status, MountingStatus::kOk) << e.check.message;
   EXPECT_LT(e.check.angles_deg.norm(), kAngleTolerance_deg);
   EXPECT_LT((e.gyro_bias_rad_s - t.bias_rad_s).norm(), 1e-3);
 }
@@ -116,7 +116,7 @@ TEST(MountingEstimate, AnUpsideDownSensorWithAMisalignmentIsFoundFromFarAway) {
   const Eigen::Matrix3d small = RotationFromDeg(Eigen::Vector3d(-1.5, 2.0, 3.5));
   const Eigen::Matrix3d R_BBg = small * upside_down;
   const MountingEstimate e = EstimateMounting(MakeRecording({}, R_BBg));
-  ASSERT_EQ(e.check.status, "ok") << e.check.message;
+  ASSERT_EQ(e.check.status, MountingStatus::kOk) << e.check.message;
   const double error_deg = Eigen::AngleAxisd(e.R_BBg * R_BBg.transpose()).angle() / kRadPerDeg;
   EXPECT_LT(error_deg, kAngleTolerance_deg);
   EXPECT_NEAR(MountingDisagreementDeg(e.check), Eigen::AngleAxisd(R_BBg).angle() / kRadPerDeg, kAngleTolerance_deg);
@@ -130,7 +130,7 @@ TEST(MountingEstimate, PlanarRockingWithRestAfterwardsFixesAllThreeAngles) {
   t.lateral = false;
   const Eigen::Vector3d truth_deg(-1.0, 2.0, 4.0);
   const MountingEstimate e = EstimateMounting(MakeRecording(t, RotationFromDeg(truth_deg)));
-  ASSERT_EQ(e.check.status, "ok") << e.check.message;
+  ASSERT_EQ(e.check.status, MountingStatus::kOk) << e.check.message;
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(e.check.angles_deg[i], truth_deg[i], kAngleTolerance_deg);
 }
 
@@ -140,7 +140,7 @@ TEST(MountingEstimate, WithoutRestAfterTheRockingTheAngleAboutYIsOpenAndSaidSo) 
   t.rest_after_s = 0.0;
   const Eigen::Vector3d truth_deg(-1.0, 2.0, 4.0);
   const MountingEstimate e = EstimateMounting(MakeRecording(t, RotationFromDeg(truth_deg)));
-  ASSERT_EQ(e.check.status, "partial");
+  ASSERT_EQ(e.check.status, MountingStatus::kPartial);
   EXPECT_THAT(e.check.message, HasSubstr("about block y"));
   EXPECT_THAT(e.check.message, HasSubstr("does not end at rest"));
   EXPECT_TRUE(e.check.determined[0]);
@@ -156,18 +156,18 @@ TEST(MountingEstimate, WithoutRestAfterTheRockingTheAngleAboutYIsOpenAndSaidSo) 
 TEST(MountingEstimate, RecordingsItCannotUseGetAStatusNotAnException) {
   Recording no_accel = MakeRecording({}, Eigen::Matrix3d::Identity());
   no_accel.accel_B.clear();
-  EXPECT_EQ(EstimateMounting(no_accel).check.status, "no_accelerometer");
+  EXPECT_EQ(EstimateMounting(no_accel).check.status, MountingStatus::kNoAccelerometer);
 
   Recording still = MakeRecording({}, Eigen::Matrix3d::Identity());
   for (Eigen::Vector3d& w : still.w_B) w = Eigen::Vector3d(0.001, 0.0, 0.0);
   const MountingEstimate e = EstimateMounting(still);
-  EXPECT_EQ(e.check.status, "no_release");
+  EXPECT_EQ(e.check.status, MountingStatus::kNoRelease);
   EXPECT_FALSE(e.check.has_estimate());
   EXPECT_TRUE(std::isnan(MountingDisagreementDeg(e.check)));
 
   HandMadeTrial short_rest;
   short_rest.rest_before_s = 0.1;
-  EXPECT_EQ(EstimateMounting(MakeRecording(short_rest, Eigen::Matrix3d::Identity())).check.status, "no_rest");
+  EXPECT_EQ(EstimateMounting(MakeRecording(short_rest, Eigen::Matrix3d::Identity())).check.status, MountingStatus::kNoRest);
 }
 
 TEST(MountingEstimate, TheWarningSaysByHowMuchAndHowToFixIt) {

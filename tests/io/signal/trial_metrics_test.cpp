@@ -17,7 +17,7 @@ TEST(TrialMetrics, PlanarTrialGivesBothMetrics) {
   const auto measured = testing::MeasurePlanar(motion, spec.rate_hz, testing::RealisticImu());
   const MetricsSummary s = ComputeTrialMetrics(measured.recording, block, {});
   EXPECT_TRUE(s.ok()) << s.message;
-  EXPECT_EQ(s.status, "ok");
+  EXPECT_EQ(s.status, MetricsStatus::kOk);
   EXPECT_TRUE(s.opmf.ok());
   EXPECT_TRUE(s.avrf.ok());
   EXPECT_NEAR(s.avrf.avrf, motion.r, 1e-2);
@@ -31,7 +31,7 @@ TEST(TrialMetrics, WithoutABlockOnlyTheOpmfIsComputed) {
   const MetricsSummary s = ComputeTrialMetrics(measured.recording, std::nullopt, {});
   EXPECT_TRUE(s.opmf.ok());
   EXPECT_EQ(s.avrf.status, AvrfStatus::kNoBlock);
-  EXPECT_EQ(s.status, "no_block");
+  EXPECT_EQ(s.status, MetricsStatus::kNoBlock);
   EXPECT_NE(s.message.find("--b1"), std::string::npos);
 }
 
@@ -41,7 +41,7 @@ TEST(TrialMetrics, TheFirstFailingMetricNamesTheStatus) {
   spec.release_s = 100.0;
   const auto motion = testing::SimulatePlanarRocking(block, spec);
   const MetricsSummary s = ComputeTrialMetrics(testing::MeasurePlanar(motion, spec.rate_hz, {}).recording, block, {});
-  EXPECT_EQ(s.status, "no_impact");
+  EXPECT_EQ(s.status, MetricsStatus::kNoImpact);
   EXPECT_FALSE(s.message.empty());
 }
 

@@ -23,6 +23,7 @@
 #include "rockfit/io/load_options.hpp"
 #include "rockfit/io/opmf.hpp"
 #include "rockfit/io/recording.hpp"
+#include "rockfit/io/trial_metrics.hpp"
 #include "rockfit/quake/fragility_study.hpp"
 #include "rockfit/quake/lognormal_fragility.hpp"
 #include "scratch_dir.hpp"
@@ -117,6 +118,12 @@ TEST(EnumNames, IoEnumsRoundTripThroughTextJsonAndHdf5) {
                          OrientationChoice::kRotationMatrix, OrientationChoice::kNone},
                         [](const std::string& name) { return ParseOrientationChoice(name).value(); },
                         [](OrientationChoice c) { return OrientationChoiceName(c); });
+  ExpectRoundTrips("MountingStatus", {MountingStatus::kOk, MountingStatus::kPartial, MountingStatus::kNoAccelerometer,
+                                      MountingStatus::kNoRelease, MountingStatus::kNoRest, MountingStatus::kNotChecked},
+                   ByFromString(MountingStatus::kOk));
+  ExpectRoundTrips("MetricsStatus", {MetricsStatus::kOk, MetricsStatus::kNoImpact, MetricsStatus::kNoInPlaneMotion,
+                                     MetricsStatus::kTooFewPeaks, MetricsStatus::kInvalidUplift, MetricsStatus::kNoBlock,
+                                     MetricsStatus::kLoadError}, ByFromString(MetricsStatus::kOk));
   ExpectRoundTrips("OpmfStatus", {OpmfStatus::kOk, OpmfStatus::kNoImpact, OpmfStatus::kNoInPlaneMotion},
                    ByFromString(OpmfStatus::kOk));
 }

@@ -26,7 +26,7 @@ nlohmann::json MetricsJson(const std::string& trial_id, const io::Recording& rec
   out["format"] = rec.format;
   out["rate_hz"] = rec.rate_hz;
   out["samples"] = rec.size();
-  out["status"] = m.status;
+  out["status"] = io::ToString(m.status);
   out["message"] = m.message;
   out["opmf"] = ValueOrNull(m.opmf.ok(), m.opmf.opmf);
   out["opmf_status"] = io::ToString(m.opmf.status);

@@ -20,7 +20,7 @@ nlohmann::json MountingJson(const io::Recording& r) {
   return {{"applied", r.mounting},
           {"given", c.given},
           {"estimated", c.estimated},
-          {"status", c.status},
+          {"status", io::ToString(c.status)},
           {"message", c.message},
           {"angles_deg", triple(c.angles_deg)},
           {"std_error_deg", triple(c.std_error_deg)},
@@ -34,7 +34,7 @@ std::string MountingText(const io::Recording& r) {
   const io::MountingCheck& c = r.mounting_check;
   const std::string applied = c.estimated ? fmt::format("auto from {} → {}", c.given, r.mounting) : r.mounting;
   if (!c.has_estimate()) {
-    return c.status == "not_checked" ? applied : fmt::format("{}  (not checked: {})", applied, c.message);
+    return c.status == io::MountingStatus::kNotChecked ? applied : fmt::format("{}  (not checked: {})", applied, c.message);
   }
   std::string angles;
   for (int i = 0; i < 3; ++i) {

@@ -282,7 +282,7 @@ void WriteOverview(Page& page, const ReportData& data) {
   // Warnings counted by kind: the fits' warnings and the trials whose metrics or mounting were not clean.
   std::map<std::string, int> counts;
   for (const ReportTrial& t : data.trials) {
-    if (t.row.status != "ok") ++counts["metrics: " + t.row.status];
+    if (t.row.status != io::MetricsStatus::kOk) ++counts[std::string("metrics: ") + io::ToString(t.row.status)];
     if (!t.row.mounting_check.warning.empty()) ++counts["mounting"];
     if (t.fit) {
       std::set<std::string> kinds;
@@ -398,10 +398,12 @@ void WriteTrial(Page& page, const ReportTrial& t) {
                      id, EscapeHtml(r.trial_id), id, id, EscapeHtml(r.trial_id));
   out << "<dl class=\"facts\">\n";
   out << "<dt>block, position</dt><dd>" << EscapeHtml(r.block_id) << ", " << EscapeHtml(r.position) << "</dd>\n";
-  out << "<dt>metrics</dt><dd>" << EscapeHtml(r.status) << (r.message.empty() ? "" : " — " + EscapeHtml(r.message)) << "</dd>\n";
+  out << "<dt>metrics</dt><dd>" << EscapeHtml(io::ToString(r.status)) << (r.message.empty() ? "" : " — " + EscapeHtml(r.message)) << "</dd>\n";
   out << fmt::format("<dt>OPMF, AVRF</dt><dd>Φ = {}, r = {} ({} impacts detected)</dd>\n", Num(r.opmf), Num(r.avrf), r.impacts);
   std::string mounting = r.mounting + (r.mounting_check.estimated ? " (estimated from the data)" : " (given)");
-  if (r.mounting_check.status != "not_checked") mounting += "; check: " + r.mounting_check.status;
+  if (r.mounting_check.status != io::MountingStatus::kNotChecked) {
+    mounting += std::string("; check: ") + io::ToString(r.mounting_check.status);
+  }
   if (!r.mounting_check.message.empty()) mounting += " — " + r.mounting_check.message;
   out << "<dt>mounting</dt><dd>" << EscapeHtml(mounting) << "</dd>\n";
   if (t.fit) {

@@ -251,7 +251,7 @@ ReportData ReadReportData(const ReportInputs& inputs) {
         a.impact_t_s = s.impact_times_s;
         if (a.raw_zyx_rad.size() == a.t_s.size() && a.corrected_zyx_rad.size() == a.t_s.size()) t.angles = std::move(a);
       });
-    } else if (row.status != "load_error") {
+    } else if (row.status != io::MetricsStatus::kLoadError) {
       data.gaps.push_back({"trial " + row.trial_id, "its samples are not in " + inputs.summary.string() +
                                                         " (the angles figure needs /trials/" + row.trial_id + ")"});
     }

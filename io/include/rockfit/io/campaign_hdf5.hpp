@@ -59,7 +59,7 @@ struct StoredTrial {
   std::vector<Eigen::Vector3d> euler_corrected_zyx;
   std::vector<double> impact_times_s;        // anchors of φ_y
   std::vector<double> phi_x_anchor_times_s;  // anchors of φ_x
-  std::string status;
+  MetricsStatus status = MetricsStatus::kOk;
   std::string message;
   std::optional<double> opmf;
   std::optional<double> avrf;

@@ -18,7 +18,7 @@ struct TrialRow {
   std::string block_id;
   std::string position;
   double b1_m = 0.0, b2_m = 0.0, h_m = 0.0;
-  std::string status;    // of the metrics ("ok", "too_few_peaks", …) or "load_error"
+  MetricsStatus status = MetricsStatus::kOk;  // of the metrics, or kLoadError
   std::string message;   // why a value is missing
   std::optional<double> opmf;
   std::optional<double> avrf;
@@ -48,7 +48,7 @@ struct CampaignSummary {
 };
 
 TrialRow MakeTrialRow(const TrialSpec& trial, const BlockSpec& block, const MetricsSummary& metrics);
-// A trial whose files could not be read: status "load_error" and the reader's message.
+// A trial whose files could not be read: status load_error and the reader's message.
 TrialRow MakeFailedTrialRow(const TrialSpec& trial, const BlockSpec& block, const std::string& message);
 
 // Groups the rows per (block, position) with the statistics above.

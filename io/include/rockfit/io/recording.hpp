@@ -20,11 +20,17 @@ struct Gap {
   std::size_t missing = 0;   // samples missing at the nominal rate
 };
 
+// The outcome of the mounting check: an estimate of every angle, of some of them, or why there is none.
+enum class MountingStatus { kOk, kPartial, kNoAccelerometer, kNoRelease, kNoRest, kNotChecked };
+// "ok", "partial", "no_accelerometer", "no_release", "no_rest", "not_checked".
+const char* ToString(MountingStatus status);
+bool FromString(std::string_view text, MountingStatus* status);  // the inverse of ToString
+
 // What the recording says about the mounting (mounting_estimate.hpp), filled by LoadRecording for IMU files
 // with an accelerometer. The angles are the rotation vector, in degrees and block axes, that turns the given
 // mounting into the one the data show (R_BS = Rot(angles)·R_BS,given): zero when they agree.
 struct MountingCheck {
-  std::string status = "not_checked";  // "ok", "partial", "no_accelerometer", "no_release", "no_rest", "not_checked"
+  MountingStatus status = MountingStatus::kNotChecked;
   std::string message;                 // what the data could not fix, or why there is no estimate
   std::string given = "identity";      // the mounting given (Mounting::text()), the estimate's starting point
   bool estimated = false;              // --mounting auto: Recording::mounting is the estimate
@@ -34,7 +40,7 @@ struct MountingCheck {
   double release_tilt_rad = std::numeric_limits<double>::quiet_NaN();  // α at rest from the accelerometer
   std::string warning;  // set when the data disagree with a mounting that was given (not estimated)
 
-  bool has_estimate() const { return status == "ok" || status == "partial"; }
+  bool has_estimate() const { return status == MountingStatus::kOk || status == MountingStatus::kPartial; }
 };
 
 // Where a recording's sample rate came from. The names are used only at the edges (HDF5 attribute, JSON, text,

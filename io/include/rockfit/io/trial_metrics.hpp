@@ -2,6 +2,8 @@
 // `rockfit summary` and the HDF5 store report per trial.
 #pragma once
 
+#include <string_view>
+
 #include <optional>
 #include <string>
 
@@ -19,15 +21,22 @@ struct MetricsOptions {
   void Validate() const;
 };
 
+// The outcome of a trial's metrics: both have values, or the first reason one has none (the statuses of the OPMF
+// and the AVRF), or — for a trial of a campaign — its files could not be read.
+enum class MetricsStatus { kOk, kNoImpact, kNoInPlaneMotion, kTooFewPeaks, kInvalidUplift, kNoBlock, kLoadError };
+// "ok", "no_impact", "no_in_plane_motion", "too_few_peaks", "invalid_uplift", "no_block", "load_error".
+const char* ToString(MetricsStatus status);
+bool FromString(std::string_view text, MetricsStatus* status);  // the inverse of ToString
+
 struct MetricsSummary {
   DriftCorrection correction;
   OpmfResult opmf;
   AvrfResult avrf;
   // "ok" when both metrics have values; otherwise the first status that is not ok ("no_impact",
   // "too_few_peaks", …), and the message says why.
-  std::string status;
+  MetricsStatus status = MetricsStatus::kOk;
   std::string message;
-  bool ok() const { return status == "ok"; }
+  bool ok() const { return status == MetricsStatus::kOk; }
 };
 
 // Without a block only the OPMF is computed, and the AVRF status says that the block geometry is missing
