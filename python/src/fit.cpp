@@ -1,5 +1,5 @@
 // rockfit.fit, rockfit.fit_campaign and rockfit.evaluate: the fitting problem of `rockfit fit` / `rockfit batch`
-// (tools/src/fit_setup.cpp, the same code), solved with the GIL released; Ctrl-C stops a running fit.
+// (tools/app/src/fit_setup.cpp, the same code), solved with the GIL released; Ctrl-C stops a running fit.
 //
 // The result holds every key of `rockfit fit --json` (FitResultJson) and, added to it, every key of the fitting
 // library's own summary (FitSummary::ToJson): new per-parameter or top-level fields of either appear in Python

@@ -1,5 +1,5 @@
 // rockfit.validate: the predictive check of a campaign, as `rockfit validate MANIFEST --json` (the same code,
-// tools/src/validation_run.cpp, and the same keys).
+// tools/app/src/validation_run.cpp, and the same keys).
 #include <fmt/format.h>
 
 #include "bindings.hpp"

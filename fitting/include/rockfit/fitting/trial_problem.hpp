@@ -1,6 +1,6 @@
 // The fitting problem of one recorded trial, ready for Fit(): the data estimate (initial_guess.hpp), the gyro
 // bias measured at rest removed from the signal, the window [t0, t_end] and the hybrid simulator as the model.
-// `rockfit fit` and `rockfit batch` build their problems here (tools/src/fit_setup.cpp).
+// `rockfit fit` and `rockfit batch` build their problems here (tools/app/src/fit_setup.cpp).
 #pragma once
 
 #include <memory>
