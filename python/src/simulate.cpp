@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "bindings.hpp"
+#include "rockfit/app/option_grammar.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/simulator.hpp"
 
@@ -16,13 +17,6 @@ core::StopCondition ParseStop(const std::string& text) {
   core::StopCondition stop = core::StopCondition::kPhase4;
   if (core::FromString(text, &stop)) return stop;
   throw InvalidArgument("stop must be 'phase4', 'rest', 'overturned' or 't_max', got '" + text + "'");
-}
-
-core::FacetTauRule ParseFacetTau(const std::string& text) {
-  core::FacetTauRule rule = core::FacetTauRule::kNoSpin;
-  if (core::FromString(text, &rule)) return rule;
-  throw InvalidArgument("facet_tau must be 'no-spin' (τ from (24)) or 'fixed' (τ = 0, the paper's Sect. 5; also "
-                        "written 'zero'), got '" + text + "'");
 }
 
 py::list ImpactRecords(const std::vector<core::ImpactRecord>& impacts) {
@@ -85,7 +79,7 @@ py::object Simulate(const core::Block& block, double alpha, double lambda, doubl
   params.tau_edge = tau_edge;
   params.lambda_lat = lambda_lat;
   params.lambda_lon = lambda_lon;
-  params.facet_tau_rule = ParseFacetTau(facet_tau);
+  params.facet_tau_rule = app::ParseFacetTauRule(facet_tau);
   core::SimulationOptions options;
   options.rate_hz = rate;
   if (!sample_times.is_none()) options.sample_times_s = ToDoubles(sample_times, "sample_times");

@@ -152,7 +152,7 @@ std::string TrajectoryCsv(const core::Trajectory& trajectory) {
 int RunSimulate(SimulateCommand& cmd) {
   const core::Block block = MakeBlock(cmd.block);
   if (cmd.json) cmd.format = "json";
-  core::FromString(cmd.facet_tau, &cmd.params.facet_tau_rule);  // one of the names the option accepts
+  cmd.params.facet_tau_rule = ParseFacetTauRule(cmd.facet_tau);
   const auto [first, second] = ParseEdge(cmd.release_edge);
   cmd.options.release_edge_first = first;
   cmd.options.release_edge_second = second;

@@ -69,10 +69,7 @@ std::vector<quake::FragilityBlock> MakeBlocks(const FragilityArgs& cmd) {
     quake::FragilityBlock b;
     b.id = id.empty() ? "block" : id;
     b.block = MakeBlock(args);
-    if (!core::FromString(cmd.facet_tau, &b.facet_tau_rule)) {
-      throw InvalidArgument("the facet-τ rule is no-spin (24) or fixed (τ = 0, Sect. 5; also written zero), got '" +
-                            cmd.facet_tau + "'");
-    }
+    b.facet_tau_rule = ParseFacetTauRule(cmd.facet_tau);
     if (!cmd.fits.empty()) {
       const std::string fit_block = group_block.empty() ? b.id : group_block;
       const FittedGroupRanges r = ReadFittedGroupRanges(cmd.fits, fit_block, group_position);
@@ -170,9 +167,7 @@ quake::FragilityStudyOptions MakeFragilityStudy(const FragilityArgs& cmd) {
   study.seed = cmd.seed;
   study.response.tail_s = cmd.tail_s;
   study.response.simulation.rate_hz = cmd.rate_hz;
-  if (!core::FromString(cmd.overturn, &study.response.simulation.overturn)) {
-    throw InvalidArgument("the overturning rule is support or side, got '" + cmd.overturn + "'");
-  }
+  study.response.simulation.overturn = ParseOverturnRule(cmd.overturn);
   study.Validate();
   return study;
 }

@@ -60,4 +60,17 @@ int ParsePivotEdge(const std::string& text) {
   return core::Block::WrapVertex(vertices[0] + 1) == vertices[1] ? vertices[1] : vertices[0];
 }
 
+core::FacetTauRule ParseFacetTauRule(const std::string& text) {
+  core::FacetTauRule rule = core::FacetTauRule::kNoSpin;
+  if (core::FromString(text, &rule)) return rule;
+  throw InvalidArgument("the facet-τ rule (--facet-tau, facet_tau) is no-spin (τ from (24), the default) or fixed "
+                        "(τ = 0, the paper's Sect. 5; also written zero), got '" + text + "'");
+}
+
+core::OverturnRule ParseOverturnRule(const std::string& text) {
+  core::OverturnRule rule = core::OverturnRule::kComOverSupport;
+  if (core::FromString(text, &rule)) return rule;
+  throw InvalidArgument("the overturning rule (--overturn, overturn) is support (the COM passes over the support) or "
+                        "side (the block lies on a side), got '" + text + "'");
+}
 }  // namespace rockfit::app

@@ -6,6 +6,7 @@
 #include "rockfit/app/activity.hpp"
 #include "rockfit/app/fitted_parameters.hpp"
 #include "rockfit/app/json_values.hpp"
+#include "rockfit/app/option_grammar.hpp"
 #include "rockfit/app/run_limits.hpp"
 #include "rockfit/core/errors.hpp"
 
@@ -128,18 +129,13 @@ RespondRun RunRespond(const core::Block& block, const RespondArgs& args) {
   } else if (!cmd.trial.empty() || !cmd.group.empty()) {
     throw InvalidArgument("--trial and --group need --fits FILE");
   }
-  if (!core::FromString(cmd.facet_tau, &cmd.params.facet_tau_rule)) {
-    throw InvalidArgument("the facet-τ rule is no-spin (24) or fixed (τ = 0, Sect. 5; also written zero), got '" +
-                          cmd.facet_tau + "'");
-  }
+  cmd.params.facet_tau_rule = ParseFacetTauRule(cmd.facet_tau);
   if (cmd.start != "flat" && cmd.start != "tilted") throw InvalidArgument("the start is flat or tilted, got '" + cmd.start + "'");
   if (cmd.until != "rest" && cmd.until != "t_max") throw InvalidArgument("until is rest or t_max, got '" + cmd.until + "'");
   if (cmd.round_off_runs < 0) throw InvalidArgument("the round-off runs must be ≥ 0");
   cmd.options.start = cmd.start == "flat" ? core::GroundStart::kFlatAtRest : core::GroundStart::kAsOptions;
   cmd.options.end_at_rest = cmd.until == "rest";
-  if (!core::FromString(cmd.overturn, &cmd.options.simulation.overturn)) {
-    throw InvalidArgument("the overturning rule is support or side, got '" + cmd.overturn + "'");
-  }
+  cmd.options.simulation.overturn = ParseOverturnRule(cmd.overturn);
   RespondRun run;
   run.ground = LoadGroundMotion(cmd.ground);
   const LoadedGroundMotion& ground = run.ground;

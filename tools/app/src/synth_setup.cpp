@@ -1,6 +1,7 @@
 #include "rockfit/app/synth_setup.hpp"
 
 #include "rockfit/app/json_values.hpp"
+#include "rockfit/app/option_grammar.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/mounting.hpp"
 
@@ -13,10 +14,7 @@ core::ModelParameters MakeSynthParameters(const SynthArgs& args) {
   params.lambda_lat = args.lambda_lat;
   params.lambda_lon = args.lambda_lon;
   params.tau_edge = args.tau_edge;
-  if (!core::FromString(args.facet_tau, &params.facet_tau_rule)) {
-    throw InvalidArgument("the facet-τ rule (--facet-tau, facet_tau) is no-spin (τ from (24), the default) or fixed (τ = 0, the paper's "
-                          "Sect. 5; also written zero), got '" + args.facet_tau + "'");
-  }
+  params.facet_tau_rule = ParseFacetTauRule(args.facet_tau);
   return params;
 }
 
