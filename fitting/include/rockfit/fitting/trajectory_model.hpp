@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "rockfit/core/simulator.hpp"
+#include "rockfit/fitting/model_failure.hpp"
 
 namespace rockfit::fitting {
 
@@ -22,15 +23,18 @@ struct ModelEvent {
 struct ModelOutput {
   std::vector<Eigen::Vector3d> w_B;  // one per query time [rad/s]; valid only when ok()
   std::vector<ModelEvent> events;    // in time order
-  // Empty when the run succeeded. Otherwise a short category that failures are counted by ("overturned",
-  // "impact infeasible", "t_max", …) and a human-readable detail.
-  std::string failure;
+  // kNone when the run succeeded. Otherwise why not (with the failing impact's status for an impact failure)
+  // and a human-readable detail.
+  ModelFailure failure = ModelFailure::kNone;
+  core::ImpactStatus impact_status = core::ImpactStatus::kOk;
   std::string failure_detail;
-  bool ok() const { return failure.empty(); }
+  bool ok() const { return failure == ModelFailure::kNone; }
+  std::string failure_category() const { return FailureCategory(failure, impact_status); }
   void Clear() {
     w_B.clear();
     events.clear();
-    failure.clear();
+    failure = ModelFailure::kNone;
+    impact_status = core::ImpactStatus::kOk;
     failure_detail.clear();
   }
 };
