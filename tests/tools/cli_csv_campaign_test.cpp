@@ -21,8 +21,10 @@ std::string XimuManifest() { return (SourceDir() / "data-samples" / "manifest.to
 // "Attitude from the gyro").
 constexpr double kOpmfAgreement = 0.003;
 constexpr double kAvrfRelativeAgreement = 0.01;
-// block3-A-1 rocks the most out of plane (OPMF 0.17): measured 0.0049 apart, most of it the integral of the
-// synthetic gyro's ringing, which the synthetic x-IMU attitude lacks (io/README.md, "Attitude from the gyro").
+// block3-A-1 rocks the most out of plane (OPMF 0.17): measured 0.0049 apart (integrated 0.0039 from the truth, the
+// files 0.0010). The cause is the net integral of the synthetic gyro's ringing, a step right after an impact that
+// the drift correction spreads linearly to the next anchor (io/README.md, "Attitude from the gyro"); the issue's
+// bound of 0.003 is not met for this trial.
 constexpr double kOpmfAgreementMostOutOfPlane = 0.006;
 
 TEST(CliCsvCampaign, SummaryOfTheGyroOnlyFilesAgreesWithTheXimuFilesOfTheSameTrials) {
@@ -90,6 +92,21 @@ TEST(CliCsvCampaign, MetricsOfAnXimuTrialReadWithoutItsAttitudeFiles) {
   const auto b = nlohmann::json::parse(g.out);
   EXPECT_NEAR(b["opmf"].get<double>(), a["opmf"].get<double>(), kOpmfAgreement);
   EXPECT_NEAR(b["avrf"].get<double>() / a["avrf"].get<double>(), 1.0, kAvrfRelativeAgreement);
+}
+
+TEST(CliCsvCampaign, OrientationNoneHoldsForAManifestTrialAsForAPath) {
+  const std::string prefix = (SourceDir() / "data-samples" / "recordings" / "block3-A-1").string();
+  const CommandResult by_path = RunRockfit({"metrics", prefix, "--manifest", XimuManifest(), "--block", "block3",
+                                            "--orientation", "none", "--json"});
+  ASSERT_EQ(by_path.exit_code, 0) << by_path.err;
+  const CommandResult by_trial =
+      RunRockfit({"metrics", XimuManifest(), "--trial", "block3-A-1", "--orientation", "none", "--json"});
+  ASSERT_EQ(by_trial.exit_code, 0) << by_trial.err;
+  EXPECT_NE(by_trial.err.find("integrated from the gyro"), std::string::npos) << by_trial.err;
+  EXPECT_EQ(nlohmann::json::parse(by_trial.out)["opmf"], nlohmann::json::parse(by_path.out)["opmf"]);
+  const CommandResult bad = RunRockfit({"metrics", XimuManifest(), "--trial", "block3-A-1", "--orientation", "sideways"});
+  EXPECT_EQ(bad.exit_code, 1) << bad.err;
+  EXPECT_NE(bad.err.find("--orientation must be"), std::string::npos) << bad.err;
 }
 
 }  // namespace
