@@ -3,12 +3,15 @@
 // recognised, summary agrees with the same trials read from their x-IMU files, a trial fits.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
+#include "scratch_dir.hpp"
 #include "test_paths.hpp"
 
 namespace rockfit::testing {
@@ -107,6 +110,40 @@ TEST(CliCsvCampaign, OrientationNoneHoldsForAManifestTrialAsForAPath) {
   const CommandResult bad = RunRockfit({"metrics", XimuManifest(), "--trial", "block3-A-1", "--orientation", "sideways"});
   EXPECT_EQ(bad.exit_code, 1) << bad.err;
   EXPECT_NE(bad.err.find("--orientation must be"), std::string::npos) << bad.err;
+}
+
+TEST(CliCsvCampaign, ASensorLoggerExportIsLevelledByTheTotalAccelerationBesideItsGyroscope) {
+  const std::string gyro = (SourceDir() / "data-samples" / "csv" / "sensor-logger" / "Gyroscope.csv").string();
+  const CommandResult inspect = RunRockfit({"inspect", gyro, "--json"});
+  ASSERT_EQ(inspect.exit_code, 0) << inspect.err;
+  const auto json = nlohmann::json::parse(inspect.out);
+  EXPECT_NE(json["recognised"].dump().find("TotalAcceleration.csv beside the gyroscope file"), std::string::npos)
+      << json["recognised"];
+  EXPECT_NE(json["columns"].dump().find("TotalAcceleration.csv: x"), std::string::npos) << json["columns"];
+  const CommandResult metrics = RunRockfit({"metrics", CsvManifest(), "--trial", "block1-A-1", "--json"});
+  ASSERT_EQ(metrics.exit_code, 0) << metrics.err;
+  EXPECT_NE(metrics.err.find("levelled by the accelerometer"), std::string::npos) << metrics.err;
+}
+
+TEST(CliCsvCampaign, ASensorLoggerAccelerometerFromAnotherRecordingIsRefusedWithBothLines) {
+  const ScratchDir dir("cli_sensor_logger");
+  const auto samples = SourceDir() / "data-samples" / "csv" / "sensor-logger";
+  std::filesystem::copy_file(samples / "Gyroscope.csv", dir.path() / "Gyroscope.csv");
+  // The accelerometer's times moved on by 10 s: the same header and units, another recording.
+  std::ifstream in(samples / "TotalAcceleration.csv");
+  std::ofstream out(dir.path() / "TotalAcceleration.csv");
+  std::string line;
+  std::getline(in, line);
+  out << line << "\n";
+  while (std::getline(in, line)) {
+    const std::size_t comma = line.find(',');
+    out << std::stoll(line.substr(0, comma)) + 10'000'000'000LL << line.substr(comma) << "\n";
+  }
+  out.close();
+  const CommandResult r = RunRockfit({"inspect", (dir.path() / "Gyroscope.csv").string()});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("TotalAcceleration.csv:2:1"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("Gyroscope.csv:2:1"), std::string::npos) << r.err;
 }
 
 }  // namespace
