@@ -51,3 +51,7 @@ def test_a_sensor_logger_trial_fits_like_the_program(rockfit):
     result = rockfit.fit(rockfit.load_recording(str(CSV_MANIFEST), trial="block1-A-1"))
     cli = run_cli("fit", CSV_MANIFEST, "--trial", "block1-A-1")
     assert result.epsilon == cli["epsilon"]
+    # The truth of the synthetic trial (tools/make_samples.sh: α = 0.21, λ_lat = −4.2), within the bounds the
+    # phyphox trial above is held to.
+    assert abs(result.values["alpha"] - 0.21) < 2e-3
+    assert abs(result.values["lambda_lat"] - -4.2) < 0.42
