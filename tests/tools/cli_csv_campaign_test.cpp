@@ -26,8 +26,8 @@ constexpr double kOpmfAgreement = 0.003;
 constexpr double kAvrfRelativeAgreement = 0.01;
 // block3-A-1 rocks the most out of plane (OPMF 0.17): measured 0.0049 apart (integrated 0.0039 from the truth, the
 // files 0.0010). The cause is the net integral of the synthetic gyro's ringing, a step right after an impact that
-// the drift correction spreads linearly to the next anchor (io/README.md, "Attitude from the gyro"); the issue's
-// bound of 0.003 is not met for this trial.
+// the drift correction spreads linearly to the next anchor (io/README.md, "Attitude from the gyro"); kOpmfAgreement
+// is not met for this trial.
 constexpr double kOpmfAgreementMostOutOfPlane = 0.006;
 
 TEST(CliCsvCampaign, SummaryOfTheGyroOnlyFilesAgreesWithTheXimuFilesOfTheSameTrials) {
