@@ -84,6 +84,16 @@ TEST(CliCsvCampaign, APhyphoxTrialFitsToItsTruth) {
   EXPECT_NEAR(json["parameters"]["lambda_lat"]["value"].get<double>(), -2.032, 0.2032);
 }
 
+TEST(CliCsvCampaign, ASensorLoggerTrialFitsToItsTruth) {
+  const CommandResult r = RunRockfit({"fit", CsvManifest(), "--trial", "block1-A-1", "--json", "--threads", "1"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  // The parameters the synthetic trial was made with (tools/make_samples.sh: α = 0.21, λ_lat = −4.2), within the
+  // bounds the phyphox trial above is held to.
+  EXPECT_NEAR(json["parameters"]["alpha"]["value"].get<double>(), 0.21, 2e-3);
+  EXPECT_NEAR(json["parameters"]["lambda_lat"]["value"].get<double>(), -4.2, 0.42);
+}
+
 TEST(CliCsvCampaign, MetricsOfAnXimuTrialReadWithoutItsAttitudeFiles) {
   const CommandResult r = RunRockfit({"metrics", XimuManifest(), "--trial", "block2-A-1", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
