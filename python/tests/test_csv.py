@@ -55,3 +55,12 @@ def test_a_sensor_logger_trial_fits_like_the_program(rockfit):
     # phyphox trial above is held to.
     assert abs(result.values["alpha"] - 0.21) < 2e-3
     assert abs(result.values["lambda_lat"] - -4.2) < 0.42
+
+
+def test_orientation_none_holds_for_a_manifest_trial_as_in_the_program(rockfit):
+    rec = rockfit.load_recording(str(MANIFEST), trial="block3-A-1", orientation="none")
+    assert rec.euler.shape == (0, 3)
+    result = rockfit.metrics(rec)
+    cli = run_cli("metrics", MANIFEST, "--trial", "block3-A-1", "--orientation", "none")
+    assert result.opmf == cli["opmf"]
+    assert result.avrf == cli["avrf"]
