@@ -24,11 +24,12 @@ std::string XimuManifest() { return (SourceDir() / "data-samples" / "manifest.to
 // "Attitude from the gyro").
 constexpr double kOpmfAgreement = 0.003;
 constexpr double kAvrfRelativeAgreement = 0.01;
-// block3-A-1 rocks the most out of plane (OPMF 0.17): measured 0.0049 apart (integrated 0.0039 from the truth, the
-// files 0.0010). The cause is the net integral of the synthetic gyro's ringing, a step right after an impact that
-// the drift correction spreads linearly to the next anchor (io/README.md, "Attitude from the gyro"); kOpmfAgreement
-// is not met for this trial.
-constexpr double kOpmfAgreementMostOutOfPlane = 0.006;
+// block3-A-1 rocks the most out of plane (OPMF 0.17): measured 0.00305 apart (integrated 0.0039 from the truth, the
+// files 0.0008), with the attitude files integrating the gyro's errors as the device does. What is left is the
+// integrated attitude's step at each impact (the rate jumps inside a sample interval: up to |Δω|·Δt/2), added to
+// the ringing's, which the drift correction spreads to the next anchor (io/README.md, "Attitude from the gyro");
+// kOpmfAgreement is not met for this trial; the bound is the measured gap and a third of it.
+constexpr double kOpmfAgreementMostOutOfPlane = 0.004;
 
 TEST(CliCsvCampaign, SummaryOfTheGyroOnlyFilesAgreesWithTheXimuFilesOfTheSameTrials) {
   const CommandResult csv = RunRockfit({"summary", CsvManifest(), "--json"});
