@@ -12,6 +12,10 @@ sample k is at k/256 s. Deterministic: the same inputs give the same bytes.
                               "Time (s)","Gyroscope x (rad/s)","Gyroscope y (rad/s)","Gyroscope z (rad/s)",
                               "Absolute (rad/s)", numbers as 1.234567890E-1
   sensor-logger/Gyroscope.csv Sensor Logger's Gyroscope.csv: time (ns since 1970), seconds_elapsed, z, y, x (rad/s)
+  sensor-logger/TotalAcceleration.csv
+                              its accelerometer with gravity (Android), in a file of its own with its own times: the
+                              same header, m/s² (9.81 per g, the synthetic model's gravity), sampled half a gyro step
+                              after each gyro sample (the mean of the two x-IMU samples around it), one row fewer
   arduino/log.csv             a microcontroller logger: micros() (a 32-bit counter that wraps during the trial),
                               gx [dps] … and ax [g] …, with a quoted free-text column
   quoted/trial.csv            a spreadsheet's export: every field quoted, ';' between fields, decimal commas
@@ -31,6 +35,7 @@ SAMPLES = {
 }
 EPOCH_START_NS = 1_700_000_000_000_000_000  # 2023-11-14 22:13:20 UTC
 STEP_NS = 1_000_000_000 // RATE_HZ  # 3906250 ns, exact at 256 Hz
+G_M_S2 = 9.81  # m/s² per g: the synthetic model's gravity (io/README.md, "Columns")
 MICROS_START = 2**32 - 2_500_000  # the counter wraps 2.5 s into the trial
 
 
@@ -74,6 +79,15 @@ def sensor_logger(rows):
     return "\n".join(lines) + "\n"
 
 
+def sensor_logger_accel(rows):
+    lines = ["time,seconds_elapsed,z,y,x"]
+    for k in range(len(rows) - 1):
+        a = [0.5 * (rows[k][1][i] + rows[k + 1][1][i]) * G_M_S2 for i in range(3)]
+        t_ns = EPOCH_START_NS + k * STEP_NS + STEP_NS // 2
+        lines.append("%d,%s,%r,%r,%r" % (t_ns, repr((k + 0.5) / RATE_HZ), a[2], a[1], a[0]))
+    return "\n".join(lines) + "\n"
+
+
 def arduino(rows):
     lines = ['micros,gx [dps],gy [dps],gz [dps],ax [g],ay [g],az [g],note']
     for k, (g, a) in enumerate(rows):
@@ -105,6 +119,8 @@ def main():
         rows = read_ximu(os.path.join(HERE, "data-samples", "recordings", trial))
         path, writer = writers[name]
         write(os.path.join(out, path), writer(rows))
+        if name == "sensor-logger":
+            write(os.path.join(out, "sensor-logger", "TotalAcceleration.csv"), sensor_logger_accel(rows))
 
 
 if __name__ == "__main__":

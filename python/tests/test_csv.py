@@ -36,3 +36,31 @@ def test_a_phyphox_trial_fits_like_the_program(rockfit):
     # test_fit.py holds the x-IMU files of the same trial to.
     assert abs(result.values["alpha"] - 0.197) < 2e-3
     assert abs(result.values["lambda_lat"] - -2.032) < 0.2032
+
+
+def test_a_sensor_logger_trial_carries_the_total_acceleration_beside_its_gyroscope(rockfit):
+    rec = rockfit.load_recording(str(CSV_MANIFEST), trial="block1-A-1")
+    assert rec.accel_B.shape == rec.w_B.shape
+    assert any(c.startswith("TotalAcceleration.csv: ") for c in rec.columns)
+    # At rest before the release the specific force is g (9.81 m/s², the synthetic model's) within the noise.
+    assert abs(float((rec.accel_B[:100] ** 2).sum(axis=1).mean()) ** 0.5 - 9.81) < 0.05
+
+
+@requires_optimised_build
+def test_a_sensor_logger_trial_fits_like_the_program(rockfit):
+    result = rockfit.fit(rockfit.load_recording(str(CSV_MANIFEST), trial="block1-A-1"))
+    cli = run_cli("fit", CSV_MANIFEST, "--trial", "block1-A-1")
+    assert result.epsilon == cli["epsilon"]
+    # The truth of the synthetic trial (tools/make_samples.sh: α = 0.21, λ_lat = −4.2), within the bounds the
+    # phyphox trial above is held to.
+    assert abs(result.values["alpha"] - 0.21) < 2e-3
+    assert abs(result.values["lambda_lat"] - -4.2) < 0.42
+
+
+def test_orientation_none_holds_for_a_manifest_trial_as_in_the_program(rockfit):
+    rec = rockfit.load_recording(str(MANIFEST), trial="block3-A-1", orientation="none")
+    assert rec.euler.shape == (0, 3)
+    result = rockfit.metrics(rec)
+    cli = run_cli("metrics", MANIFEST, "--trial", "block3-A-1", "--orientation", "none")
+    assert result.opmf == cli["opmf"]
+    assert result.avrf == cli["avrf"]

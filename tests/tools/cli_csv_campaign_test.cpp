@@ -3,12 +3,15 @@
 // recognised, summary agrees with the same trials read from their x-IMU files, a trial fits.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
+#include "scratch_dir.hpp"
 #include "test_paths.hpp"
 
 namespace rockfit::testing {
@@ -21,9 +24,12 @@ std::string XimuManifest() { return (SourceDir() / "data-samples" / "manifest.to
 // "Attitude from the gyro").
 constexpr double kOpmfAgreement = 0.003;
 constexpr double kAvrfRelativeAgreement = 0.01;
-// block3-A-1 rocks the most out of plane (OPMF 0.17): measured 0.0049 apart, most of it the integral of the
-// synthetic gyro's ringing, which the synthetic x-IMU attitude lacks (io/README.md, "Attitude from the gyro").
-constexpr double kOpmfAgreementMostOutOfPlane = 0.006;
+// block3-A-1 rocks the most out of plane (OPMF 0.17): measured 0.00305 apart (integrated 0.0039 from the truth, the
+// files 0.0008), with the attitude files integrating the gyro's errors as the device does. What is left is the
+// integrated attitude's step at each impact (the rate jumps inside a sample interval: up to |Δω|·Δt/2), added to
+// the ringing's, which the drift correction spreads to the next anchor (io/README.md, "Attitude from the gyro");
+// kOpmfAgreement is not met for this trial; the bound is the measured gap and a third of it.
+constexpr double kOpmfAgreementMostOutOfPlane = 0.004;
 
 TEST(CliCsvCampaign, SummaryOfTheGyroOnlyFilesAgreesWithTheXimuFilesOfTheSameTrials) {
   const CommandResult csv = RunRockfit({"summary", CsvManifest(), "--json"});
@@ -79,6 +85,16 @@ TEST(CliCsvCampaign, APhyphoxTrialFitsToItsTruth) {
   EXPECT_NEAR(json["parameters"]["lambda_lat"]["value"].get<double>(), -2.032, 0.2032);
 }
 
+TEST(CliCsvCampaign, ASensorLoggerTrialFitsToItsTruth) {
+  const CommandResult r = RunRockfit({"fit", CsvManifest(), "--trial", "block1-A-1", "--json", "--threads", "1"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  // The parameters the synthetic trial was made with (tools/make_samples.sh: α = 0.21, λ_lat = −4.2), within the
+  // bounds the phyphox trial above is held to.
+  EXPECT_NEAR(json["parameters"]["alpha"]["value"].get<double>(), 0.21, 2e-3);
+  EXPECT_NEAR(json["parameters"]["lambda_lat"]["value"].get<double>(), -4.2, 0.42);
+}
+
 TEST(CliCsvCampaign, MetricsOfAnXimuTrialReadWithoutItsAttitudeFiles) {
   const CommandResult r = RunRockfit({"metrics", XimuManifest(), "--trial", "block2-A-1", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -90,6 +106,55 @@ TEST(CliCsvCampaign, MetricsOfAnXimuTrialReadWithoutItsAttitudeFiles) {
   const auto b = nlohmann::json::parse(g.out);
   EXPECT_NEAR(b["opmf"].get<double>(), a["opmf"].get<double>(), kOpmfAgreement);
   EXPECT_NEAR(b["avrf"].get<double>() / a["avrf"].get<double>(), 1.0, kAvrfRelativeAgreement);
+}
+
+TEST(CliCsvCampaign, OrientationNoneHoldsForAManifestTrialAsForAPath) {
+  const std::string prefix = (SourceDir() / "data-samples" / "recordings" / "block3-A-1").string();
+  const CommandResult by_path = RunRockfit({"metrics", prefix, "--manifest", XimuManifest(), "--block", "block3",
+                                            "--orientation", "none", "--json"});
+  ASSERT_EQ(by_path.exit_code, 0) << by_path.err;
+  const CommandResult by_trial =
+      RunRockfit({"metrics", XimuManifest(), "--trial", "block3-A-1", "--orientation", "none", "--json"});
+  ASSERT_EQ(by_trial.exit_code, 0) << by_trial.err;
+  EXPECT_NE(by_trial.err.find("integrated from the gyro"), std::string::npos) << by_trial.err;
+  EXPECT_EQ(nlohmann::json::parse(by_trial.out)["opmf"], nlohmann::json::parse(by_path.out)["opmf"]);
+  const CommandResult bad = RunRockfit({"metrics", XimuManifest(), "--trial", "block3-A-1", "--orientation", "sideways"});
+  EXPECT_EQ(bad.exit_code, 1) << bad.err;
+  EXPECT_NE(bad.err.find("--orientation must be"), std::string::npos) << bad.err;
+}
+
+TEST(CliCsvCampaign, ASensorLoggerExportIsLevelledByTheTotalAccelerationBesideItsGyroscope) {
+  const std::string gyro = (SourceDir() / "data-samples" / "csv" / "sensor-logger" / "Gyroscope.csv").string();
+  const CommandResult inspect = RunRockfit({"inspect", gyro, "--json"});
+  ASSERT_EQ(inspect.exit_code, 0) << inspect.err;
+  const auto json = nlohmann::json::parse(inspect.out);
+  EXPECT_NE(json["recognised"].dump().find("TotalAcceleration.csv beside the gyroscope file"), std::string::npos)
+      << json["recognised"];
+  EXPECT_NE(json["columns"].dump().find("TotalAcceleration.csv: x"), std::string::npos) << json["columns"];
+  const CommandResult metrics = RunRockfit({"metrics", CsvManifest(), "--trial", "block1-A-1", "--json"});
+  ASSERT_EQ(metrics.exit_code, 0) << metrics.err;
+  EXPECT_NE(metrics.err.find("levelled by the accelerometer"), std::string::npos) << metrics.err;
+}
+
+TEST(CliCsvCampaign, ASensorLoggerAccelerometerFromAnotherRecordingIsRefusedWithBothLines) {
+  const ScratchDir dir("cli_sensor_logger");
+  const auto samples = SourceDir() / "data-samples" / "csv" / "sensor-logger";
+  std::filesystem::copy_file(samples / "Gyroscope.csv", dir.path() / "Gyroscope.csv");
+  // The accelerometer's times moved on by 10 s: the same header and units, another recording.
+  std::ifstream in(samples / "TotalAcceleration.csv");
+  std::ofstream out(dir.path() / "TotalAcceleration.csv");
+  std::string line;
+  std::getline(in, line);
+  out << line << "\n";
+  while (std::getline(in, line)) {
+    const std::size_t comma = line.find(',');
+    out << std::stoll(line.substr(0, comma)) + 10'000'000'000LL << line.substr(comma) << "\n";
+  }
+  out.close();
+  const CommandResult r = RunRockfit({"inspect", (dir.path() / "Gyroscope.csv").string()});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("TotalAcceleration.csv:2:1"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("Gyroscope.csv:2:1"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 #include "generic/generic_csv_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include <fmt/format.h>
 
@@ -11,6 +13,7 @@
 #include "recording/recording_assembly.hpp"
 #include "recording/time_base.hpp"
 #include "generic/csv_time_column.hpp"
+#include "generic/sensor_logger_accelerometer.hpp"
 #include "rockfit/io/units.hpp"
 
 namespace rockfit::io {
@@ -280,8 +283,10 @@ Recording ReadGenericCsvRecording(const std::filesystem::path& file, const LoadO
 
   const std::size_t n = table.row_count();
   SensorSamples samples;
+  TimeUnit time_unit = TimeUnit::kSeconds;
+  std::vector<double> file_t_s;  // the time column relative to its first row (before gaps are looked for)
   if (map.has_time()) {
-    const TimeUnit time_unit = ResolveUnit(table, time_column, map.time_unit, &ParseTimeUnit, "s, ms, us, ns");
+    time_unit = ResolveUnit(table, time_column, map.time_unit, &ParseTimeUnit, "s, ms, us, ns");
     if (n < 2) {
       ThrowBadInput({{file.string(), table.Line(0)}, "", "a single sample",
                      "at least two samples to find the rate from their times", "Pick a longer recording."});
@@ -292,8 +297,8 @@ Recording ReadGenericCsvRecording(const std::filesystem::path& file, const LoadO
       recording.warnings.push_back(fmt::format("{}: the time counter wrapped {} time(s) at 2^{}; the times were unwrapped",
                                                file_name, time.wraps, time.wrap_modulus == (1u << 16) ? 16 : 32));
     }
-    const std::vector<double>& times = time.t_s;
-    TimestampTimeBase base = TimeBaseFromTimestamps(times);
+    file_t_s = time.t_s;
+    TimestampTimeBase base = TimeBaseFromTimestamps(file_t_s);
     // No IMU samples faster than 1 MHz: closer times are a wrong unit or a broken clock (and 1/step overflows).
     constexpr double kMinMedianStep_s = 1e-6;
     if (!(base.median_step_s >= kMinMedianStep_s)) {
@@ -343,6 +348,23 @@ Recording ReadGenericCsvRecording(const std::filesystem::path& file, const LoadO
       for (std::size_t k = 0; k < 3; ++k) samples.accel_S[row][static_cast<Eigen::Index>(k)] = table.RealInSi(row, accel[k], scale[k]);
     }
   }
+  // Sensor Logger writes its accelerometer to a file of its own beside Gyroscope.csv (sensor_logger_accelerometer.hpp).
+  if (!map.has_accel() && map.has_time() && IsSensorLoggerHeader(table)) {
+    const std::filesystem::path companion = file.parent_path() / kSensorLoggerTotalAcceleration;
+    std::error_code error;
+    if (std::filesystem::is_regular_file(companion, error)) {
+      const CsvTable accel_table = CsvTable::ReadFile(companion, recording.warnings);
+      SensorLoggerAccelerometer accel =
+          ResampleSensorLoggerAccelerometer(accel_table, table, time_column, time_unit, file_t_s);
+      samples.accel_S = std::move(accel.accel_S);
+      for (std::string& column : accel.columns) recording.columns.push_back(std::move(column));
+      for (std::string& note : accel.notes) notes.push_back(std::move(note));
+    } else {
+      notes.push_back(fmt::format("accelerometer: none (no {} beside the file; Sensor Logger's Accelerometer.csv holds "
+                                  "the acceleration without gravity and is not read)",
+                                  kSensorLoggerTotalAcceleration));
+    }
+  }
   if (use_euler) {
     std::array<double, 3> scale{};
     for (std::size_t k = 0; k < 3; ++k) scale[k] = ToSi(ResolveUnit(table, euler[k], map.euler_unit, &ParseAngleUnit, "deg, rad"));
@@ -362,7 +384,10 @@ Recording ReadGenericCsvRecording(const std::filesystem::path& file, const LoadO
     notes.push_back(fmt::format("gyroscope {}: {} in {}", "xyz"[k], table.DescribeColumn(gyro[k]),
                                 UnitName(ResolveUnit(table, gyro[k], map.gyro_unit, &ParseAngularRateUnit, "deg/s, rad/s"))));
   }
-  if (!map.has_accel()) notes.push_back("accelerometer: none");
+  if (!map.has_accel() && samples.accel_S.empty() &&
+      std::none_of(notes.begin(), notes.end(), [](const std::string& note) { return note.rfind("accelerometer:", 0) == 0; })) {
+    notes.push_back("accelerometer: none");
+  }
   if (!use_euler) notes.push_back("attitude: none in the file (metrics integrate it from the gyro)");
   recording.recognised = std::move(notes);
   AssembleRecording(std::move(samples), options.mounting, recording);

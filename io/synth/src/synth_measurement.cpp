@@ -26,14 +26,29 @@ constexpr double kQ15Max = 32767.0;
 
 double Quantise(double value, double resolution) { return std::round(value / resolution) * resolution; }
 
-Eigen::Vector3f ToSensorFloat(const Eigen::Vector3d& value, double resolution, double lower, double upper, bool quantise) {
-  Eigen::Vector3f out;
+// The device's reading of a value: clamped to full scale and (optionally) rounded to its fixed-point resolution.
+// Exact in double precision; a Q4/Q11 value within full scale is also exact in single precision.
+Eigen::Vector3d ToSensorValue(const Eigen::Vector3d& value, double resolution, double lower, double upper, bool quantise) {
+  Eigen::Vector3d out;
   for (int i = 0; i < 3; ++i) {
     double v = std::clamp(value[i], lower, upper);
     if (quantise) v = Quantise(v, resolution);
-    out[i] = static_cast<float>(v);
+    out[i] = v;
   }
   return out;
+}
+
+Eigen::Vector3f ToSensorFloat(const Eigen::Vector3d& value, double resolution, double lower, double upper, bool quantise) {
+  return ToSensorValue(value, resolution, lower, upper, quantise).cast<float>();
+}
+
+// Exp of a rotation vector θ [rad]: the rotation by |θ| about θ/|θ| (exact, identity for θ = 0). Written here
+// rather than taken from the reader's gyro integration, so that the recordings that test the reader do not
+// share its code.
+Eigen::Quaterniond RotationVectorExp(const Eigen::Vector3d& theta_rad) {
+  const double angle_rad = theta_rad.norm();
+  if (angle_rad == 0.0) return Eigen::Quaterniond::Identity();
+  return Eigen::Quaterniond(Eigen::AngleAxisd(angle_rad, theta_rad / angle_rad));
 }
 
 // Index of the continuous piece of motion that time t belongs to: the number of breaks at or before t
@@ -176,6 +191,7 @@ DeviceSamples MeasureMotion(const BlockMotion& motion, const SensorMounting& mou
   out.quaternion.resize(count);
   out.euler_deg.resize(count);
   out.drift_deg.resize(count);
+  out.gyro_error_W_rad.resize(count);
   out.ringing_dps = Ringing(motion, R_BS, o);
 
   SynthRandom gyro_noise(o.seed, SynthStream::kGyroNoise);
@@ -191,6 +207,7 @@ DeviceSamples MeasureMotion(const BlockMotion& motion, const SensorMounting& mou
 
   Eigen::Vector3d walk_deg = Eigen::Vector3d::Zero();
   Eigen::Quaterniond previous_q_WS = Eigen::Quaterniond::Identity();
+  Eigen::Quaterniond q_gyro_error_W = Eigen::Quaterniond::Identity();  // F: the device starts at the truth
   for (std::size_t n = 0; n < count; ++n) {
     const double t = motion.t_s(n);
     const Eigen::Matrix3d R_WS = R_WB[n] * R_BS;
@@ -198,7 +215,18 @@ DeviceSamples MeasureMotion(const BlockMotion& motion, const SensorMounting& mou
     // Gyroscope.
     const Eigen::Vector3d w_S_dps = kDegPerRad * (R_BS.transpose() * motion.w_B[n]);
     const Eigen::Vector3d gyro = w_S_dps + o.gyro_bias_dps + out.ringing_dps[n] + o.gyro_noise_dps * normal3(gyro_noise);
-    out.gyro_dps[n] = ToSensorFloat(gyro, kXimuGyroResolutionDps, -o.gyro_full_scale_dps, o.gyro_full_scale_dps, o.quantisation);
+    const Eigen::Vector3d gyro_read_dps =
+        ToSensorValue(gyro, kXimuGyroResolutionDps, -o.gyro_full_scale_dps, o.gyro_full_scale_dps, o.quantisation);
+    out.gyro_dps[n] = gyro_read_dps.cast<float>();
+
+    // The on-board attitude integrates this reading: its error part e_S (bias, ringing, noise, quantisation,
+    // saturation) turns the estimate away from the truth by F, R_dev = F·R_WS, with dF/dt = F·[R_WS e_S]× —
+    // exact for the continuous equations, since R_dev' = R_dev·[w_S + e_S]× and R_WS' = R_WS·[w_S]×. F is
+    // stepped as the device steps its estimate, the reading of sample n held over the interval ending at it.
+    const Eigen::Vector3d gyro_error_S_rad = (gyro_read_dps - w_S_dps) / kDegPerRad;
+    if (n > 0) q_gyro_error_W = (q_gyro_error_W * RotationVectorExp(R_WS * gyro_error_S_rad * dt_s)).normalized();
+    const Eigen::AngleAxisd gyro_error_W(q_gyro_error_W);
+    out.gyro_error_W_rad[n] = gyro_error_W.angle() * gyro_error_W.axis();
 
     // Accelerometer: specific force of the sensor point, a rigid body turning about the momentary pivot.
     const Eigen::Vector3d r_W = R_WB[n] * (mounting.p_BS_B - motion.p_BK_B[n]);
@@ -211,10 +239,11 @@ DeviceSamples MeasureMotion(const BlockMotion& motion, const SensorMounting& mou
     const Eigen::Vector3d mag = R_WS.transpose() * o.mag_field_W_G + o.mag_noise_G * normal3(mag_noise);
     out.mag_G[n] = ToSensorFloat(mag, kXimuMagResolutionGauss, -32768.0 / 2048.0, kXimuMagSaturationGauss, o.quantisation);
 
-    // Attitude estimate: ZYX Euler angles of the sensor plus drift, as a quaternion.
+    // Attitude estimate: ZYX Euler angles of the gyro-integrated sensor attitude plus drift, as a quaternion.
     if (n > 0) walk_deg += std::sqrt(dt_s) * o.drift_walk_deg_per_rt_s.cwiseProduct(normal3(drift_walk));
     out.drift_deg[n] = o.drift_slope_dps * t + walk_deg;
-    Eigen::Vector3d euler_zyx = EulerZyxFromRotation(R_WS);  // (φz, φy, φx)
+    const Eigen::Matrix3d R_WS_device = q_gyro_error_W.toRotationMatrix() * R_WS;
+    Eigen::Vector3d euler_zyx = EulerZyxFromRotation(R_WS_device);  // (φz, φy, φx)
     euler_zyx += Eigen::Vector3d(out.drift_deg[n].z(), out.drift_deg[n].y(), out.drift_deg[n].x()) / kDegPerRad;
     Eigen::Quaterniond q_WS = QuaternionFromEulerZyx(euler_zyx);
     if (n > 0 && q_WS.dot(previous_q_WS) < 0.0) q_WS.coeffs() = -q_WS.coeffs();  // the device's estimate is continuous

@@ -1,10 +1,12 @@
 // The measurement model on hand-made motions with closed-form signals: ideal sensor, mounting, specific
-// force, ringing, and the statistics of noise, quantisation and drift against their sampling error.
+// force, ringing, the gyro errors the attitude estimate integrates, and the statistics of noise, quantisation
+// and drift against their sampling error.
 #include "rockfit/io/synth_measurement.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 #include <functional>
 #include <vector>
 
@@ -389,6 +391,53 @@ TEST(SynthMeasurement, DriftSlopeAndRandomWalkMatchTheRequestWithinSamplingError
     const double rounding = 2.0 * (std::abs(truth_deg[i]) + 30.0) * kFloatRelative;
     EXPECT_NEAR(StandardDeviation(increments), sigma_step, 4.0 * sigma_step / std::sqrt(2.0 * (kCount - 2)) + rounding)
         << "axis " << i;
+  }
+}
+
+TEST(SynthMeasurement, GyroBiasTurnsTheAttitudeEstimateAboutTheSensorAxis) {
+  // At rest tilted about y, a bias b on the sensor's x axis: the device's estimate R_WS·Rx(b·t) has the ZYX angles
+  // (yaw 0, pitch = tilt, roll = b·t) — turned about the sensor's own x axis, not about the world's.
+  const double tilt_rad = -0.2;
+  const double bias_dps = 0.5;
+  MeasurementOptions o = MeasurementOptions::Ideal();
+  o.gyro_bias_dps = Eigen::Vector3d(bias_dps, 0.0, 0.0);
+  const BlockMotion motion = RestTilted(5 * 256, tilt_rad);
+  const DeviceSamples d = MeasureMotion(motion, SensorMounting{}, o);
+  const double tolerance = SinglePrecisionAngleToleranceDeg(tilt_rad);
+  for (std::size_t n = 0; n < d.size(); ++n) {
+    EXPECT_NEAR(d.euler_deg[n].x(), bias_dps * motion.t_s(n), tolerance) << n;
+    EXPECT_NEAR(d.euler_deg[n].y(), kDegPerRad * tilt_rad, tolerance) << n;
+    EXPECT_NEAR(d.euler_deg[n].z(), 0.0, tolerance) << n;
+  }
+}
+
+TEST(SynthMeasurement, RingingsNetIntegralStaysInTheAttitudeEstimate) {
+  // One impact exactly on a sample (t1 = 128/256 s) with a jump along x; the attitude is held at identity, so
+  // the estimate's roll is the device's sum of its ringing samples times Δt: with z = exp((−1/T + i2πf)Δt),
+  // Σ_k e^(−kΔt/T) sin(2πf kΔt) = Im 1/(1 − z) once the ringing has died away.
+  const double t1 = 0.5;
+  const Eigen::Vector3d jump(1.6, 0.0, 0.0);
+  const BlockMotion motion = TwoImpacts(t1, jump, 10.0, Eigen::Vector3d::Zero());
+  MeasurementOptions o = MeasurementOptions::Ideal();
+  o.ringing_gain = 0.3;
+  o.ringing_frequency_hz = 37.0;
+  o.ringing_decay_time_s = 0.04;
+  const DeviceSamples d = MeasureMotion(motion, SensorMounting{}, o);
+  const double dt = 1.0 / kRate;
+  const std::complex<double> z = std::exp(std::complex<double>(-dt / o.ringing_decay_time_s, 2.0 * kPi * o.ringing_frequency_hz * dt));
+  const double sum = (1.0 / (1.0 - z)).imag();
+  const double roll_deg = o.ringing_gain * kDegPerRad * jump.x() * dt * sum;
+  // The continuous integral g·Δω·2πf/((2πf)² + T⁻²) is of the same size: the test's closed form is not a zero.
+  const double w_r = 2.0 * kPi * o.ringing_frequency_hz;
+  const double continuous_deg = o.ringing_gain * kDegPerRad * jump.x() * w_r / (w_r * w_r + 1.0 / (o.ringing_decay_time_s * o.ringing_decay_time_s));
+  EXPECT_NEAR(roll_deg, continuous_deg, 0.1 * continuous_deg);
+  const double tolerance = SinglePrecisionAngleToleranceDeg(0.0);
+  for (std::size_t n = 0; n < d.size(); ++n) {
+    if (motion.t_s(n) < t1) EXPECT_NEAR(d.euler_deg[n].x(), 0.0, tolerance) << n;
+    // 30 decay times after the impact the envelope is e⁻³⁰: the sum is complete.
+    if (motion.t_s(n) > t1 + 30.0 * o.ringing_decay_time_s) EXPECT_NEAR(d.euler_deg[n].x(), roll_deg, tolerance) << n;
+    EXPECT_NEAR(d.euler_deg[n].y(), 0.0, tolerance) << n;
+    EXPECT_NEAR(d.euler_deg[n].z(), 0.0, tolerance) << n;
   }
 }
 

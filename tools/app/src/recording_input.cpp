@@ -27,6 +27,16 @@ bool IsRockfitHdf5(const std::filesystem::path& path, const std::string& format)
   return HasExtension(path.string(), {".h5", ".hdf5"}) || io::hdf5::File::IsHdf5(path);
 }
 
+// --orientation as given on the command line; InvalidArgument for any other text.
+io::OrientationChoice OrientationArgument(const std::string& orientation) {
+  const auto parsed = io::ParseOrientationChoice(orientation);
+  if (!parsed) {
+    throw InvalidArgument("--orientation must be auto, euler, quaternion, matrix or none (none: the attitude is "
+                          "integrated from the gyro), got '" + orientation + "'");
+  }
+  return *parsed;
+}
+
 io::LoadOptions MakeLoadOptions(const std::string& format, const std::optional<double>& rate_hz,
                                 io::RateSource rate_origin, const std::string& mounting, const std::string& columns,
                                 const std::string& orientation) {
@@ -44,12 +54,7 @@ io::LoadOptions MakeLoadOptions(const std::string& format, const std::optional<d
     options.estimate_mounting = option.estimate;
   }
   if (!columns.empty()) options.columns = io::ColumnMap::Parse(columns);
-  const auto parsed_orientation = io::ParseOrientationChoice(orientation);
-  if (!parsed_orientation) {
-    throw InvalidArgument("--orientation must be auto, euler, quaternion, matrix or none (none: the attitude is "
-                          "integrated from the gyro), got '" + orientation + "'");
-  }
-  options.orientation = *parsed_orientation;
+  options.orientation = OrientationArgument(orientation);
   options.Validate();
   return options;
 }
@@ -66,12 +71,13 @@ std::string TrialNameFrom(const std::string& text) {
   return name;
 }
 
-io::Recording LoadManifestTrial(const io::TrialSpec& trial) {
+io::Recording LoadManifestTrial(const io::TrialSpec& trial, const std::string& orientation) {
   if (IsRockfitHdf5(trial.files, trial.format)) return io::ReadRecordingHdf5(trial.files, "");
+  OrientationArgument(orientation);  // a bad command-line value is the caller's, not the manifest's
   io::LoadOptions options;
   try {
     options = MakeLoadOptions(trial.format, trial.rate_hz, io::RateSource::kManifest, trial.mounting, trial.columns,
-                              "auto");
+                              orientation);
   } catch (const InvalidArgument& e) {  // a manifest entry is input data
     throw BadInput(fmt::format("trial '{}' (line {}): {}", trial.id, trial.where.line, e.what()));
   }
@@ -96,7 +102,7 @@ TrialInput LoadTrialInput(const RecordingArgs& args) {
     }
     const io::TrialSpec& trial = manifest.FindTrial(args.trial_id);
     input.manifest_block = manifest.FindBlock(trial.block_id);
-    input.recording = LoadManifestTrial(trial);
+    input.recording = LoadManifestTrial(trial, args.orientation);
     input.trial_id = trial.id;
     input.labels = {trial.block_id, trial.position, trial.notes};
     return input;

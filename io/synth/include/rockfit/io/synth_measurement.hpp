@@ -10,8 +10,10 @@
 //   accel_g    = Q_1/2048( clamp( R_WSᵀ (a_W + g e_z) / g + σ_a·N ) ),  a_W = ω̇ × r + ω × (ω × r),
 //                r = R_WB (p_BS_B − p_BK_B) the lever from the momentary pivot to the sensor point
 //   mag_G      = Q_1/2048( clamp( R_WSᵀ m_W + σ_m·N ) )
-//   attitude   = ZYX Euler angles of R_WS = R_WB R_BS, plus drift d(t) = slope·t + random walk,
-//                random walk W_n = W_{n−1} + σ_w √(1/f) N
+//   attitude   = ZYX Euler angles of F_n·R_WS (R_WS = R_WB R_BS), plus drift d(t) = slope·t + random walk,
+//                random walk W_n = W_{n−1} + σ_w √(1/f) N; F_n = F_{n−1}·Exp(R_WS e_S Δt), F_0 = I, is the
+//                gyro's error e_S = rad(gyro_dps) − R_BSᵀ w_B integrated as the device's AHRS integrates its
+//                gyro (the estimate carries the integral of the bias, ringing, noise and quantisation it reads)
 //   quaternion = conjugate (Earth relative to sensor, as the device) of the drifted attitude, Q15-quantised,
 //                then normalised in single precision; Euler angles are computed from it as the x-IMU GUI does.
 // Q_r(x) rounds to a multiple of r (the device's fixed-point resolution) and is skipped without quantisation.
@@ -84,6 +86,7 @@ struct DeviceSamples {
   // The artefacts alone (double precision, before quantisation), for tests and the truth file.
   std::vector<Eigen::Vector3d> ringing_dps;  // sensor axes
   std::vector<Eigen::Vector3d> drift_deg;    // (x, y, z) added to (roll, pitch, yaw)
+  std::vector<Eigen::Vector3d> gyro_error_W_rad;  // rotation vector of F (world axes): the integrated gyro error
 
   std::size_t size() const { return gyro_dps.size(); }
 };

@@ -42,8 +42,10 @@ struct TrialInput {
 // BadInput (file, line, column, what to do) for unreadable data; InvalidArgument for options that do not fit.
 TrialInput LoadTrialInput(const RecordingArgs& args);
 
-// The recording of a manifest trial (its files, format, rate, mounting).
-io::Recording LoadManifestTrial(const io::TrialSpec& trial);
+// The recording of a manifest trial (its files, format, rate, mounting). `orientation` (auto, euler, quaternion,
+// matrix, none) is the program's --orientation: the manifest has no such key, so the command line's choice holds for
+// a manifest trial as for a path.
+io::Recording LoadManifestTrial(const io::TrialSpec& trial, const std::string& orientation = "auto");
 
 // A name usable as an HDF5 group: letters, digits, '-', '_', '.'; others become '_'.
 std::string TrialNameFrom(const std::string& text);

@@ -1,0 +1,167 @@
+#!/usr/bin/env python3
+"""How far the attitude integrated from the gyro moves the OPMF and AVRF (io/README.md, "Attitude from the gyro").
+
+   tools/gyro_attitude_study.py [--rockfit PROGRAM] [--manifest MANIFEST] [--variants DIR TRIAL]
+
+For every trial of the sample campaign (data-samples/manifest.toml) it runs `rockfit metrics` twice: with the
+attitude files (`file`) and with `--orientation none`, where the attitude is integrated from the gyro and levelled
+by the accelerometer (`gyro`), and prints both beside the truth of the synthetic trial (its _truth.json: the OPMF of
+the true motion; the AVRF has no closed form and is not in the truth).
+
+--variants DIR TRIAL makes TRIAL again with `rockfit synth` (the command in its truth file) in DIR, also without the
+gyro's ringing (--no-ringing), without the attitude drift (--no-drift) and as an ideal sensor (--no-noise), and
+prints the same comparison for each: which artefact of the device moves which reading.
+
+--held-out DIR N makes N further synthetic trials with `rockfit synth` in DIR, their parameters and device
+artefacts drawn (fixed seed) from the ranges of the sample campaign (tools/make_samples.sh), and prints the same
+comparison: trials the sample campaign's numbers were not seen on.
+
+Run once and report; the CI checks the small form (tests/tools/cli_csv_campaign_test.cpp).
+"""
+import argparse
+import json
+import os
+import shlex
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# The options `rockfit synth` takes for a measurement artefact; an ideal sensor (--no-noise) takes none of them.
+MEASUREMENT_OPTIONS = ("--gyro-noise-dps", "--gyro-bias-dps", "--ringing-gain", "--ringing-frequency-hz",
+                       "--ringing-decay-time-s", "--drift-slope-dps", "--drift-walk-deg-per-rt-s", "--accel-noise-g")
+
+
+def metrics(rockfit, args):
+    run = subprocess.run([rockfit, "metrics"] + args + ["--json"], capture_output=True, text=True, check=False)
+    if run.returncode != 0:
+        sys.exit("rockfit metrics %s failed (exit %d): %s" % (" ".join(args), run.returncode, run.stderr.strip()))
+    return json.loads(run.stdout)
+
+
+def row(label, file_m, gyro_m, truth_opmf):
+    d_opmf = gyro_m["opmf"] - file_m["opmf"]
+    d_avrf = gyro_m["avrf"] / file_m["avrf"] - 1.0
+    return ("%-12s %8.4f %8.4f %8.4f %+8.4f %+8.4f %+8.4f %8.4f %8.4f %+7.2f%%" %
+            (label, file_m["opmf"], gyro_m["opmf"], truth_opmf, d_opmf, file_m["opmf"] - truth_opmf,
+             gyro_m["opmf"] - truth_opmf, file_m["avrf"], gyro_m["avrf"], 100.0 * d_avrf))
+
+
+HEADER = ("%-12s %8s %8s %8s %8s %8s %8s %8s %8s %8s" %
+          ("trial", "OPMF", "OPMF", "OPMF", "gyro-", "file-", "gyro-", "AVRF", "AVRF", "gyro/"))
+HEADER2 = ("%-12s %8s %8s %8s %8s %8s %8s %8s %8s %8s" %
+           ("", "file", "gyro", "truth", "file", "truth", "truth", "file", "gyro", "file-1"))
+
+
+def campaign(rockfit, manifest):
+    import tomllib
+    with open(manifest, "rb") as f:
+        trials = tomllib.load(f)["trials"]
+    recordings = os.path.join(os.path.dirname(manifest), "recordings")
+    print(HEADER)
+    print(HEADER2)
+    worst_opmf = worst_avrf = 0.0
+    for trial in trials:
+        file_m = metrics(rockfit, [manifest, "--trial", trial["id"]])
+        gyro_m = metrics(rockfit, [manifest, "--trial", trial["id"], "--orientation", "none"])
+        with open(os.path.join(recordings, trial["id"] + "_truth.json"), encoding="utf-8") as f:
+            truth_opmf = json.load(f)["summary"]["opmf"]
+        print(row(trial["id"], file_m, gyro_m, truth_opmf))
+        worst_opmf = max(worst_opmf, abs(gyro_m["opmf"] - file_m["opmf"]))
+        worst_avrf = max(worst_avrf, abs(gyro_m["avrf"] / file_m["avrf"] - 1.0))
+    print("largest |OPMF gyro − file| %.4f, largest |AVRF gyro/file − 1| %.2f %%" % (worst_opmf, 100.0 * worst_avrf))
+
+
+def variants(rockfit, manifest, out_dir, trial_id):
+    import tomllib
+    with open(manifest, "rb") as f:
+        spec = tomllib.load(f)
+    trial = next(t for t in spec["trials"] if t["id"] == trial_id)
+    recordings = os.path.join(os.path.dirname(manifest), "recordings")
+    with open(os.path.join(recordings, trial_id + "_truth.json"), encoding="utf-8") as f:
+        truth = json.load(f)
+    command = shlex.split(truth["command"])[1:]  # without the program name
+    out_at = command.index("-o")
+    del command[out_at:out_at + 2]
+    ideal = []
+    skip = False
+    for word in command:
+        if skip:
+            skip = False
+            continue
+        name = word.split("=", 1)[0]
+        if name in MEASUREMENT_OPTIONS:
+            skip = "=" not in word
+            continue
+        ideal.append(word)
+    os.makedirs(out_dir, exist_ok=True)
+    print(HEADER)
+    print(HEADER2)
+    for label, synth_args in (("as sampled", command), ("no ringing", command + ["--no-ringing"]),
+                              ("no drift", command + ["--no-drift"]), ("ideal", ideal + ["--no-noise"])):
+        prefix = os.path.join(out_dir, label.replace(" ", "-"))
+        subprocess.run([rockfit] + synth_args + ["-o", prefix], check=True, capture_output=True)
+        common = ["--manifest", manifest, "--block", trial["block"]]
+        if trial.get("mounting"):
+            common += ["--mounting", trial["mounting"]]
+        file_m = metrics(rockfit, [prefix] + common)
+        gyro_m = metrics(rockfit, [prefix] + common + ["--orientation", "none"])
+        print(row(label, file_m, gyro_m, truth["summary"]["opmf"]))
+
+
+def held_out(rockfit, out_dir, count):
+    import random
+    draw = random.Random(29)
+    os.makedirs(out_dir, exist_ok=True)
+    print(HEADER)
+    print(HEADER2)
+    worst_opmf = worst_avrf = 0.0
+    beyond_opmf = beyond_avrf = 0
+    for k in range(count):
+        b2 = (0.025, 0.035, 0.045, 0.06)[k % 4]
+        block = ["--b1", "0.05000453", "--b2", repr(b2), "--h", "0.2", "--density", "2692"]
+        bias = ",".join("%.3f" % draw.uniform(-0.06, 0.06) for _ in range(3))
+        synth = block + ["--alpha", "%.3f" % draw.uniform(0.17, 0.24), "--lambda", "%.2f" % draw.uniform(1.0, 2.5),
+                         "--lambda-lat", "%.2f" % draw.uniform(-4.5, 4.5),
+                         "--lambda-lon", "%.2f" % draw.uniform(0.2, 1.3), "--t0", "%.2f" % draw.uniform(1.2, 2.0),
+                         "--duration", "5.5", "--rate", "256", "--quaternion-rate", "256", "--no-rotation-matrix",
+                         "--seed", str(2900 + k), "--gyro-noise-dps", "0.1", "--gyro-bias-dps=" + bias,
+                         "--ringing-gain", "%.2f" % draw.uniform(0.18, 0.32),
+                         "--ringing-frequency-hz", "%.1f" % draw.uniform(34, 45),
+                         "--ringing-decay-time-s", "%.3f" % draw.uniform(0.022, 0.04),
+                         "--drift-slope-dps=0.02,-0.03,0.3", "--drift-walk-deg-per-rt-s=0.01,0.01,0.03"]
+        prefix = os.path.join(out_dir, "held-%02d" % k)
+        made = subprocess.run([rockfit, "synth"] + synth + ["-o", prefix], capture_output=True, text=True, check=False)
+        if made.returncode != 0:
+            print("%-12s synth: %s" % ("held-%02d" % k, made.stderr.strip().splitlines()[-1]))
+            continue
+        file_m = metrics(rockfit, [prefix] + block)
+        gyro_m = metrics(rockfit, [prefix] + block + ["--orientation", "none"])
+        with open(prefix + "_truth.json", encoding="utf-8") as f:
+            truth_opmf = json.load(f)["summary"]["opmf"]
+        print(row("held-%02d" % k, file_m, gyro_m, truth_opmf))
+        d_opmf = abs(gyro_m["opmf"] - file_m["opmf"])
+        d_avrf = abs(gyro_m["avrf"] / file_m["avrf"] - 1.0)
+        worst_opmf, worst_avrf = max(worst_opmf, d_opmf), max(worst_avrf, d_avrf)
+        beyond_opmf += d_opmf > 0.003
+        beyond_avrf += d_avrf > 0.01
+    print("largest |OPMF gyro − file| %.4f (%d beyond 0.003), largest |AVRF gyro/file − 1| %.2f %% (%d beyond 1 %%)" %
+          (worst_opmf, beyond_opmf, 100.0 * worst_avrf, beyond_avrf))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--rockfit", default=os.path.join(HERE, "build", "tools", "rockfit"))
+    parser.add_argument("--manifest", default=os.path.join(HERE, "data-samples", "manifest.toml"))
+    parser.add_argument("--variants", nargs=2, metavar=("DIR", "TRIAL"))
+    parser.add_argument("--held-out", nargs=2, metavar=("DIR", "N"))
+    args = parser.parse_args()
+    if args.held_out:
+        held_out(args.rockfit, args.held_out[0], int(args.held_out[1]))
+    elif args.variants:
+        variants(args.rockfit, args.manifest, *args.variants)
+    else:
+        campaign(args.rockfit, args.manifest)
+
+
+if __name__ == "__main__":
+    main()
