@@ -234,7 +234,7 @@ Group Group::CreateGroup(const std::string& name) const {
   return Group(Handle(id, CloseGroup), ChildPath(name), file_name_);
 }
 
-Group Group::RequireGroup(const std::string& name) const { return Exists(name) ? OpenGroup(name) : CreateGroup(name); }
+Group Group::OpenOrCreateGroup(const std::string& name) const { return Exists(name) ? OpenGroup(name) : CreateGroup(name); }
 
 void Group::Remove(const std::string& name) const {
   if (!Exists(name)) return;

@@ -54,7 +54,7 @@ class Group {
   bool IsDataset(const std::string& name) const;
   Group OpenGroup(const std::string& name) const;     // BadInput when missing
   Group CreateGroup(const std::string& name) const;   // creates missing intermediate groups; OutputError if it exists
-  Group RequireGroup(const std::string& name) const;  // open, or create when missing
+  Group OpenOrCreateGroup(const std::string& name) const;  // open, or create when missing
   void Remove(const std::string& name) const;         // unlinks; nothing when missing
   std::vector<std::string> Children() const;          // names of the direct children, in name order
 
