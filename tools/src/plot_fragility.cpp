@@ -10,6 +10,7 @@
 #include "cli_common.hpp"
 #include "command_registry.hpp"
 #include "rockfit/app/gnuplot.hpp"
+#include "rockfit/app/report_inputs.hpp"
 #include "plot_command.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/io/hdf5_file.hpp"
@@ -66,7 +67,7 @@ int RunPlotFragility(const FragilityPlotCommand& cmd) {
                                   GnuplotString(label + " (95 % Clopper–Pearson)")));
       const std::string status = ls.ReadStrings("curve/status").at(0);
       const double median = ls.ReadDoubles("curve/median").at(0), beta = ls.ReadDoubles("curve/beta").at(0);
-      if (status == "ok") {
+      if (CurveStatusIsOk(status, ls.file_name() + ": " + ls.path() + "/curve/status")) {
         plots.push_back(fmt::format("norm(log(x/{})/{}) with lines lw 2 dt {} lc rgb '{}' title {}", median, beta, dash,
                                     colour, GnuplotString(fmt::format("lognormal θ = {:.3g}, β = {:.2f}", median, beta))));
         ++curves;

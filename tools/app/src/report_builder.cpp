@@ -367,7 +367,7 @@ void WriteEarthquake(Page& page, const ReportData& data) {
     out << TableStart("Lognormal fragility curves of " + b.block_id + " (" + b.file + ")",
                       {"limit state", "curve", b.intensity_is_pga_g ? "median θ [g]" : "median θ [1]", "β [1]", "note"});
     for (const FragilityLimitState& s : b.limit_states) {
-      const bool ok = s.curve_status == "ok";
+      const bool ok = s.curve_ok;
       out << "<tr>" << TextCell(s.name) << TextCell(s.curve_status) << NumCell(ok ? s.median : std::nan(""))
           << NumCell(ok ? s.beta : std::nan("")) << TextCell(s.curve_message) << "</tr>\n";
     }

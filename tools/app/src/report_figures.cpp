@@ -269,7 +269,7 @@ ReportFigure FragilityFigure(const FragilityBlock& block, const std::string& id_
                                 d, colour));
     plots.push_back(fmt::format("{} using 1:2:3:4 with yerrorbars pt 7 lc rgb '{}' title {}", d, colour,
                                 GnuplotString(name + " (95 % Clopper–Pearson)")));
-    if (ls.curve_status == "ok") {
+    if (ls.curve_ok) {
       plots.push_back(fmt::format("norm(log(x/{})/{}) with lines lw 2 lc rgb '{}' title {}", ls.median, ls.beta, colour,
                                   GnuplotString(fmt::format("lognormal θ = {:.3g}, β = {:.2f}", ls.median, ls.beta))));
     }

@@ -14,6 +14,7 @@
 #include "rockfit/io/content_hash.hpp"
 #include "rockfit/io/hdf5_file.hpp"
 #include "rockfit/io/trajectory_hdf5.hpp"
+#include "rockfit/quake/lognormal_fragility.hpp"
 
 namespace rockfit::app {
 namespace {
@@ -167,6 +168,8 @@ void ReadFragility(const std::filesystem::path& path, ReportData& data) {
       }
       const std::vector<std::string> status = ls.ReadStrings("curve/status");
       s.curve_status = status.empty() ? "" : status.front();
+      s.curve_ok = CurveStatusIsOk(s.curve_status, fmt::format("{}: /fragility/blocks/{}/limit_states/{}/curve/status",
+                                                               path.string(), id, name));
       if (ls.IsDataset("curve/message")) {
         const std::vector<std::string> message = ls.ReadStrings("curve/message");
         s.curve_message = message.empty() ? "" : message.front();
@@ -280,6 +283,16 @@ ReportData ReadReportData(const ReportInputs& inputs) {
     Tolerant("response file " + p.string(), data, [&] { ReadResponse(p, data); });
   }
   return data;
+}
+
+bool CurveStatusIsOk(const std::string& stored, const std::string& where) {
+  if (stored.empty()) return false;
+  quake::LognormalFitStatus status = quake::LognormalFitStatus::kOk;
+  if (!quake::FromString(stored, &status)) {
+    throw BadInput(fmt::format("{}: '{}' is no lognormal-fit status; write the file again with this rockfit", where,
+                               stored));
+  }
+  return status == quake::LognormalFitStatus::kOk;
 }
 
 }  // namespace rockfit::app

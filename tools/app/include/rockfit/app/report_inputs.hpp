@@ -73,8 +73,13 @@ struct FragilityLimitState {
   std::string name;
   std::vector<double> intensity, probability, lower_95, upper_95;  // Clopper–Pearson band
   std::string curve_status, curve_message;  // of the lognormal fit ("ok", "separated", …)
-  double median = 0.0, beta = 0.0;           // the lognormal curve Φ(ln(x/θ)/β); meaningful when status is "ok"
+  bool curve_ok = false;                     // curve_status is quake::LognormalFitStatus::kOk
+  double median = 0.0, beta = 0.0;           // the lognormal curve Φ(ln(x/θ)/β); meaningful when curve_ok
 };
+
+// Whether a stored lognormal-fit status (`curve/status`) is ok; an empty one is not. BadInput naming `where` for a
+// name that is no quake::LognormalFitStatus.
+bool CurveStatusIsOk(const std::string& stored, const std::string& where);
 struct FragilityBlock {
   std::string file, block_id;
   bool intensity_is_pga_g = true;
