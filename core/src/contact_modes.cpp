@@ -55,10 +55,17 @@ Mode VertexMode::mode() const {
 
 EdgeMode::EdgeMode(const Block& block, int i, int j, const Eigen::Quaterniond& q_yaw, double gravity_m_s2)
     : first_(Block::WrapVertex(i)), second_(Block::WrapVertex(j)), q_yaw_(q_yaw), dynamics_(block, i, j, gravity_m_s2) {
+  SetYaw(q_yaw);
+}
+
+void EdgeMode::SetYaw(const Eigen::Quaterniond& q_yaw) {
+  q_yaw_ = q_yaw;
   // The analytic Euler angles need a pure yaw and an edge axis along a body axis (the base edges of a
   // rectangular block are; the axis is built from the edge midpoint without round-off).
   const Eigen::Vector3d& a = dynamics_.axis_B();
   const bool pure_yaw = q_yaw_.x() == 0.0 && q_yaw_.y() == 0.0 && q_yaw_.w() >= 0.0;
+  tilt_euler_index_ = -1;
+  tilt_euler_sign_ = 1.0;
   if (pure_yaw && a.x() == 0.0 && a.z() == 0.0 && std::abs(a.y()) == 1.0) {
     tilt_euler_index_ = 1;
     tilt_euler_sign_ = a.y();

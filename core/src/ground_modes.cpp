@@ -85,6 +85,12 @@ GroundEdgeMode::GroundEdgeMode(const Block& block, int i, int j, const Eigen::Qu
   inertia_P_B_ = InertiaAboutPoint(block, e.p_BP_B());
 }
 
+void GroundEdgeMode::SetYawAndLiftMargin(const Eigen::Quaterniond& q_yaw, double lift_margin_g) {
+  free_.SetYaw(q_yaw);
+  inward_W_ = q_yaw * free_.dynamics().inward_B();
+  lift_margin_g_ = lift_margin_g;
+}
+
 void GroundEdgeMode::operator()(double t, const State& y, State& dydt) const {
   const Eigen::Vector3d a_W = ground_->Acceleration_W(t);
   const double f_n = -a_W.dot(inward_W_);

@@ -4,6 +4,12 @@
 #include <cmath>
 
 namespace rockfit::core::detail {
+namespace {
+// A run that may end before t_max (at phase 4, rest or overturning) reserves at most this many samples up front;
+// the vectors grow past it as needed. Reserving t_max's worth (5,121 samples for 20 s at 256 Hz, ~0.5 MB with
+// attitudes) for a run of one second made every run allocate, fault in and give back fresh pages.
+constexpr std::size_t kOpenEndedSampleReserve = 4096;
+}  // namespace
 
 TrajectorySampler::TrajectorySampler(const SimulationOptions& options, double t_last_s, Trajectory* out)
     : out_(out),
@@ -16,6 +22,7 @@ TrajectorySampler::TrajectorySampler(const SimulationOptions& options, double t_
     expected = times_->size();
   } else {
     expected = static_cast<std::size_t>(std::floor(t_last_s_ * rate_hz_)) + 1;
+    if (options.stop != StopCondition::kTMax) expected = std::min(expected, kOpenEndedSampleReserve);
   }
   out_->t_s.reserve(expected);
   out_->w_B.reserve(expected);

@@ -89,6 +89,9 @@ class EdgeMode {
 
   // Rotation about the base edge V_iV_j (neighbours) with the given yaw of the flat attitude.
   EdgeMode(const Block& block, int i, int j, const Eigen::Quaterniond& q_yaw, double gravity_m_s2);
+  // The same rotation with another yaw of the flat attitude (the edge's dynamics do not depend on it, so a mode
+  // built once serves every segment about its edge).
+  void SetYaw(const Eigen::Quaterniond& q_yaw);
 
   void operator()(double t, const State& y, State& dydt) const { dynamics_(t, y, dydt); }
   GuardValue Guard(int index, const State& y) const;

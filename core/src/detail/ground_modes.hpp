@@ -100,6 +100,9 @@ class GroundEdgeMode {
   // vertex motion's lift and the edge's pull exceed it (the simulator sets it after an end came straight back).
   GroundEdgeMode(const Block& block, int i, int j, const Eigen::Quaterniond& q_yaw, double gravity_m_s2,
                  const GroundMotion& ground, bool falls_on_side = false, double lift_margin_g = 0.0);
+  // The same mode with another yaw of the flat attitude and lift margin (a mode built once serves every segment
+  // about its edge).
+  void SetYawAndLiftMargin(const Eigen::Quaterniond& q_yaw, double lift_margin_g);
 
   void operator()(double t, const State& y, State& dydt) const;
   // kLoadFirst/kLoadSecond: EndHold of V_i / V_j (positive while the edge holds it), with its rate by a
