@@ -515,9 +515,7 @@ HybridRun::Next HybridRun::RestOnTable(double t, const Eigen::Quaterniond& q_fla
     // At rest for good: the run ends, but not before the record does (the samples show the table moving).
     return Stop(EndReason::kRest, std::max(t, std::min(ground_->t_end_s(), options_.t_max_s)), at_rest);
   }
-  while (sampler_.pending() && sampler_.next_time() < uplift->t_s) {
-    sampler_.Emit(rest_mode, Eigen::Vector3d::Zero(), [&q_flat] { return q_flat; });
-  }
+  sampler_.EmitHeld(rest_mode, Eigen::Vector3d::Zero(), q_flat, uplift->t_s, false);
   ImpactRecord record;
   record.t_s = uplift->t_s;
   record.kind = ImpactKind::kUplift;
@@ -852,9 +850,7 @@ HybridRun::Next HybridRun::Rest(double t, const Eigen::Quaterniond& q_flat, cons
 }
 
 HybridRun::Next HybridRun::Stop(EndReason reason, double t, const EndState& state, std::string message) {
-  while (sampler_.pending() && sampler_.next_time() <= t) {
-    sampler_.Emit(state.mode, state.w_B, [&state] { return state.q_WB; });
-  }
+  sampler_.EmitHeld(state.mode, state.w_B, state.q_WB, t, true);
   out_->t_end_s = t;
   out_->end_q_WB = state.q_WB;
   out_->end_w_B = state.w_B;
