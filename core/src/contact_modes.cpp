@@ -36,6 +36,18 @@ GuardValue VertexMode::Guard(int index, const State& y) const {
   return {up_B.dot(n), up_rate_B.dot(n)};
 }
 
+std::array<GuardValue, VertexMode::kNumGuards> VertexMode::Guards(double /*t*/, const State& y) const {
+  const Eigen::Vector3d up_B = VertexDynamics::UpInBody(y);
+  const Eigen::Vector3d w_B = VertexDynamics::AngularVelocity(y);
+  const Eigen::Vector3d up_rate_B = up_B.cross(w_B);
+  std::array<GuardValue, kNumGuards> g;
+  for (int index = 0; index < 2; ++index) g[index] = {up_B.dot(p_KN_B_[index]), up_rate_B.dot(p_KN_B_[index])};
+  for (int index = 2; index < 4; ++index) {
+    g[index] = {up_B.dot(edge_x_c_[index - 2]), up_rate_B.dot(edge_x_c_[index - 2])};
+  }
+  return g;
+}
+
 double VertexMode::StepBound(const State& y) {
   const double rate_rad_s = VertexDynamics::AngularVelocity(y).norm();
   return rate_rad_s > 0.0 ? kMaxTurnPerStep_rad / rate_rad_s : std::numeric_limits<double>::infinity();

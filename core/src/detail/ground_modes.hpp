@@ -51,6 +51,14 @@ class GroundVertexMode {
     if (falls_on_side_ && index >= VertexMode::kOverNext) return SideLanding(index, y);
     return free_.Guard(index, y);
   }
+  // Every guard at once, as Guard gives each.
+  std::array<GuardValue, kNumGuards> Guards(double t, const State& y) const {
+    std::array<GuardValue, kNumGuards> g = free_.Guards(t, y);
+    if (falls_on_side_) {
+      for (int index = VertexMode::kOverNext; index < kNumGuards; ++index) g[index] = SideLanding(index, y);
+    }
+    return g;
+  }
   // Under OverturnRule::kFallsOnSide, the block lies on a side when its z axis is horizontal: the first point
   // beyond the base to reach the ground is then the top vertex above the pivot, 2h·(up_B · e_z) above it (the
   // other top vertices are higher by the heights of their base vertices, which the touch-down guards keep
