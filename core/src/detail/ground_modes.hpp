@@ -116,6 +116,8 @@ class GroundEdgeMode {
   // kLoadFirst/kLoadSecond: EndHold of V_i / V_j (positive while the edge holds it), with its rate by a
   // central difference over kLoadRateStep_s along the motion (no closed form).
   GuardValue Guard(int index, double t, const State& y) const;
+  // Every guard at once, as Guard gives each (the two end loads share their forces at each of the three times).
+  std::array<GuardValue, kNumGuards> Guards(double t, const State& y) const;
   double StepLimit(double t, double t_limit) const { return std::min(t_limit, ground_->NextBreak(t)); }
   static double StepBound(const State& /*y*/) { return kGroundStepBound_s; }
   static bool IsTouchdown(int guard) { return guard == kFlat; }
@@ -139,6 +141,10 @@ class GroundEdgeMode {
 
  private:
   Eigen::Vector3d Field_B(double t, double psi) const;  // R_WBᵀ f_W(t)
+  // EndHold of `end` given EndForces(t, y).
+  double EndHoldWith(int end, double t, const State& y, const std::array<double, 2>& end_forces_N) const;
+  // EndHold of both ends.
+  std::array<double, 2> EndHolds(double t, const State& y) const;
 
   EdgeMode free_;
   const GroundMotion* ground_;
