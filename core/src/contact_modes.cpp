@@ -36,6 +36,18 @@ GuardValue VertexMode::Guard(int index, const State& y) const {
   return {up_B.dot(n), up_rate_B.dot(n)};
 }
 
+std::array<GuardValue, VertexMode::kNumGuards> VertexMode::Guards(double /*t*/, const State& y) const {
+  const Eigen::Vector3d up_B = VertexDynamics::UpInBody(y);
+  const Eigen::Vector3d w_B = VertexDynamics::AngularVelocity(y);
+  const Eigen::Vector3d up_rate_B = up_B.cross(w_B);
+  std::array<GuardValue, kNumGuards> g;
+  for (int index = 0; index < 2; ++index) g[index] = {up_B.dot(p_KN_B_[index]), up_rate_B.dot(p_KN_B_[index])};
+  for (int index = 2; index < 4; ++index) {
+    g[index] = {up_B.dot(edge_x_c_[index - 2]), up_rate_B.dot(edge_x_c_[index - 2])};
+  }
+  return g;
+}
+
 double VertexMode::StepBound(const State& y) {
   const double rate_rad_s = VertexDynamics::AngularVelocity(y).norm();
   return rate_rad_s > 0.0 ? kMaxTurnPerStep_rad / rate_rad_s : std::numeric_limits<double>::infinity();
@@ -55,10 +67,17 @@ Mode VertexMode::mode() const {
 
 EdgeMode::EdgeMode(const Block& block, int i, int j, const Eigen::Quaterniond& q_yaw, double gravity_m_s2)
     : first_(Block::WrapVertex(i)), second_(Block::WrapVertex(j)), q_yaw_(q_yaw), dynamics_(block, i, j, gravity_m_s2) {
+  SetYaw(q_yaw);
+}
+
+void EdgeMode::SetYaw(const Eigen::Quaterniond& q_yaw) {
+  q_yaw_ = q_yaw;
   // The analytic Euler angles need a pure yaw and an edge axis along a body axis (the base edges of a
   // rectangular block are; the axis is built from the edge midpoint without round-off).
   const Eigen::Vector3d& a = dynamics_.axis_B();
   const bool pure_yaw = q_yaw_.x() == 0.0 && q_yaw_.y() == 0.0 && q_yaw_.w() >= 0.0;
+  tilt_euler_index_ = -1;
+  tilt_euler_sign_ = 1.0;
   if (pure_yaw && a.x() == 0.0 && a.z() == 0.0 && std::abs(a.y()) == 1.0) {
     tilt_euler_index_ = 1;
     tilt_euler_sign_ = a.y();

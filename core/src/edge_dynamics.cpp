@@ -22,6 +22,9 @@ EdgeDynamics::EdgeDynamics(const Block& block, int i, int j, double gravity_m_s2
   inertia_C_B_ = block.inertia_C_B();
   inertia_e_ = axis_B_.dot(InertiaAboutPoint(block, p_BP_B_) * axis_B_);
   torque_scale_ = mass_kg_ * gravity_m_s2_ / inertia_e_;
+  critical_angle_rad_ = std::atan2(d_m_, h_m_);
+  arm_m_ = std::hypot(d_m_, h_m_);
+  axis_heading_rad_ = std::atan2(axis_B_.y(), axis_B_.x());
 }
 
 Eigen::Quaterniond EdgeDynamics::Tilt(double psi_rad) const {
@@ -65,8 +68,7 @@ void EdgeDynamics::Decompose(const Eigen::Quaterniond& q_WB, Eigen::Quaterniond*
   // The yaw: the world direction of the edge axis a_B, projected onto the ground plane.
   const Eigen::Vector3d a_W = R_WB * axis_B_;
   const double yaw_axis = std::atan2(a_W.y(), a_W.x());
-  const double yaw_body = std::atan2(axis_B_.y(), axis_B_.x());
-  *q_yaw = Eigen::Quaterniond(Eigen::AngleAxisd(yaw_axis - yaw_body, Eigen::Vector3d::UnitZ()));
+  *q_yaw = Eigen::Quaterniond(Eigen::AngleAxisd(yaw_axis - axis_heading_rad_, Eigen::Vector3d::UnitZ()));
 }
 
 double EdgeDynamics::ProjectAngularVelocity(const Eigen::Vector3d& w_B, const Eigen::Vector3d& p_BQ_B) const {

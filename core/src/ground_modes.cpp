@@ -85,6 +85,12 @@ GroundEdgeMode::GroundEdgeMode(const Block& block, int i, int j, const Eigen::Qu
   inertia_P_B_ = InertiaAboutPoint(block, e.p_BP_B());
 }
 
+void GroundEdgeMode::SetYawAndLiftMargin(const Eigen::Quaterniond& q_yaw, double lift_margin_g) {
+  free_.SetYaw(q_yaw);
+  inward_W_ = q_yaw * free_.dynamics().inward_B();
+  lift_margin_g_ = lift_margin_g;
+}
+
 void GroundEdgeMode::operator()(double t, const State& y, State& dydt) const {
   const Eigen::Vector3d a_W = ground_->Acceleration_W(t);
   const double f_n = -a_W.dot(inward_W_);
@@ -148,9 +154,18 @@ double GroundEdgeMode::LiftAcceleration(int end, double t, const State& y) const
 }
 
 double GroundEdgeMode::EndHold(int end, double t, const State& y) const {
+  return EndHoldWith(end, t, y, EndForces(t, y));
+}
+
+double GroundEdgeMode::EndHoldWith(int end, double t, const State& y, const std::array<double, 2>& end_forces_N) const {
   const double g = gravity_m_s2_;
-  return std::max(-LiftAcceleration(end, t, y) / g, EndForces(t, y)[static_cast<std::size_t>(end)] / (mass_kg_ * g)) +
+  return std::max(-LiftAcceleration(end, t, y) / g, end_forces_N[static_cast<std::size_t>(end)] / (mass_kg_ * g)) +
          lift_margin_g_;
+}
+
+std::array<double, 2> GroundEdgeMode::EndHolds(double t, const State& y) const {
+  const std::array<double, 2> forces = EndForces(t, y);
+  return {EndHoldWith(0, t, y, forces), EndHoldWith(1, t, y, forces)};
 }
 
 GuardValue GroundEdgeMode::Guard(int index, double t, const State& y) const {
@@ -166,6 +181,23 @@ GuardValue GroundEdgeMode::Guard(int index, double t, const State& y) const {
   const double ahead = EndHold(end, t + kLoadRateStep_s, y + kLoadRateStep_s * dydt);
   const double behind = EndHold(end, t - kLoadRateStep_s, y - kLoadRateStep_s * dydt);
   return {EndHold(end, t, y), (ahead - behind) / (2.0 * kLoadRateStep_s)};
+}
+
+std::array<GuardValue, GroundEdgeMode::kNumGuards> GroundEdgeMode::Guards(double t, const State& y) const {
+  std::array<GuardValue, kNumGuards> g;
+  g[kFlat] = Guard(kFlat, t, y);
+  g[kOver] = Guard(kOver, t, y);
+  // The end loads and their central differences as in Guard.
+  State dydt;
+  (*this)(t, y, dydt);
+  const std::array<double, 2> ahead = EndHolds(t + kLoadRateStep_s, y + kLoadRateStep_s * dydt);
+  const std::array<double, 2> behind = EndHolds(t - kLoadRateStep_s, y - kLoadRateStep_s * dydt);
+  const std::array<double, 2> now = EndHolds(t, y);
+  for (int end = 0; end < 2; ++end) {
+    const auto k = static_cast<std::size_t>(end);
+    g[kLoadFirst + end] = {now[k], (ahead[k] - behind[k]) / (2.0 * kLoadRateStep_s)};
+  }
+  return g;
 }
 
 }  // namespace rockfit::core::detail

@@ -15,6 +15,16 @@ namespace {
 // floor as the integrator's smallest step, with a margin).
 double TimeFloor(double t_s) { return 64.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_s)); }
 
+// A record whose vertical samples stay below this fraction of g cannot lift the block off (interpolation between
+// samples exceeds their range by round-off at most).
+constexpr double kNoLiftOffFraction = 0.5;
+
+double MaxAbsZ(const std::vector<Eigen::Vector3d>& a_W) {
+  double peak = 0.0;
+  for (const Eigen::Vector3d& a : a_W) peak = std::max(peak, std::abs(a.z()));
+  return peak;
+}
+
 }  // namespace
 
 GroundMotion GroundMotion::Uniform(double dt_s, std::vector<Eigen::Vector3d> a_W, double t_start_s) {
@@ -32,6 +42,7 @@ GroundMotion GroundMotion::Uniform(double dt_s, std::vector<Eigen::Vector3d> a_W
   GroundMotion g;
   g.dt_s_ = dt_s;
   g.t_start_s_ = t_start_s;
+  g.stored_peak_vertical_ = MaxAbsZ(a_W);
   g.samples_W_ = std::make_shared<const std::vector<Eigen::Vector3d>>(std::move(a_W));
   return g;
 }
@@ -61,9 +72,8 @@ double GroundMotion::PeakHorizontal() const {
 }
 
 double GroundMotion::PeakVertical() const {
-  double peak = 0.0;
-  for (std::size_t k = 0; k < size(); ++k) peak = std::max(peak, std::abs(Sample(k).z()));
-  return peak;
+  // A view scales z by its factor alone, and rounding is monotone: max |z·f| = (max |z|)·|f| bit for bit.
+  return transformed_ ? stored_peak_vertical_ * std::abs(factor_) : stored_peak_vertical_;
 }
 
 GroundMotion GroundMotion::Scaled(double factor) const {
@@ -71,6 +81,7 @@ GroundMotion GroundMotion::Scaled(double factor) const {
   std::vector<Eigen::Vector3d> a_W = samples_W();
   for (Eigen::Vector3d& a : a_W) a *= factor;
   GroundMotion g = *this;
+  g.stored_peak_vertical_ = MaxAbsZ(a_W);
   g.samples_W_ = std::make_shared<const std::vector<Eigen::Vector3d>>(std::move(a_W));
   g.transformed_ = false;
   return g;
@@ -83,6 +94,7 @@ GroundMotion GroundMotion::Rotated(double beta_rad) const {
   std::vector<Eigen::Vector3d> a_W = samples_W();
   for (Eigen::Vector3d& a : a_W) a = Eigen::Vector3d(c * a.x() - s * a.y(), s * a.x() + c * a.y(), a.z());
   GroundMotion g = *this;
+  g.stored_peak_vertical_ = MaxAbsZ(a_W);
   g.samples_W_ = std::make_shared<const std::vector<Eigen::Vector3d>>(std::move(a_W));
   g.transformed_ = false;
   return g;
@@ -104,6 +116,9 @@ double LiftOffTime(const GroundMotion& ground, double gravity_m_s2, double t_fro
   const double inf = std::numeric_limits<double>::infinity();
   const auto margin = [&](double t) { return gravity_m_s2 + ground.Acceleration_W(t).z(); };
   if (ground.empty() || !(t_until_s >= t_from_s)) return inf;
+  // g + a_z, linear between samples, stays positive where no sample comes near −g (every record without a
+  // vertical component): no scan of the record.
+  if (ground.PeakVertical() < kNoLiftOffFraction * gravity_m_s2) return inf;
   if (margin(t_from_s) <= 0.0) return t_from_s;
   // g + a_z is linear between breaks: a root lies between two break times where it changes sign.
   double t0 = t_from_s;

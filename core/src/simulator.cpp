@@ -18,6 +18,7 @@
 #include "detail/contact_modes.hpp"
 #include "detail/ground_modes.hpp"
 #include "detail/hybrid_segment.hpp"
+#include "detail/mode_cache.hpp"
 #include "detail/trajectory_sampler.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/ground_uplift.hpp"
@@ -188,14 +189,13 @@ Eigen::Quaterniond FlatWithHeadingOf(const Eigen::Quaterniond& q_WB) {
 
 // Kinetic energy of the flat block (attitude q_flat) right after an impact that leaves it on `contact` with
 // body rate w_B: about the vertex, about the edge (the rate about it), or zero when the base stays down.
-double KineticEnergyAfterLanding(const Block& block, double gravity, const Contact& contact,
-                                 const Eigen::Quaterniond& q_flat, const Eigen::Vector3d& w_B) {
+double KineticEnergyAfterLanding(detail::ModeCache& modes, const Contact& contact, const Eigen::Quaterniond& q_flat,
+                                 const Eigen::Vector3d& w_B) {
   if (contact.is_vertex()) {
-    const VertexDynamics about_a(block, contact.first, gravity);
-    return about_a.KineticEnergy(VertexDynamics::MakeState(q_flat, w_B));
+    return modes.VertexDynamicsOf(contact.first).KineticEnergy(VertexDynamics::MakeState(q_flat, w_B));
   }
   if (contact.is_edge()) {
-    const EdgeDynamics about_edge(block, contact.first, contact.second, gravity);
+    const EdgeDynamics& about_edge = modes.EdgeDynamicsOf(contact.first, contact.second);
     const double rate = about_edge.ProjectAngularVelocity(w_B, about_edge.p_BP_B());
     return about_edge.KineticEnergy(EdgeDynamics::State(0.0, rate));
   }
@@ -214,6 +214,7 @@ class HybridRun {
         gravity_(options.gravity_m_s2),
         out_(out),
         sampler_(options, options.t_max_s, out),
+        modes_(block, options.gravity_m_s2, ground, options.overturn == OverturnRule::kFallsOnSide),
         ground_(ground),
         start_flat_(start_flat) {
     settings_.integrator.rel_tol = options.rel_tol;
@@ -285,7 +286,7 @@ class HybridRun {
   }
   bool IsReleaseVertex(int k) const { return k == release_.first || k == release_.second; }
   EdgeStart MakeEdgeStart(const Contact& edge, const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B,
-                          const Eigen::Vector3d& p_BQ_B) const;
+                          const Eigen::Vector3d& p_BQ_B);
   template <class Outcome>
   void AddCounts(const Outcome& outcome) {
     out_->num_steps += outcome.num_steps;
@@ -299,6 +300,7 @@ class HybridRun {
   double gravity_;
   Trajectory* out_;
   detail::TrajectorySampler sampler_;
+  detail::ModeCache modes_;
   SegmentSettings settings_;
   RootPolisher polisher_;
   std::pair<int, int> release_;
@@ -320,10 +322,10 @@ class HybridRun {
 };
 
 EdgeStart HybridRun::MakeEdgeStart(const Contact& edge, const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B,
-                                   const Eigen::Vector3d& p_BQ_B) const {
+                                   const Eigen::Vector3d& p_BQ_B) {
   EdgeStart start;
   start.edge = edge;
-  const EdgeDynamics dynamics(block_, edge.first, edge.second, gravity_);
+  const EdgeDynamics& dynamics = modes_.EdgeDynamicsOf(edge.first, edge.second);
   double psi = 0.0;
   dynamics.Decompose(q_WB, &start.q_yaw, &psi);
   // An edge on the ground with the base above it: ψ ≥ 0 up to the round-off of the event location.
@@ -381,6 +383,7 @@ std::string Pivot(const GroundEdgeMode& mode) { return Pivot(mode.free_mode()); 
 
 template <typename ModeT>
 std::optional<HybridRun::Next> HybridRun::StopUnlessEvent(const ModeT& mode, const SegmentOutcome<ModeT>& outcome) {
+  if (outcome.end == SegmentEnd::kEvent) return std::nullopt;  // the usual case: no end state to build
   const EndState end{mode.mode(), mode.Attitude(outcome.y), mode.AngularVelocity_B(outcome.y)};
   switch (outcome.end) {
     case SegmentEnd::kTimeLimit:
@@ -402,10 +405,9 @@ std::optional<HybridRun::Next> HybridRun::StopUnlessEvent(const ModeT& mode, con
 
 HybridRun::Next HybridRun::RunVertex() {
   if (ground_ != nullptr) {
-    return RunVertexIn(GroundVertexMode(block_, vertex_start_.vertex, gravity_, *ground_,
-                                        options_.overturn == OverturnRule::kFallsOnSide));
+    return RunVertexIn(modes_.GroundVertex(vertex_start_.vertex));
   }
-  return RunVertexIn(VertexMode(block_, vertex_start_.vertex, gravity_));
+  return RunVertexIn(modes_.Vertex(vertex_start_.vertex));
 }
 
 template <class ModeT>
@@ -425,10 +427,9 @@ HybridRun::Next HybridRun::RunVertexIn(const ModeT& mode) {
 HybridRun::Next HybridRun::RunEdge() {
   const Contact& e = edge_start_.edge;
   if (ground_ != nullptr) {
-    return RunEdgeIn(GroundEdgeMode(block_, e.first, e.second, edge_start_.q_yaw, gravity_, *ground_,
-                                    options_.overturn == OverturnRule::kFallsOnSide, edge_start_.lift_margin_g));
+    return RunEdgeIn(modes_.GroundEdge(e.first, e.second, edge_start_.q_yaw, edge_start_.lift_margin_g));
   }
-  return RunEdgeIn(EdgeMode(block_, e.first, e.second, edge_start_.q_yaw, gravity_));
+  return RunEdgeIn(modes_.Edge(e.first, e.second, edge_start_.q_yaw));
 }
 
 template <class ModeT>
@@ -488,7 +489,7 @@ HybridRun::Next HybridRun::EdgeToVertex(const EdgeMode& mode, double t, const Ed
   Mode after_mode;
   after_mode.kind = ModeKind::kVertex;
   after_mode.contact = record.contact_after;
-  const VertexDynamics about_pivot(block_, pivot, gravity_);
+  const VertexDynamics& about_pivot = modes_.VertexDynamicsOf(pivot);
   if (!BookImpact(record, {after_mode, q_WB, w_B}, about_pivot.KineticEnergy(VertexDynamics::MakeState(q_WB, w_B)))) {
     return Next::kStopped;
   }
@@ -514,9 +515,7 @@ HybridRun::Next HybridRun::RestOnTable(double t, const Eigen::Quaterniond& q_fla
     // At rest for good: the run ends, but not before the record does (the samples show the table moving).
     return Stop(EndReason::kRest, std::max(t, std::min(ground_->t_end_s(), options_.t_max_s)), at_rest);
   }
-  while (sampler_.pending() && sampler_.next_time() < uplift->t_s) {
-    sampler_.Emit(rest_mode, Eigen::Vector3d::Zero(), [&q_flat] { return q_flat; });
-  }
+  sampler_.EmitHeld(rest_mode, Eigen::Vector3d::Zero(), q_flat, uplift->t_s, false);
   ImpactRecord record;
   record.t_s = uplift->t_s;
   record.kind = ImpactKind::kUplift;
@@ -559,7 +558,7 @@ HybridRun::Next HybridRun::AfterFacetImpactOnTable(double t, const Eigen::Quater
   const bool stopped = !contact.is_vertex() && !contact.is_edge();
   const bool beyond_bounds = trigger.delta_energy_J > 0.0 || std::abs(params_.lambda_lat) > kLateralBound;
   const bool below_resolution =
-      beyond_bounds && KineticEnergyAfterLanding(block_, gravity_, contact, q_flat, trigger.w_plus_B) <
+      beyond_bounds && KineticEnergyAfterLanding(modes_, contact, q_flat, trigger.w_plus_B) <
                            block_.mass() * gravity_ * options_.rest_energy_height_m;
   double accumulates_in_s = 0.0;
   if (!stopped && !below_resolution && trigger.w_plus_B.norm() > kRestRateFloor_rad_s &&
@@ -590,7 +589,7 @@ std::optional<HybridRun::Next> HybridRun::SettleOnTable(double t, const Eigen::Q
   zeno.contact_after = uplift->contact;
   zeno.w_minus_B = trigger.w_plus_B;
   zeno.w_minus_W = trigger.w_plus_W;
-  zeno.delta_energy_J = -KineticEnergyAfterLanding(block_, gravity_, contact, q_flat, trigger.w_plus_B);
+  zeno.delta_energy_J = -KineticEnergyAfterLanding(modes_, contact, q_flat, trigger.w_plus_B);
   out_->impacts.push_back(zeno);
   NoteDiscardedRate(trigger.w_plus_B);
   return StartRocking(*uplift, q_flat);
@@ -664,7 +663,7 @@ HybridRun::Next HybridRun::AfterEdgeImpact(const VertexMode& mode, double t, con
     // Edge contact V_aV_b after the impact: the block turns about the edge, with the angular momentum about the
     // edge line of the map's ω⁺ (a rotation about V_a). The log shows that motion and its energy change.
     const EdgeStart start = MakeEdgeStart(map.contact_after, q_WB, record.w_plus_B, block_.p_BV_B(landing));
-    const EdgeDynamics about_edge(block_, map.contact_after.first, map.contact_after.second, gravity_);
+    const EdgeDynamics& about_edge = modes_.EdgeDynamicsOf(map.contact_after.first, map.contact_after.second);
     record.w_plus_B = about_edge.AngularVelocity_B(start.y);
     record.w_plus_W = R_WB * record.w_plus_B;
     record.delta_energy_J = about_edge.KineticEnergy(start.y) - map.energy_before_J;
@@ -673,7 +672,7 @@ HybridRun::Next HybridRun::AfterEdgeImpact(const VertexMode& mode, double t, con
   after_mode.kind = map.contact_after.is_edge() ? ModeKind::kEdge : ModeKind::kVertex;
   after_mode.contact = map.contact_after;
   const EndState after{after_mode, q_WB, record.w_plus_B};
-  const VertexDynamics about_landing(block_, landing, gravity_);
+  const VertexDynamics& about_landing = modes_.VertexDynamicsOf(landing);
   const double kinetic_after = about_landing.KineticEnergy(VertexDynamics::MakeState(q_WB, record.w_plus_B));
   if (!BookImpact(record, after, kinetic_after)) return Next::kStopped;
   // Under ground motion a chatter that lands on the base from alternate corners has edge impacts between its
@@ -701,7 +700,7 @@ HybridRun::Next HybridRun::AfterEdgeImpact(const VertexMode& mode, double t, con
     const Contact edge = Contact::Edge(pivot, landing);
     const int a = map.contact_after.first;
     edge_start_ = MakeEdgeStart(edge, q_WB, record.w_plus_B, block_.p_BV_B(a));
-    const EdgeMode next_mode(block_, edge.first, edge.second, edge_start_.q_yaw, gravity_);
+    const EdgeDynamics& next_mode = modes_.EdgeDynamicsOf(edge.first, edge.second);
     ImpactRecord switch_record;
     switch_record.t_s = t;
     switch_record.kind = ImpactKind::kZeno;
@@ -711,7 +710,7 @@ HybridRun::Next HybridRun::AfterEdgeImpact(const VertexMode& mode, double t, con
     switch_record.w_minus_W = record.w_plus_W;
     switch_record.w_plus_B = next_mode.AngularVelocity_B(edge_start_.y);
     switch_record.w_plus_W = R_WB * switch_record.w_plus_B;
-    const VertexDynamics about_a(block_, a, gravity_);
+    const VertexDynamics& about_a = modes_.VertexDynamicsOf(a);
     switch_record.delta_energy_J = next_mode.KineticEnergy(edge_start_.y) -
                                    about_a.KineticEnergy(VertexDynamics::MakeState(q_WB, record.w_plus_B));
     out_->impacts.push_back(switch_record);
@@ -775,7 +774,7 @@ HybridRun::Next HybridRun::AfterFacetImpact(const EdgeMode& mode, double t, cons
   after_mode.contact = map.contact_after;
   const EndState after{after_mode, q_flat, map.w_plus_B};
   // Kinetic energy after the impact (zero when the base stays down).
-  const double kinetic_after = KineticEnergyAfterLanding(block_, gravity_, map.contact_after, q_flat, map.w_plus_B);
+  const double kinetic_after = KineticEnergyAfterLanding(modes_, map.contact_after, q_flat, map.w_plus_B);
   if (!BookImpact(record, after, kinetic_after)) return Next::kStopped;
   edge_impacts_.Clear();
   facet_impacts_.Add(t, Contact{});
@@ -835,7 +834,7 @@ HybridRun::Next HybridRun::Rest(double t, const Eigen::Quaterniond& q_flat, cons
   rest.contact_after = Contact{};
   rest.w_minus_B = trigger.w_plus_B;
   rest.w_minus_W = trigger.w_plus_W;
-  const double kinetic = KineticEnergyAfterLanding(block_, gravity_, trigger.contact_after, q_flat, trigger.w_plus_B);
+  const double kinetic = KineticEnergyAfterLanding(modes_, trigger.contact_after, q_flat, trigger.w_plus_B);
   rest.delta_energy_J = -kinetic;
   out_->impacts.push_back(rest);
   NoteDiscardedRate(trigger.w_plus_B);
@@ -851,9 +850,7 @@ HybridRun::Next HybridRun::Rest(double t, const Eigen::Quaterniond& q_flat, cons
 }
 
 HybridRun::Next HybridRun::Stop(EndReason reason, double t, const EndState& state, std::string message) {
-  while (sampler_.pending() && sampler_.next_time() <= t) {
-    sampler_.Emit(state.mode, state.w_B, [&state] { return state.q_WB; });
-  }
+  sampler_.EmitHeld(state.mode, state.w_B, state.q_WB, t, true);
   out_->t_end_s = t;
   out_->end_q_WB = state.q_WB;
   out_->end_w_B = state.w_B;

@@ -45,6 +45,8 @@ class VertexMode {
   // The interface of the segment runner (time-dependent guards, forces and step limits exist only under
   // ground motion, detail/ground_modes.hpp): here t is ignored and steps are limited by t_limit alone.
   GuardValue Guard(int index, double /*t*/, const State& y) const { return Guard(index, y); }
+  // Every guard at once, as Guard gives each (the attitude's vertical and its rate computed once).
+  std::array<GuardValue, kNumGuards> Guards(double t, const State& y) const;
   double StepLimit(double /*t*/, double t_limit) const { return t_limit; }
   // The longest step from state y: a turn of the body by at most kMaxTurnPerStep_rad, so that a vertex height
   // (A cos(turn) + C under a steady rotation) has at most one extremum per step.
@@ -89,6 +91,9 @@ class EdgeMode {
 
   // Rotation about the base edge V_iV_j (neighbours) with the given yaw of the flat attitude.
   EdgeMode(const Block& block, int i, int j, const Eigen::Quaterniond& q_yaw, double gravity_m_s2);
+  // The same rotation with another yaw of the flat attitude (the edge's dynamics do not depend on it, so a mode
+  // built once serves every segment about its edge).
+  void SetYaw(const Eigen::Quaterniond& q_yaw);
 
   void operator()(double t, const State& y, State& dydt) const { dynamics_(t, y, dydt); }
   GuardValue Guard(int index, const State& y) const;

@@ -51,6 +51,14 @@ class GroundVertexMode {
     if (falls_on_side_ && index >= VertexMode::kOverNext) return SideLanding(index, y);
     return free_.Guard(index, y);
   }
+  // Every guard at once, as Guard gives each.
+  std::array<GuardValue, kNumGuards> Guards(double t, const State& y) const {
+    std::array<GuardValue, kNumGuards> g = free_.Guards(t, y);
+    if (falls_on_side_) {
+      for (int index = VertexMode::kOverNext; index < kNumGuards; ++index) g[index] = SideLanding(index, y);
+    }
+    return g;
+  }
   // Under OverturnRule::kFallsOnSide, the block lies on a side when its z axis is horizontal: the first point
   // beyond the base to reach the ground is then the top vertex above the pivot, 2h·(up_B · e_z) above it (the
   // other top vertices are higher by the heights of their base vertices, which the touch-down guards keep
@@ -100,11 +108,16 @@ class GroundEdgeMode {
   // vertex motion's lift and the edge's pull exceed it (the simulator sets it after an end came straight back).
   GroundEdgeMode(const Block& block, int i, int j, const Eigen::Quaterniond& q_yaw, double gravity_m_s2,
                  const GroundMotion& ground, bool falls_on_side = false, double lift_margin_g = 0.0);
+  // The same mode with another yaw of the flat attitude and lift margin (a mode built once serves every segment
+  // about its edge).
+  void SetYawAndLiftMargin(const Eigen::Quaterniond& q_yaw, double lift_margin_g);
 
   void operator()(double t, const State& y, State& dydt) const;
   // kLoadFirst/kLoadSecond: EndHold of V_i / V_j (positive while the edge holds it), with its rate by a
   // central difference over kLoadRateStep_s along the motion (no closed form).
   GuardValue Guard(int index, double t, const State& y) const;
+  // Every guard at once, as Guard gives each (the two end loads share their forces at each of the three times).
+  std::array<GuardValue, kNumGuards> Guards(double t, const State& y) const;
   double StepLimit(double t, double t_limit) const { return std::min(t_limit, ground_->NextBreak(t)); }
   static double StepBound(const State& /*y*/) { return kGroundStepBound_s; }
   static bool IsTouchdown(int guard) { return guard == kFlat; }
@@ -128,6 +141,10 @@ class GroundEdgeMode {
 
  private:
   Eigen::Vector3d Field_B(double t, double psi) const;  // R_WBᵀ f_W(t)
+  // EndHold of `end` given EndForces(t, y).
+  double EndHoldWith(int end, double t, const State& y, const std::array<double, 2>& end_forces_N) const;
+  // EndHold of both ends.
+  std::array<double, 2> EndHolds(double t, const State& y) const;
 
   EdgeMode free_;
   const GroundMotion* ground_;

@@ -7,6 +7,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <type_traits>
+#include <utility>
 
 #include "dop853.hpp"
 #include "detail/trajectory_sampler.hpp"
@@ -37,6 +39,25 @@ struct SegmentOutcome {
   long num_steps = 0;        // accepted integrator steps
   long num_evaluations = 0;  // right-hand-side evaluations
 };
+
+// All guards of `mode` at (t, y): by its Guards() where it has one (one evaluation of what the guards share), else
+// guard by guard.
+template <class ModeT, class = void>
+struct HasGuards : std::false_type {};
+template <class ModeT>
+struct HasGuards<ModeT, std::void_t<decltype(std::declval<const ModeT&>().Guards(
+                            0.0, std::declval<const typename ModeT::State&>()))>> : std::true_type {};
+
+template <class ModeT>
+std::array<GuardValue, ModeT::kNumGuards> EvaluateGuards(const ModeT& mode, double t, const typename ModeT::State& y) {
+  if constexpr (HasGuards<ModeT>::value) {
+    return mode.Guards(t, y);
+  } else {
+    std::array<GuardValue, ModeT::kNumGuards> g;
+    for (int i = 0; i < ModeT::kNumGuards; ++i) g[i] = mode.Guard(i, t, y);
+    return g;
+  }
+}
 
 // Runs `mode` from (t_start, y_start). Guards flagged in `starts_on_surface` (vertices that have just left
 // the ground) count as zero at the start, so that round-off of the impact location cannot fire them again.
@@ -88,9 +109,8 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
   };
 
   // Guards at the start; a guard already past zero (or on zero and moving down) fires at once.
-  std::array<GuardValue, kGuards> g0;
+  std::array<GuardValue, kGuards> g0 = EvaluateGuards(mode, t_start, y_start);
   for (int i = 0; i < kGuards; ++i) {
-    g0[i] = mode.Guard(i, t_start, y_start);
     if (starts_on_surface[i]) g0[i].value = 0.0;
   }
   for (int i = 0; i < kGuards; ++i) {
@@ -122,8 +142,7 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
     const double t0 = integrator.t_previous();
     const double t1 = integrator.t();
     const State& y1 = integrator.y();
-    std::array<GuardValue, kGuards> g1;
-    for (int i = 0; i < kGuards; ++i) g1[i] = mode.Guard(i, t1, y1);
+    const std::array<GuardValue, kGuards> g1 = EvaluateGuards(mode, t1, y1);
 
     double t_event = std::numeric_limits<double>::infinity();
     int fired = -1;

@@ -41,6 +41,28 @@ class TrajectorySampler {
   void Emit(const Mode& mode, const Eigen::Vector3d& w_B, const AttitudeFn& attitude) {
     Emit(mode, w_B, attitude, [](const Eigen::Quaterniond& q_WB) { return EulerZyxFromQuaternion(q_WB); });
   }
+  // Every pending sample before t_until_s (also at it when `inclusive`) in one state held constant (at rest, or
+  // the end state of a run): the canonical attitude and its Euler angles are converted once, not per sample.
+  void EmitHeld(const Mode& mode, const Eigen::Vector3d& w_B, const Eigen::Quaterniond& q_WB, double t_until_s,
+                bool inclusive) {
+    if (!(pending_ && (next_time_ < t_until_s || (inclusive && next_time_ == t_until_s)))) return;
+    Eigen::Quaterniond q_canonical = q_WB;
+    Eigen::Vector3d euler = Eigen::Vector3d::Zero();
+    if (with_attitude_) {
+      q_canonical = CanonicalQuaternion(q_WB);
+      euler = EulerZyxFromQuaternion(q_canonical);
+    }
+    while (pending_ && (next_time_ < t_until_s || (inclusive && next_time_ == t_until_s))) {
+      out_->t_s.push_back(next_time_);
+      out_->w_B.push_back(w_B);
+      out_->mode.push_back(mode);
+      if (with_attitude_) {
+        out_->q_WB.push_back(q_canonical);
+        out_->euler_zyx.push_back(euler);
+      }
+      Advance();
+    }
+  }
 
  private:
   void Advance();

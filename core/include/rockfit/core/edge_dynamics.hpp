@@ -38,8 +38,8 @@ class EdgeDynamics {
   const Eigen::Vector3d& inward_B() const { return inward_B_; }        // n_B
   const Eigen::Vector3d& p_BP_B() const { return p_BP_B_; }            // midpoint of the edge
   double inertia_kg_m2() const { return inertia_e_; }                  // J_e about the edge line
-  double critical_angle_rad() const { return std::atan2(d_m_, h_m_); } // θ_c: the COM above the edge
-  double arm_m() const { return std::hypot(d_m_, h_m_); }              // R
+  double critical_angle_rad() const { return critical_angle_rad_; }  // θ_c = atan2(d, h): the COM above the edge
+  double arm_m() const { return arm_m_; }                              // R = hypot(d, h)
   double offset_m() const { return d_m_; }                             // d
   double mass_kg() const { return mass_kg_; }
   double gravity_m_s2() const { return gravity_m_s2_; }
@@ -74,6 +74,9 @@ class EdgeDynamics {
   double h_m_;
   double inertia_e_;
   double torque_scale_;  // m g / J_e
+  double critical_angle_rad_;
+  double arm_m_;
+  double axis_heading_rad_;  // atan2 of the edge axis's y and x components in B
   Eigen::Vector3d axis_B_;
   Eigen::Vector3d inward_B_;
   Eigen::Vector3d p_BP_B_;

@@ -88,6 +88,8 @@ class GroundMotion {
   double cos_ = 1.0;
   double sin_ = 0.0;
   double factor_ = 1.0;
+  // max |a_z| over the stored samples (before a view's scale factor), so that PeakVertical() costs nothing.
+  double stored_peak_vertical_ = 0.0;
 };
 
 // The first time in [t_from, t_until] at which the table accelerates downward at least as fast as g
