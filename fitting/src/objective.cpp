@@ -123,6 +123,7 @@ Evaluation Objective::EvaluateDetailed(const ParameterSet& values, ErrorNodes* n
   }
   const double t0 = values.value(ParameterId::kT0);
   if (!BuildErrorNodes(*signal_, t0, t_end_s_, nodes)) return infeasible("t0 outside the recording window");
+  if (nodes->num_excluded == nodes->size() || !(nodes->weighted_duration_s() > 0.0)) return infeasible("every sample in the window is clipped");
 
   counters_->CountRun();
   model_->Evaluate(values.ToModel(), nodes->t_after_release_s, output);
