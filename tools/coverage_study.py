@@ -380,6 +380,9 @@ def main():
     parser.add_argument("--rockfit", default="build/tools/rockfit")
     parser.add_argument("--trials", type=int, default=100)
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--first", type=int, default=0,
+                        help="run only trials FIRST..TRIALS-1 of the seed (the earlier ones are drawn, not run): "
+                             "a study split over several processes or continued later")
     parser.add_argument("--methods", default="fast,thorough")
     parser.add_argument("--ringing-scale", type=float, default=1.0)
     parser.add_argument("--model-error-widening", type=float, default=None,
@@ -403,7 +406,7 @@ def main():
     path = os.path.join(args.out, "trials.jsonl")
     if not args.report_only:
         rng = random.Random(args.seed)
-        trials = [random_trial(rng, i) for i in range(args.trials)]
+        trials = [random_trial(rng, i) for i in range(args.trials)][args.first:]
         with open(path, "w") as out:
             for t in trials:
                 for row in study_trial(args, t, args.out):

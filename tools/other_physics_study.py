@@ -16,6 +16,8 @@ Families (one seed gives the same trials):
   mujoco-perturbed  the same, plus the centre of mass off the axis by 1–2 % of b2 (either side) and one base
                     corner (random) 0.1 mm proud
   mujoco-planar     no roll, no perturbation (the motion stays in the plane; MuJoCo's contact alone)
+  mujoco-lively     as `mujoco` with a springy contact (solref damping ratio LIVELY_DAMPING_RATIO instead of 1):
+                    the box rocks for several cycles, so that its AVRF and OPMF can be measured (`--metrics`)
 
 Random ranges: b1 = 0.05000453 m, h = 0.2 m, b2 = 2.5–6 cm, α = 0.5–0.95 θ_c, t0 = 0.8–1.6 s, recording 3 s.
 
@@ -43,6 +45,9 @@ import sys
 from coverage_study import widening_args  # the widening options of `rockfit fit`, as the coverage study passes them
 
 B1, H, DENSITY = 0.05000453, 0.2, 2692.0
+# The damping ratio of MuJoCo's solref in the `mujoco-lively` family: well below critical (1), the contact
+# returns part of the impact's energy, and the box rocks for several cycles instead of settling after one.
+LIVELY_DAMPING_RATIO = 0.1
 
 
 def random_trial(rng, index, family):
@@ -51,6 +56,7 @@ def random_trial(rng, index, family):
     trial = {"index": index, "family": family, "b2": b2, "theta_c": theta_c,
              "alpha": rng.uniform(0.5, 0.95) * theta_c, "t0": round(rng.uniform(0.8, 1.6) * 10240) / 10240,
              "roll": 0.0 if family == "mujoco-planar" else rng.uniform(0.0, 0.01),
+             "damping_ratio": LIVELY_DAMPING_RATIO if family == "mujoco-lively" else 1.0,
              "com_offset_y": 0.0, "proud_vertex": 0, "seed": 1000 + index}
     if family == "mujoco-perturbed":
         trial["com_offset_y"] = rng.uniform(0.01, 0.02) * rng.choice([-1.0, 1.0])
@@ -63,7 +69,8 @@ def run_trial(args, trial, out_dir):
     subprocess.run([args.generator, "-o", prefix, "--alpha", repr(trial["alpha"]), "--roll", repr(trial["roll"]),
                     "--t0", repr(trial["t0"]), "--duration", "3", "--b2", repr(trial["b2"]),
                     "--com-offset-y", repr(trial["com_offset_y"]), "--proud-vertex", str(trial["proud_vertex"]),
-                    "--seed", str(trial["seed"])], check=True, capture_output=True)
+                    "--seed", str(trial["seed"]), "--solref-damping-ratio", repr(trial.get("damping_ratio", 1.0))],
+                   check=True, capture_output=True)
     fit = subprocess.run([args.rockfit, "fit", prefix, "--rate", "256", "--b1", repr(B1), "--b2", repr(trial["b2"]),
                           "--h", repr(H), "--density", repr(DENSITY), "--threads", "1", "--json"] + widening_args(args),
                          capture_output=True, text=True)
@@ -184,13 +191,16 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--rockfit", default="build/tools/rockfit")
     parser.add_argument("--generator", default="build/tests/rockfit_mujoco_synth")
-    parser.add_argument("--family", default="mujoco", choices=["mujoco", "mujoco-perturbed", "mujoco-planar"])
+    parser.add_argument("--family", default="mujoco", choices=["mujoco", "mujoco-perturbed", "mujoco-planar", "mujoco-lively"])
     parser.add_argument("--trials", type=int, default=30)
     parser.add_argument("--model-error-widening", type=float, default=None,
                         help="rockfit fit --model-error-widening C (default: rockfit's; 0: off)")
     parser.add_argument("--t0-floor-samples", type=float, default=None,
                         help="rockfit fit --t0-floor-samples Q (default: rockfit's; 0: off)")
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--first", type=int, default=0,
+                        help="run only trials FIRST..TRIALS-1 of the seed (the earlier ones are drawn, not run): "
+                             "a study split over several processes or continued later")
     parser.add_argument("--out", required=True)
     parser.add_argument("--report-only", action="store_true")
     parser.add_argument("--metrics", action="store_true",
@@ -202,7 +212,10 @@ def main():
         rng = random.Random(args.seed)
         with open(path, "w") as f:
             for i in range(args.trials):
-                trial = run_trial(args, random_trial(rng, i, args.family), args.out)
+                trial = random_trial(rng, i, args.family)
+                if i < args.first:
+                    continue
+                trial = run_trial(args, trial, args.out)
                 f.write(json.dumps(trial) + "\n")
                 f.flush()
                 print(f"[{i + 1}/{args.trials}]", file=sys.stderr)

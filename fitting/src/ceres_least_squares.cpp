@@ -114,7 +114,7 @@ class ResidualEvaluator {
     entry->num_nodes = entry->ok ? nodes_.size() : 0;
     last_num_nodes_ = entry->num_nodes;
     if (!entry->ok) return nullptr;
-    const double window_s = nodes_.duration_s();
+    const double window_s = nodes_.weighted_duration_s();
     const std::size_t last = nodes_.size() - 1;
     for (std::size_t i = 0; i <= last; ++i) {
       const std::size_t slot = i == 0 ? 0 : (i == last ? num_slots_ - 1 : 1 + nodes_.first_sample + i - 1 - first_slot_sample_);

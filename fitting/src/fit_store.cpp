@@ -81,6 +81,7 @@ void WriteModelErrorAttributes(const io::hdf5::Group& g, const ModelErrorStateme
   g.SetDouble("noise_share", m.available ? m.noise_share : nan);
   g.SetInt("model_error_dominates", m.available ? (m.dominates ? 1 : 0) : -1);
   g.SetDouble("rest_duration_s", m.rest_duration_s);
+  g.SetInt("clipped_samples", static_cast<std::int64_t>(m.clipped_samples));
 }
 
 void WriteFitAttributes(const io::hdf5::Group& g, const std::string& settings, const FitSummary& s) {

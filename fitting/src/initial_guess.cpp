@@ -223,6 +223,7 @@ Phase1Fit FitPhase1(const MeasuredSignal& signal, const core::PlanarRocker& rock
   auto cost_at = [&](const std::vector<double>& rates, double t0) {
     double sum = 0.0;
     for (std::size_t k = k_first; k <= k_last; ++k) {
+      if (signal.is_excluded(k)) continue;  // clipped: only "at least this fast" (gyro_clipping.hpp)
       const double d = sign * signal.w_B[k][1] - InterpolateRate(rates, signal.t_s[k] - t0);
       sum += d * d;
     }
@@ -269,13 +270,13 @@ Phase1Fit FitPhase1(const MeasuredSignal& signal, const core::PlanarRocker& rock
 
 // ω⁺ after the first impact (x and y, in the sense of the fall): the medians of the first `samples` samples after
 // t_impact, ω_y corrected for the planar deceleration about the far edge (the same |ψ̈| ≈ (K/2)·sin θ_c near the
-// flat position) so that it refers to the impact instant.
+// flat position) so that it refers to the impact instant. Clipped samples (gyro_clipping.hpp) are passed over.
 Eigen::Vector2d RateAfterImpact(const MeasuredSignal& signal, const core::PlanarRocker& rocker, double t_impact,
                                 double sign, int samples) {
   const double decel = 0.5 * rocker.K() * std::sin(rocker.critical_angle_rad);
   std::vector<double> wx, wy;
   for (std::size_t k = 0; k < signal.size() && static_cast<int>(wy.size()) < samples; ++k) {
-    if (signal.t_s[k] <= t_impact) continue;
+    if (signal.t_s[k] <= t_impact || signal.is_excluded(k)) continue;  // clipped: only "at least this fast"
     wx.push_back(sign * signal.w_B[k][0]);
     wy.push_back(sign * signal.w_B[k][1] + decel * (signal.t_s[k] - t_impact));
   }

@@ -20,6 +20,8 @@ void ModelErrorOptions::Validate() const {
 ModelErrorStatement AssessModelError(const Objective& objective, double epsilon_rad_s, const ModelErrorOptions& options) {
   options.Validate();
   ModelErrorStatement s;
+  const std::vector<bool>& excluded = objective.signal().excluded;
+  s.clipped_samples = static_cast<std::size_t>(std::count(excluded.begin(), excluded.end(), true));
   if (!options.enabled || !std::isfinite(epsilon_rad_s) || !(epsilon_rad_s > 0.0)) return s;
   // The rest ends before the data estimate of the release (the objective's start value of t0, as for the gyro
   // bias), not before the fitted t0: a fit that model error drove far from the release would otherwise leave no rest.
@@ -50,7 +52,8 @@ std::string ModelErrorJson(const ModelErrorStatement& s) {
                         {"model_error_share", number(1.0 - s.noise_share)},
                         {"dominates", s.available ? nlohmann::json(s.dominates) : nlohmann::json()},
                         {"rest_duration_s", s.rest_duration_s},
-                        {"rest_samples", s.rest_samples}}
+                        {"rest_samples", s.rest_samples},
+                        {"clipped_samples", s.clipped_samples}}
       .dump();
 }
 
@@ -59,10 +62,12 @@ std::string ModelErrorText(const ModelErrorStatement& s) {
     return fmt::format("not measured: no rest of at least the required length before the release ({:.2f} s found)",
                        s.rest_duration_s);
   }
+  const std::string clipped =
+      s.clipped_samples > 0 ? fmt::format(" ({} clipped gyro samples left out)", s.clipped_samples) : std::string();
   return fmt::format("ε = {:.2f} × the noise floor {:.3g} rad/s (rest {:.2f} s): the noise explains {:.0f} % of ε², "
-                     "model error {:.3g} rad/s{}",
+                     "model error {:.3g} rad/s{}{}",
                      s.ratio, s.noise_floor_rad_s, s.rest_duration_s, 100.0 * s.noise_share, s.model_error_rad_s,
-                     s.dominates ? " dominates" : "");
+                     s.dominates ? " dominates" : "", clipped);
 }
 
 }  // namespace rockfit::fitting

@@ -9,6 +9,7 @@ const char* ToString(ModelFailure failure) {
     case ModelFailure::kNone: return "none";
     case ModelFailure::kNonFiniteParameter: return "non-finite parameter";
     case ModelFailure::kT0OutsideWindow: return "t0 outside the recording window";
+    case ModelFailure::kAllSamplesClipped: return "every sample in the window is clipped";
     case ModelFailure::kInvalidParameters: return "invalid parameters";
     case ModelFailure::kSimulatorException: return "simulator exception";
     case ModelFailure::kOverturned: return "overturned";
@@ -29,6 +30,7 @@ const char* ToString(ModelFailure failure) {
 bool FromString(std::string_view text, ModelFailure* value) {
   static constexpr ModelFailure kAll[] = {
       ModelFailure::kNone,           ModelFailure::kNonFiniteParameter, ModelFailure::kT0OutsideWindow,
+      ModelFailure::kAllSamplesClipped,
       ModelFailure::kInvalidParameters, ModelFailure::kSimulatorException, ModelFailure::kOverturned,
       ModelFailure::kEdgeImpact,     ModelFailure::kFacetImpact,        ModelFailure::kIntegrator,
       ModelFailure::kImpactCascade,  ModelFailure::kTooManyImpacts,     ModelFailure::kFailed,

@@ -124,6 +124,9 @@ Evaluation Objective::EvaluateDetailed(const ParameterSet& values, ErrorNodes* n
   }
   const double t0 = values.value(ParameterId::kT0);
   if (!BuildErrorNodes(*signal_, t0, t_end_s_, nodes)) return infeasible(ModelFailure::kT0OutsideWindow);
+  if (nodes->num_excluded == nodes->size() || !(nodes->weighted_duration_s() > 0.0)) {
+    return infeasible(ModelFailure::kAllSamplesClipped);
+  }
 
   counters_->CountRun();
   model_->Evaluate(values.ToModel(), nodes->t_after_release_s, output);

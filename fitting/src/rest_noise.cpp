@@ -22,10 +22,13 @@ RestNoise MeasureRestNoise(const MeasuredSignal& signal, double t_release_s, con
   const double rest_end = t_release_s - options.margin_s;
   if (signal.size() == 0) return rest;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero(), sum_sq = Eigen::Vector3d::Zero();
-  std::size_t n = 0;
-  for (; n < signal.size() && signal.t_s[n] < rest_end; ++n) {
-    sum += signal.w_B[n];
-    sum_sq += signal.w_B[n].cwiseAbs2();
+  // Samples before the end of the rest, less the excluded ones (a clipped gyro, gyro_clipping.hpp).
+  std::size_t end = 0, n = 0;
+  for (; end < signal.size() && signal.t_s[end] < rest_end; ++end) {
+    if (signal.is_excluded(end)) continue;
+    sum += signal.w_B[end];
+    sum_sq += signal.w_B[end].cwiseAbs2();
+    ++n;
   }
   rest.samples = n;
   rest.duration_s = rest_end - signal.t_s.front();
@@ -34,7 +37,9 @@ RestNoise MeasureRestNoise(const MeasuredSignal& signal, double t_release_s, con
   rest.mean_rad_s = sum / static_cast<double>(n);
   rest.variance_rad2_s2 = sum_sq / static_cast<double>(n) - rest.mean_rad_s.cwiseAbs2();
   double norm_sum = 0.0;
-  for (std::size_t k = 0; k < n; ++k) norm_sum += (signal.w_B[k] - rest.mean_rad_s).norm();
+  for (std::size_t k = 0; k < end; ++k) {
+    if (!signal.is_excluded(k)) norm_sum += (signal.w_B[k] - rest.mean_rad_s).norm();
+  }
   rest.epsilon_floor_rad_s = norm_sum / static_cast<double>(n);
   return rest;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -13,6 +14,9 @@ namespace rockfit::fitting {
 void MeasuredSignal::Validate() const {
   if (t_s.size() != w_B.size()) {
     throw InvalidArgument(fmt::format("measured signal: {} times but {} angular velocities", t_s.size(), w_B.size()));
+  }
+  if (!excluded.empty() && excluded.size() != t_s.size()) {
+    throw InvalidArgument(fmt::format("measured signal: {} times but {} exclusion marks", t_s.size(), excluded.size()));
   }
   if (t_s.size() < 2) {
     throw InvalidArgument(fmt::format("measured signal: need at least two samples, got {}", t_s.size()));
@@ -69,6 +73,25 @@ bool BuildErrorNodes(const MeasuredSignal& signal, double t0_s, double t_end_s, 
     nodes->weight_s[i] = 0.5 * (left + right);
     nodes->t_after_release_s[i] = nodes->t_s[i] - t0_s;
   }
+  // Excluded samples: their nodes, and an end node interpolated from one, carry no weight.
+  nodes->excluded_weight_s = 0.0;
+  nodes->num_excluded = 0;
+  if (!signal.excluded.empty()) {
+    auto exclude = [&](std::size_t i) {
+      nodes->excluded_weight_s += nodes->weight_s[i];
+      nodes->weight_s[i] = 0.0;
+      ++nodes->num_excluded;
+    };
+    // Node 0 interpolates samples first − 1 and first; the last node samples first + interior − 1 and
+    // first + interior (t_end ≤ the last sample time).
+    const std::size_t last_sample = signal.size() - 1;
+    if (signal.is_excluded(first) || (first > 0 && signal.is_excluded(first - 1))) exclude(0);
+    for (std::size_t i = 0; i < interior; ++i) {
+      if (signal.is_excluded(first + i)) exclude(i + 1);
+    }
+    const std::size_t after = std::min(first + interior, last_sample);
+    if (signal.is_excluded(after) || (first + interior > 0 && signal.is_excluded(first + interior - 1))) exclude(n - 1);
+  }
   return true;
 }
 
@@ -77,7 +100,9 @@ double TrajectoryError(const ErrorNodes& nodes, const std::vector<Eigen::Vector3
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     integral += nodes.weight_s[i] * (nodes.w_m_B[i] - w_s_B[i]).norm();
   }
-  return integral / nodes.duration_s();  // (28)
+  const double covered_s = nodes.weighted_duration_s();
+  if (nodes.num_excluded == nodes.size() || !(covered_s > 0.0)) return std::numeric_limits<double>::infinity();
+  return integral / covered_s;  // (28)
 }
 
 }  // namespace rockfit::fitting

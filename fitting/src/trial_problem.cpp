@@ -12,6 +12,7 @@ namespace rockfit::fitting {
 
 void TrialProblemOptions::Validate() const {
   guess.Validate();
+  clipping.Validate();
   for (double v : {rest_margin_s, rest_min_duration_s, window_end_margin_s}) {
     if (!(std::isfinite(v) && v >= 0.0)) {
       throw InvalidArgument(fmt::format("trial problem options: durations must be non-negative seconds, got {}", v));
@@ -26,8 +27,15 @@ TrialProblem PrepareTrialProblem(const MeasuredSignal& recorded, const core::Blo
   options.Validate();
   recorded.Validate();
   MeasuredSignal signal = recorded;
-  InitialGuess guess = EstimateInitialGuess(signal, block, parameters, options.guess);
   std::vector<std::string> notes;
+  // The gyro's rail, on the recorded values (a bias subtracted per axis would move the three axes' rails apart).
+  GyroClipping clipping = DetectGyroClipping(signal, options.clipping);
+  if (clipping.detected) {
+    signal.excluded = clipping.clipped;
+    notes.push_back(fmt::format("{} sample(s) at the gyro's full scale ±{:.4g} rad/s (clipped) are left out of (28)",
+                                clipping.samples, clipping.level_rad_s));
+  }
+  InitialGuess guess = EstimateInitialGuess(signal, block, parameters, options.guess);
 
   // The gyro bias at rest, then the estimate again on the corrected signal.
   Eigen::Vector3d bias = Eigen::Vector3d::Zero();
@@ -70,7 +78,8 @@ TrialProblem PrepareTrialProblem(const MeasuredSignal& recorded, const core::Blo
   }
   if (!model) model = std::make_shared<SimulatorModel>(block);
   Objective objective(std::move(signal), t_end, std::move(model), start);
-  return TrialProblem{std::move(objective), std::move(start), std::move(guess), bias, subtracted, std::move(notes)};
+  return TrialProblem{std::move(objective), std::move(start), std::move(guess), bias, subtracted, std::move(clipping),
+                      std::move(notes)};
 }
 
 }  // namespace rockfit::fitting

@@ -239,9 +239,13 @@ bool WeightedResiduals(const Objective& objective, const ParameterSet& at, std::
   const Evaluation e = objective.EvaluateDetailed(at, &nodes, &output);
   if (epsilon_rad_s != nullptr) *epsilon_rad_s = e.epsilon_rad_s;
   if (!e.feasible || output.w_B.size() != nodes.size()) return false;
-  residuals->resize(nodes.size());
+  // Nodes without weight (clipped samples, gyro_clipping.hpp) are no residuals: counted, they would lower the
+  // noise level per residual and the degrees of freedom would overstate the data.
+  residuals->clear();
+  residuals->reserve(nodes.size());
   for (std::size_t k = 0; k < nodes.size(); ++k) {
-    (*residuals)[k] = std::sqrt(nodes.weight_s[k]) * (nodes.w_m_B[k] - output.w_B[k]);
+    if (nodes.weight_s[k] == 0.0) continue;
+    residuals->push_back(std::sqrt(nodes.weight_s[k]) * (nodes.w_m_B[k] - output.w_B[k]));
   }
   return true;
 }

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "rockfit/core/errors.hpp"
+
 namespace rockfit::fitting {
 namespace {
 
@@ -90,6 +92,46 @@ TEST(TrajectoryError, RejectsWindowsOutsideTheRecording) {
   EXPECT_FALSE(BuildErrorNodes(s, 0.5, 0.5, &nodes));
   EXPECT_TRUE(BuildErrorNodes(s, 0.0, 1.0, &nodes));
   EXPECT_EQ(nodes.size(), 11u);  // both ends are samples: no duplicate node
+}
+
+TEST(TrajectoryError, ExcludedSamplesLeaveNoTraceAndTheMeanIsOverTheTimeLeft) {
+  // ω_m − ω_s = c everywhere except a block of samples (and the end nodes' neighbours) that hold 100·c and are
+  // excluded: ε must still be ‖c‖ exactly, and the excluded weight is what the weights no longer cover.
+  const Eigen::Vector3d c(0.3, -0.4, 1.2);  // ‖c‖ = 1.3
+  MeasuredSignal s = UniformSignal(256.0, 300, [&](double) { return c; });
+  s.excluded.assign(s.size(), false);
+  for (std::size_t k : {0u, 1u, 40u, 41u, 42u, 43u, 100u, 255u, 256u}) {
+    s.w_B[k] = 100.0 * c;
+    s.excluded[k] = true;
+  }
+  ErrorNodes nodes;
+  ASSERT_TRUE(BuildErrorNodes(s, 0.5 / 256.0, 255.5 / 256.0, &nodes));  // both ends interpolate an excluded sample
+  EXPECT_NEAR(TrajectoryError(nodes, Zeros(nodes.size())), 1.3, kSumTolerance);
+  const double weights = std::accumulate(nodes.weight_s.begin(), nodes.weight_s.end(), 0.0);
+  EXPECT_NEAR(weights + nodes.excluded_weight_s, nodes.duration_s(), kSumTolerance);
+  EXPECT_EQ(nodes.num_excluded, 9u);  // the two end nodes and interior samples 1, 40–43, 100, 255
+}
+
+TEST(TrajectoryError, WithoutExcludedSamplesTheDivisorIsTheWindowExactly) {
+  const MeasuredSignal s = UniformSignal(256.0, 300, [&](double t) { return Eigen::Vector3d(t, 0, 0); });
+  ErrorNodes nodes;
+  ASSERT_TRUE(BuildErrorNodes(s, 0.0123, 1.0, &nodes));
+  EXPECT_EQ(nodes.excluded_weight_s, 0.0);
+  EXPECT_EQ(nodes.weighted_duration_s(), nodes.duration_s());
+}
+
+TEST(TrajectoryError, IsInfiniteWhenEverySampleOfTheWindowIsExcluded) {
+  MeasuredSignal s = UniformSignal(256.0, 50, [&](double) { return Eigen::Vector3d(1, 0, 0); });
+  s.excluded.assign(s.size(), true);
+  ErrorNodes nodes;
+  ASSERT_TRUE(BuildErrorNodes(s, 0.01, 0.1, &nodes));
+  EXPECT_TRUE(std::isinf(TrajectoryError(nodes, Zeros(nodes.size()))));
+}
+
+TEST(MeasuredSignal, ValidateRejectsExclusionMarksOfAnotherLength) {
+  MeasuredSignal s = UniformSignal(256.0, 10, [&](double) { return Eigen::Vector3d::Zero(); });
+  s.excluded.assign(9, false);
+  EXPECT_THROW(s.Validate(), InvalidArgument);
 }
 
 TEST(MeasuredSignal, ValidateNamesTheFirstNonIncreasingSample) {

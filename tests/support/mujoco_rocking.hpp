@@ -9,6 +9,7 @@
 
 #ifdef ROCKFIT_HAVE_MUJOCO
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -45,6 +46,9 @@ struct MujocoRockingOptions {
   // Soft contact: solref (time constant [s], damping ratio); a 1 ms time constant is a stiff stone contact.
   double solref_time_constant_s = 0.001;
   double solref_damping_ratio = 1.0;
+  // solimp "d0 dwidth width" (MuJoCo's impedance, comma- or space-separated); empty: MuJoCo's default. A damping
+  // ratio below 1 makes the contact springy: the block rocks for several cycles (AVRF and OPMF measurable).
+  std::string solimp;
   double friction = 1.0;  // sliding friction (no sliding is modelled by rockfit)
   // Perturbed bodies: the centre of mass shifted in B [m] (inertia unchanged about the new COM); a base corner
   // (vertex 1–4 of docs/design.md §2, 0: none) standing proud of the base by proud_corner_m.
@@ -73,8 +77,11 @@ inline std::string Xml(const MujocoRockingOptions& o, const Eigen::Quaterniond& 
   const double Ixx = mass / 3.0 * (o.b2_m * o.b2_m + o.h_m * o.h_m);
   const double Iyy = mass / 3.0 * (o.b1_m * o.b1_m + o.h_m * o.h_m);
   const double Izz = mass / 3.0 * (o.b1_m * o.b1_m + o.b2_m * o.b2_m);
-  const std::string contact = fmt::format("solref=\"{} {}\" friction=\"{} 0.005 0.0001\"", o.solref_time_constant_s,
-                                          o.solref_damping_ratio, o.friction);
+  std::string solimp = o.solimp;
+  std::replace(solimp.begin(), solimp.end(), ',', ' ');
+  const std::string contact =
+      fmt::format("solref=\"{} {}\" friction=\"{} 0.005 0.0001\"{}", o.solref_time_constant_s, o.solref_damping_ratio,
+                  o.friction, solimp.empty() ? std::string() : fmt::format(" solimp=\"{}\"", solimp));
   std::string proud;
   if (o.proud_vertex >= 1 && o.proud_vertex <= 4) {
     // Vertices V1=(−b1,−b2), V2=(−b1,+b2), V3=(+b1,+b2), V4=(+b1,−b2) of the base; a thin massless pad under one
@@ -194,7 +201,9 @@ inline MujocoRockingTrial MakeMujocoRockingTrial(const MujocoRockingOptions& o) 
         w_prev = w;
       }
     }
-    const Eigen::Quaterniond q(data->xquat[0], data->xquat[1], data->xquat[2], data->xquat[3]);
+    // The block's attitude: its free joint's quaternion (qpos[3..6], w first). data->xquat[0..3] would be the
+    // world body's, always the identity.
+    const Eigen::Quaterniond q(data->qpos[3], data->qpos[4], data->qpos[5], data->qpos[6]);
     m.q_WB.push_back(q.normalized());
     m.w_B.push_back(n > release ? Eigen::Vector3d(data->qvel[3], data->qvel[4], data->qvel[5]) : Eigen::Vector3d::Zero());
     m.p_BK_B.push_back(pivot_B(q));
@@ -220,10 +229,10 @@ inline std::vector<std::string> WriteMujocoRockingTrial(const std::string& prefi
   std::ofstream(truth) << fmt::format(
       "{{\"generator\": \"MuJoCo {}\", \"t0_s\": {}, \"alpha_rad\": {}, \"roll_rad\": {}, \"b1_m\": {}, "
       "\"b2_m\": {}, \"h_m\": {}, \"density_kg_m3\": {}, \"com_offset_B_m\": [{}, {}, {}], \"proud_vertex\": {}, "
-      "\"proud_corner_m\": {}, \"solref\": [{}, {}], \"seed\": {}, \"impacts\": {}}}\n",
+      "\"proud_corner_m\": {}, \"solref\": [{}, {}], \"solimp\": \"{}\", \"seed\": {}, \"impacts\": {}}}\n",
       mj_versionString(), trial.t0_s, trial.alpha_rad, o.roll_rad, o.b1_m, o.b2_m, o.h_m, o.density_kg_m3,
       o.com_offset_B_m.x(), o.com_offset_B_m.y(), o.com_offset_B_m.z(), o.proud_vertex, o.proud_corner_m,
-      o.solref_time_constant_s, o.solref_damping_ratio, o.measurement.seed, trial.impacts);
+      o.solref_time_constant_s, o.solref_damping_ratio, o.solimp, o.measurement.seed, trial.impacts);
   paths.push_back(truth);
   return paths;
 }

@@ -4,6 +4,7 @@
 //
 //   rockfit_mujoco_synth -o PREFIX [--alpha RAD] [--roll RAD] [--t0 S] [--duration S] [--b1 M --b2 M --h M]
 //                        [--com-offset-y FRACTION_OF_B2] [--proud-vertex 1-4] [--seed N]
+//                        [--solref-time-constant S] [--solref-damping-ratio R] [--solimp D0,DWIDTH,WIDTH_M]
 #include <cstdlib>
 #include <iostream>
 #include <string>
@@ -26,6 +27,9 @@ int main(int argc, char** argv) {
     else if (key == "--com-offset-y") o.com_offset_B_m.y() = std::stod(value) * o.b2_m;
     else if (key == "--proud-vertex") o.proud_vertex = std::stoi(value);
     else if (key == "--seed") o.measurement.seed = std::stoull(value);
+    else if (key == "--solref-time-constant") o.solref_time_constant_s = std::stod(value);
+    else if (key == "--solref-damping-ratio") o.solref_damping_ratio = std::stod(value);
+    else if (key == "--solimp") o.solimp = value;
     else {
       std::cerr << "rockfit_mujoco_synth: unknown option " << key << "\n";
       return 1;
@@ -33,7 +37,8 @@ int main(int argc, char** argv) {
   }
   if (prefix.empty() || argc % 2 == 0) {
     std::cerr << "usage: rockfit_mujoco_synth -o PREFIX [--alpha RAD] [--roll RAD] [--t0 S] [--duration S] [--b1 M "
-                 "--b2 M --h M] [--com-offset-y F] [--proud-vertex 1-4] [--seed N]\n";
+                 "--b2 M --h M] [--com-offset-y F] [--proud-vertex 1-4] [--seed N] [--solref-time-constant S] "
+                 "[--solref-damping-ratio R] [--solimp D0,DWIDTH,WIDTH_M]\n";
     return 1;
   }
   try {

@@ -184,6 +184,7 @@ TEST(EnumNames, FittingAndQuakeEnumsRoundTripThroughTextJsonAndHdf5) {
                    ByFromString(TerminationType::kConvergence));
   ExpectRoundTrips("ModelFailure",
                    {ModelFailure::kNone, ModelFailure::kNonFiniteParameter, ModelFailure::kT0OutsideWindow,
+                    ModelFailure::kAllSamplesClipped,
                     ModelFailure::kInvalidParameters, ModelFailure::kSimulatorException, ModelFailure::kOverturned,
                     ModelFailure::kEdgeImpact, ModelFailure::kFacetImpact, ModelFailure::kIntegrator,
                     ModelFailure::kImpactCascade, ModelFailure::kTooManyImpacts, ModelFailure::kFailed,

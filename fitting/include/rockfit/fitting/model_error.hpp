@@ -44,6 +44,9 @@ struct ModelErrorStatement {
   bool dominates = false;          // model error explains more than dominance_share of ε²
   double rest_duration_s = 0.0;    // length of the rest segment used [s]
   std::size_t rest_samples = 0;
+  // Samples of the recording at the gyro's full scale (clipped), left out of ε and of the noise floor
+  // (gyro_clipping.hpp); counted whether or not the rest was measured.
+  std::size_t clipped_samples = 0;
 };
 
 // The statement for a fit with error `epsilon_rad_s` on the objective's signal. The rest ends before the
@@ -54,7 +57,7 @@ ModelErrorStatement AssessModelError(const Objective& objective, double epsilon_
                                      const ModelErrorOptions& options = {});
 
 // {"available", "epsilon_rad_s", "noise_floor_rad_s", "ratio", "noise_share", "model_error_rad_s",
-// "model_error_share", "dominates", "rest_duration_s", "rest_samples"} (numbers and `dominates` null when not
+// "model_error_share", "dominates", "rest_duration_s", "rest_samples", "clipped_samples"} (numbers and `dominates` null when not
 // available), for the fit JSON of the library, the command line and Python.
 std::string ModelErrorJson(const ModelErrorStatement& statement);
 

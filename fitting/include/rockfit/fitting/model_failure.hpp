@@ -14,6 +14,7 @@ enum class ModelFailure {
   kNone,                // the run succeeded
   kNonFiniteParameter,  // a parameter value is NaN or infinite
   kT0OutsideWindow,     // the release time leaves no sample of the recording in the window
+  kAllSamplesClipped,   // every sample in the window is clipped at the gyro's full scale
   kInvalidParameters,   // the simulator refused the parameters (InvalidArgument)
   kSimulatorException,  // the simulator threw anything else
   kOverturned,          // the block overturned inside the window
@@ -29,7 +30,8 @@ enum class ModelFailure {
   kInterrupted,         // the user interrupted the fit; every later run fails at once
 };
 
-// "none", "non-finite parameter", "t0 outside the recording window", "invalid parameters", "simulator exception",
+// "none", "non-finite parameter", "t0 outside the recording window", "every sample in the window is clipped",
+// "invalid parameters", "simulator exception",
 // "overturned", "edge impact", "facet impact", "integrator", "impact cascade", "too many impacts", "failed",
 // "incomplete run", "model returned a wrong number of samples", "non-finite simulated angular velocity",
 // "interrupted".

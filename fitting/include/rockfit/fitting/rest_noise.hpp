@@ -20,7 +20,7 @@ struct RestSegmentOptions {
 
 struct RestNoise {
   bool available = false;       // the segment lasts at least min_duration_s and holds at least two samples
-  std::size_t samples = 0;      // samples t_k < t_release − margin
+  std::size_t samples = 0;      // samples t_k < t_release − margin, less the excluded ones (MeasuredSignal)
   double duration_s = 0.0;      // t_release − margin − first sample time
   Eigen::Vector3d mean_rad_s = Eigen::Vector3d::Zero();      // the bias at rest
   Eigen::Vector3d variance_rad2_s2 = Eigen::Vector3d::Zero();  // per axis, about the mean (1/n)

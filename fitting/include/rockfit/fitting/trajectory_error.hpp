@@ -6,6 +6,9 @@
 // value at t0 (and at t_end when it is not a sample) is interpolated linearly, and ω_s is the model sampled at
 // exactly these node times minus t0 (never re-interpolated). A node enters at t0 with the value the sample
 // it replaces would have, so ε does not jump when t0 crosses a sample time.
+//
+// Samples marked excluded (the gyro clipped at its full scale, gyro_clipping.hpp) get no weight — nor does an
+// end node interpolated from one — and ε is the mean over the time that the remaining weights cover.
 #pragma once
 
 #include <cstddef>
@@ -19,8 +22,12 @@ namespace rockfit::fitting {
 struct MeasuredSignal {
   std::vector<double> t_s;           // strictly increasing [s]
   std::vector<Eigen::Vector3d> w_B;  // [rad/s], one per time
+  // Empty, or one per sample: true leaves the sample out of (28) and of the noise floor at rest (a clipped gyro,
+  // gyro_clipping.hpp).
+  std::vector<bool> excluded;
 
-  // Throws InvalidArgument when sizes differ, fewer than two samples, a value is not finite, or time does not
+  bool is_excluded(std::size_t k) const { return !excluded.empty() && excluded[k]; }
+  // Throws InvalidArgument when sizes differ (also of `excluded` when not empty), fewer than two samples, a value is not finite, or time does not
   // strictly increase (naming the first offending sample).
   void Validate() const;
   std::size_t size() const { return t_s.size(); }
@@ -33,19 +40,23 @@ struct ErrorNodes {
   std::vector<double> t_s;                  // t_s[0] = t0 < … < t_s.back() = t_end (recording time)
   std::vector<double> t_after_release_s;    // t_s − t0, where the model is sampled (starts at 0)
   std::vector<Eigen::Vector3d> w_m_B;       // measured ω at the nodes
-  std::vector<double> weight_s;             // trapezoid weights; they sum to t_end − t0
+  std::vector<double> weight_s;             // trapezoid weights; with excluded_weight_s they sum to t_end − t0
+  double excluded_weight_s = 0.0;           // the trapezoid weight of the excluded nodes (set to 0 in weight_s)
+  std::size_t num_excluded = 0;             // nodes whose weight was excluded
   std::size_t first_sample = 0;             // signal index of node 1 when node 1 is a sample
   std::size_t num_interior = 0;             // nodes 1..num_interior are the samples strictly inside (t0, t_end)
 
   std::size_t size() const { return t_s.size(); }
   double duration_s() const { return t_s.back() - t_s.front(); }
+  // The time the weights cover, (28)'s divisor: duration_s() less the excluded weight.
+  double weighted_duration_s() const { return duration_s() - excluded_weight_s; }
 };
 
 // Fills `nodes` (reusing its storage) for the window [t0, t_end]. Returns false when the window is empty or
 // not inside the recording: t0 < t_front, t_end > t_back or t0 ≥ t_end.
 bool BuildErrorNodes(const MeasuredSignal& signal, double t0_s, double t_end_s, ErrorNodes* nodes);
 
-// (28) for the nodes and the model's ω_s at nodes.t_after_release_s (same length).
+// (28) for the nodes and the model's ω_s at nodes.t_after_release_s (same length); +∞ when every node is excluded.
 double TrajectoryError(const ErrorNodes& nodes, const std::vector<Eigen::Vector3d>& w_s_B);
 
 }  // namespace rockfit::fitting

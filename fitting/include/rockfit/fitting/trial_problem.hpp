@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "rockfit/core/block.hpp"
+#include "rockfit/fitting/gyro_clipping.hpp"
 #include "rockfit/fitting/initial_guess.hpp"
 #include "rockfit/fitting/objective.hpp"
 #include "rockfit/fitting/simulator_model.hpp"
@@ -30,6 +31,8 @@ struct TrialProblemOptions {
   // and out of the window with the parameters and makes ε jump). Not applied to a given t_end.
   double window_end_margin_s = 0.012;
   std::optional<double> t_end_s;  // given end of the window (recording time)
+  // Samples at the gyro's full scale are left out of (28), the noise floor and the phase-1 estimate.
+  GyroClippingOptions clipping;
   void Validate() const;          // throws InvalidArgument
 };
 
@@ -39,6 +42,7 @@ struct TrialProblem {
   InitialGuess guess;           // on the corrected signal
   Eigen::Vector3d rest_bias_rad_s = Eigen::Vector3d::Zero();
   bool bias_subtracted = false;
+  GyroClipping clipping;        // the samples at the gyro's full scale, marked excluded in the objective's signal
   std::vector<std::string> notes;  // the guess's notes and the bias
 };
 

@@ -79,8 +79,8 @@ struct UncertaintySummary {
   double second_solution_epsilon_rad_s = 0.0;
 };
 
-// The residual series r_k = √w_k·(ω_m − ω_s) at `at` in time order (3 per node) and the number of nodes;
-// false when the model fails there.
+// The residual series r_k = √w_k·(ω_m − ω_s) at `at` in time order (3 per node), over the nodes with weight
+// (excluded samples have none); false when the model fails there.
 bool WeightedResiduals(const Objective& objective, const ParameterSet& at, std::vector<Eigen::Vector3d>* residuals,
                        double* epsilon_rad_s = nullptr);
 
