@@ -191,6 +191,16 @@ def perturb_gyro(prefix, family, rng, impacts=None):
         f.write("\n".join([header] + rows) + "\n")
 
 
+def remove_file_set(prefix):
+    """Deletes the files synth wrote for one trial (those that exist)."""
+    for suffix in ["_CalInertialAndMag.csv", "_EulerAngles.csv", "_Quaternion.csv", "_Registers.csv",
+                   "_DateTime.csv", "_CalBattAndTherm.csv", "_truth.json"]:
+        try:
+            os.remove(prefix + suffix)
+        except OSError:
+            pass
+
+
 def widening_args(args):
     """The widening options of `rockfit fit` that were given (none: rockfit's calibrated defaults)."""
     out = []
@@ -218,12 +228,7 @@ def study_trial(args, t, workdir):
         if code != 0:
             return [{"trial": t, "error": "synth --no-noise: " + err.strip()}]
         impacts = impacts_from_clean(clean + "_CalInertialAndMag.csv")
-        for suffix in ["_CalInertialAndMag.csv", "_EulerAngles.csv", "_Quaternion.csv", "_Registers.csv",
-                       "_DateTime.csv", "_CalBattAndTherm.csv", "_truth.json"]:
-            try:
-                os.remove(clean + suffix)
-            except OSError:
-                pass
+        remove_file_set(clean)
         synth += ["--no-ringing"]
     code, _, err = run(synth)
     if code != 0:
@@ -246,12 +251,7 @@ def study_trial(args, t, workdir):
                              + block_args(t))
         truth_eps = json.loads(out)["epsilon"] if code == 0 else None
         rows.append({"trial": t, "method": method, "fit": fit, "epsilon_truth": truth_eps, "process_wall_s": wall})
-    for suffix in ["_CalInertialAndMag.csv", "_EulerAngles.csv", "_Quaternion.csv", "_Registers.csv",
-                   "_DateTime.csv", "_CalBattAndTherm.csv", "_truth.json"]:
-        try:
-            os.remove(prefix + suffix)
-        except OSError:
-            pass
+    remove_file_set(prefix)
     return rows
 
 
