@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "rockfit/core/checks.hpp"
+#include "rockfit/core/enum_names.hpp"
 #include "rockfit/core/errors.hpp"
 
 namespace rockfit::fitting {
@@ -40,10 +41,14 @@ const char* ToString(FitMethod method) {
   return "?";
 }
 
+bool FromString(std::string_view text, FitMethod* value) {
+  static constexpr FitMethod kAll[] = {FitMethod::kNelderMead, FitMethod::kCeres, FitMethod::kAuto};
+  return core::FromStringAmong(text, kAll, value);
+}
+
 FitMethod ParseFitMethod(const std::string& name) {
-  if (name == "nelder-mead") return FitMethod::kNelderMead;
-  if (name == "ceres") return FitMethod::kCeres;
-  if (name == "auto") return FitMethod::kAuto;
+  FitMethod method = FitMethod::kAuto;
+  if (FromString(name, &method)) return method;
   throw InvalidArgument(fmt::format("unknown fit method '{}'; use nelder-mead, ceres or auto", name));
 }
 
@@ -106,10 +111,14 @@ const char* ToString(IntervalMethod method) {
   return "?";
 }
 
+bool FromString(std::string_view text, IntervalMethod* value) {
+  static constexpr IntervalMethod kAll[] = {IntervalMethod::kNone, IntervalMethod::kFast, IntervalMethod::kThorough};
+  return core::FromStringAmong(text, kAll, value);
+}
+
 IntervalMethod ParseIntervalMethod(const std::string& name) {
-  if (name == "none") return IntervalMethod::kNone;
-  if (name == "fast") return IntervalMethod::kFast;
-  if (name == "thorough") return IntervalMethod::kThorough;
+  IntervalMethod method = IntervalMethod::kNone;
+  if (FromString(name, &method)) return method;
   throw InvalidArgument(fmt::format("unknown interval method '{}'; use none, fast or thorough", name));
 }
 

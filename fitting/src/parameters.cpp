@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "rockfit/core/enum_names.hpp"
 #include "rockfit/core/errors.hpp"
 
 namespace rockfit::fitting {
@@ -57,9 +58,14 @@ ParameterId ParseParameterName(const std::string& name) {
 
 const char* ToString(BoundsSet set) { return set == BoundsSet::kEmpirical ? "empirical" : "theoretical"; }
 
+bool FromString(std::string_view text, BoundsSet* value) {
+  static constexpr BoundsSet kAll[] = {BoundsSet::kEmpirical, BoundsSet::kTheoretical};
+  return core::FromStringAmong(text, kAll, value);
+}
+
 BoundsSet ParseBoundsSet(const std::string& name) {
-  if (name == "empirical") return BoundsSet::kEmpirical;
-  if (name == "theoretical") return BoundsSet::kTheoretical;
+  BoundsSet set = BoundsSet::kEmpirical;
+  if (FromString(name, &set)) return set;
   throw InvalidArgument(fmt::format("unknown bounds set '{}'; use 'empirical' or 'theoretical'", name));
 }
 

@@ -159,10 +159,16 @@ TEST(EnumNames, IoEnumsRoundTripThroughTextJsonAndHdf5) {
 
 TEST(EnumNames, FittingAndQuakeEnumsRoundTripThroughTextJsonAndHdf5) {
   using namespace fitting;
+  // FromString, and the option parsers built on it (they throw for an unknown name).
+  ExpectRoundTrips("FitMethod", {FitMethod::kNelderMead, FitMethod::kCeres, FitMethod::kAuto},
+                   ByFromString(FitMethod::kAuto));
   ExpectRoundTrips("FitMethod", {FitMethod::kNelderMead, FitMethod::kCeres, FitMethod::kAuto},
                    [](const std::string& name) { return ParseFitMethod(name); });
   ExpectRoundTrips("IntervalMethod", {IntervalMethod::kNone, IntervalMethod::kFast, IntervalMethod::kThorough},
+                   ByFromString(IntervalMethod::kNone));
+  ExpectRoundTrips("IntervalMethod", {IntervalMethod::kNone, IntervalMethod::kFast, IntervalMethod::kThorough},
                    [](const std::string& name) { return ParseIntervalMethod(name); });
+  ExpectRoundTrips("BoundsSet", {BoundsSet::kEmpirical, BoundsSet::kTheoretical}, ByFromString(BoundsSet::kEmpirical));
   ExpectRoundTrips("BoundsSet", {BoundsSet::kEmpirical, BoundsSet::kTheoretical},
                    [](const std::string& name) { return ParseBoundsSet(name); });
   ExpectRoundTripsNamed("ParameterId",

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "rockfit/fitting/lateral_motion_check.hpp"
 #include "rockfit/fitting/lateral_rescan.hpp"
@@ -17,6 +18,7 @@ using PerParameter = std::array<double, kNumParameters>;
 
 enum class FitMethod { kNelderMead, kCeres, kAuto };
 const char* ToString(FitMethod method);             // "nelder-mead", "ceres", "auto"
+bool FromString(std::string_view text, FitMethod* value);  // the inverse of ToString
 FitMethod ParseFitMethod(const std::string& name);  // throws InvalidArgument
 
 // NLopt LN_NELDERMEAD (as MATLAB's fminsearch in the paper, Sect. 5.1).
@@ -112,6 +114,7 @@ struct IdentifiabilityOptions {
 //              times the same effective noise level; curved ridges and bounds are followed, not linearised.
 enum class IntervalMethod { kNone, kFast, kThorough };
 const char* ToString(IntervalMethod method);                // "none", "fast", "thorough"
+bool FromString(std::string_view text, IntervalMethod* value);  // the inverse of ToString
 IntervalMethod ParseIntervalMethod(const std::string& name);  // throws InvalidArgument
 
 // The calibrated defaults of IntervalOptions::model_error_widening and t0_floor_samples (fit_options.cpp).

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "rockfit/core/impact_maps.hpp"
@@ -42,6 +43,7 @@ struct Parameter {
 // t0 has unbounded defaults; the fitter narrows them from the recording (see fitting/README.md).
 enum class BoundsSet { kEmpirical, kTheoretical };
 const char* ToString(BoundsSet set);             // "empirical", "theoretical"
+bool FromString(std::string_view text, BoundsSet* value);  // the inverse of ToString
 BoundsSet ParseBoundsSet(const std::string& name);  // throws InvalidArgument
 
 class ParameterSet {
