@@ -108,7 +108,8 @@ Evaluation Objective::Evaluate(const ParameterSet& values) const {
   return EvaluateDetailed(values, &nodes, &output);
 }
 
-Evaluation Objective::EvaluateDetailed(const ParameterSet& values, ErrorNodes* nodes, ModelOutput* output) const {
+Evaluation Objective::EvaluateDetailed(const ParameterSet& values, ErrorNodes* nodes, ModelOutput* output,
+                                       bool sensitivities) const {
   Evaluation result;
   auto infeasible = [&](const std::string& reason) {
     counters_->CountFailure(reason);
@@ -125,7 +126,11 @@ Evaluation Objective::EvaluateDetailed(const ParameterSet& values, ErrorNodes* n
   if (!BuildErrorNodes(*signal_, t0, t_end_s_, nodes)) return infeasible("t0 outside the recording window");
 
   counters_->CountRun();
-  model_->Evaluate(values.ToModel(), nodes->t_after_release_s, output);
+  if (sensitivities) {
+    model_->EvaluateWithSensitivities(values.ToModel(), nodes->t_after_release_s, output);
+  } else {
+    model_->Evaluate(values.ToModel(), nodes->t_after_release_s, output);
+  }
   if (!output->ok()) return infeasible(output->failure);
   if (output->w_B.size() != nodes->size()) {
     return infeasible("model returned a wrong number of samples");

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "rockfit/core/planar_sensitivity.hpp"
 #include "rockfit/core/simulator.hpp"
 
 namespace rockfit::fitting {
@@ -22,6 +23,10 @@ struct ModelEvent {
 struct ModelOutput {
   std::vector<Eigen::Vector3d> w_B;  // one per query time [rad/s]; valid only when ok()
   std::vector<ModelEvent> events;    // in time order
+  // ∂ω_s/∂(t, α, λ, λ_lat, λ_lon) at each query time (columns as core::SensitivityColumn; NaN where a derivative
+  // does not exist). Filled only by EvaluateWithSensitivities, and only where the model can give them exactly;
+  // empty otherwise.
+  std::vector<core::SampleSensitivity> dw_B_dparams;
   // Empty when the run succeeded. Otherwise a short category that failures are counted by ("overturned",
   // "impact infeasible", "t_max", …) and a human-readable detail.
   std::string failure;
@@ -30,6 +35,7 @@ struct ModelOutput {
   void Clear() {
     w_B.clear();
     events.clear();
+    dw_B_dparams.clear();
     failure.clear();
     failure_detail.clear();
   }
@@ -42,6 +48,12 @@ class TrajectoryModel {
   // out->failure. Never throws for parameter values a fitter may try; never returns non-finite ω.
   virtual void Evaluate(const core::ModelParameters& params, const std::vector<double>& t_after_release_s,
                         ModelOutput* out) const = 0;
+  // Evaluate, plus the exact derivatives of ω_s in out->dw_B_dparams where the model has them (left empty where
+  // it has none: the default, and runs the model cannot differentiate).
+  virtual void EvaluateWithSensitivities(const core::ModelParameters& params,
+                                         const std::vector<double>& t_after_release_s, ModelOutput* out) const {
+    Evaluate(params, t_after_release_s, out);
+  }
   // One line for summaries ("hybrid simulator, rel_tol 1e-10", …).
   virtual std::string Describe() const = 0;
   // A copy that integrates with the relative tolerance rel_tol where that is looser than its own (for searches that
