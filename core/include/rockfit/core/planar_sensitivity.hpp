@@ -32,10 +32,9 @@ inline constexpr int kNumSensitivityColumns = 5;
 using SampleSensitivity = Eigen::Matrix<double, 3, kNumSensitivityColumns>;
 
 struct PlanarSensitivityOptions {
-  // The integration of the variational equations; as tight as the simulator's default, so that the derivatives
-  // are exact to about this relative error.
-  double rel_tol = 1e-12;
-  double abs_tol = 1e-14;
+  // The integration of the variational equations (DOP853).
+  double rel_tol = 1e-10;
+  double abs_tol = 1e-12;
   // The computed ω must match the simulator's samples to this [rad/s] (plus this times |ω|), otherwise the run
   // was not the planar motion this describes and no derivatives are given. Well above the 1e-12 tolerances of
   // both integrations, well below any real disagreement (a swing about another edge differs by O(1)).
