@@ -65,6 +65,36 @@ bool FromString(std::string_view text, OverturnRule* rule) {
   return false;
 }
 
+const char* ToString(ModeKind kind) {
+  switch (kind) {
+    case ModeKind::kEdge: return "edge";
+    case ModeKind::kVertex: return "vertex";
+    case ModeKind::kRest: return "rest";
+    case ModeKind::kOverturned: return "overturned";
+    case ModeKind::kFailed: return "failed";
+  }
+  return "failed";
+}
+
+bool FromString(std::string_view text, ModeKind* value) {
+  static constexpr ModeKind kAll[] = {ModeKind::kEdge, ModeKind::kVertex, ModeKind::kRest, ModeKind::kOverturned,
+                                      ModeKind::kFailed};
+  return core::FromStringAmong(text, kAll, value);
+}
+
+const char* ToString(GroundStart start) {
+  switch (start) {
+    case GroundStart::kFlatAtRest: return "flat";
+    case GroundStart::kAsOptions: return "tilted";
+  }
+  return "flat";
+}
+
+bool FromString(std::string_view text, GroundStart* value) {
+  static constexpr GroundStart kAll[] = {GroundStart::kFlatAtRest, GroundStart::kAsOptions};
+  return core::FromStringAmong(text, kAll, value);
+}
+
 const char* ToString(EndReason reason) {
   switch (reason) {
     case EndReason::kPhase4: return "phase4";

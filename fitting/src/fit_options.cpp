@@ -19,15 +19,13 @@ const double kDefaultT0FloorSamples = 0.5;
 namespace {
 
 // The shared checks (rockfit/core/checks.hpp) with the option's name as the user writes it.
-void RequirePositive(double value, const char* name) { rockfit::RequirePositive(value, fmt::format("fit option {}", name)); }
+// An option's name as the user writes it, for the messages of the shared checks (rockfit/core/checks.hpp).
+std::string FitOption(const char* name) { return fmt::format("fit option {}", name); }
 
-void RequireAtLeast(int value, int minimum, const char* name) {
-  rockfit::RequireAtLeast(value, minimum, fmt::format("fit option {}", name));
-}
-
-void RequirePositive(const PerParameter& values, const char* name) {
+// RequirePositive for the value of every parameter of a per-parameter option.
+void RequirePositiveEach(const PerParameter& values, const char* name) {
   for (ParameterId id : kAllParameters) {
-    rockfit::RequirePositive(values[static_cast<std::size_t>(id)], fmt::format("fit option {} for {}", name, Name(id)));
+    RequirePositive(values[static_cast<std::size_t>(id)], fmt::format("{} for {}", FitOption(name), Name(id)));
   }
 }
 
@@ -50,53 +48,53 @@ FitMethod ParseFitMethod(const std::string& name) {
 }
 
 void NelderMeadOptions::Validate() const {
-  RequireAtLeast(max_evaluations, 1, "nelder_mead.max_evaluations");
-  RequirePositive(ftol_abs_rad_s, "nelder_mead.ftol_abs_rad_s");
-  RequireAtLeast(restarts, 0, "nelder_mead.restarts");
-  RequirePositive(xtol_abs, "nelder_mead.xtol_abs");
-  RequirePositive(initial_step, "nelder_mead.initial_step");
+  RequireAtLeast(max_evaluations, 1, FitOption("nelder_mead.max_evaluations"));
+  RequirePositive(ftol_abs_rad_s, FitOption("nelder_mead.ftol_abs_rad_s"));
+  RequireAtLeast(restarts, 0, FitOption("nelder_mead.restarts"));
+  RequirePositiveEach(xtol_abs, "nelder_mead.xtol_abs");
+  RequirePositiveEach(initial_step, "nelder_mead.initial_step");
 }
 
 void CeresOptions::Validate() const {
-  RequireAtLeast(max_iterations, 1, "ceres.max_iterations");
-  RequirePositive(function_tolerance, "ceres.function_tolerance");
-  RequirePositive(parameter_tolerance, "ceres.parameter_tolerance");
-  RequirePositive(gradient_tolerance, "ceres.gradient_tolerance");
-  RequirePositive(soft_l1_scale_rad_s, "ceres.soft_l1_scale_rad_s");
-  RequirePositive(difference_step, "ceres.difference_step");
+  RequireAtLeast(max_iterations, 1, FitOption("ceres.max_iterations"));
+  RequirePositive(function_tolerance, FitOption("ceres.function_tolerance"));
+  RequirePositive(parameter_tolerance, FitOption("ceres.parameter_tolerance"));
+  RequirePositive(gradient_tolerance, FitOption("ceres.gradient_tolerance"));
+  RequirePositive(soft_l1_scale_rad_s, FitOption("ceres.soft_l1_scale_rad_s"));
+  RequirePositiveEach(difference_step, "ceres.difference_step");
 }
 
 void GlobalStageOptions::Validate() const {
-  RequireAtLeast(num_samples, 1, "global.num_samples");
-  RequireAtLeast(num_polished, 1, "global.num_polished");
-  RequireAtLeast(polish_evaluations, 1, "global.polish_evaluations");
-  RequireAtLeast(num_continued, 1, "global.num_continued");
-  RequirePositive(first_window_s, "global.first_window_s");
+  RequireAtLeast(num_samples, 1, FitOption("global.num_samples"));
+  RequireAtLeast(num_polished, 1, FitOption("global.num_polished"));
+  RequireAtLeast(polish_evaluations, 1, FitOption("global.polish_evaluations"));
+  RequireAtLeast(num_continued, 1, FitOption("global.num_continued"));
+  RequirePositive(first_window_s, FitOption("global.first_window_s"));
   if (!(continuation_growth > 1.0 && std::isfinite(continuation_growth))) {
     throw InvalidArgument(fmt::format("fit option global.continuation_growth must be above 1, got {}", continuation_growth));
   }
-  RequireAtLeast(continuation_evaluations, 1, "global.continuation_evaluations");
-  RequireAtLeast(scan_points, 1, "global.scan_points");
-  RequireAtLeast(joint_scan_lat_points, 0, "global.joint_scan_lat_points");
+  RequireAtLeast(continuation_evaluations, 1, FitOption("global.continuation_evaluations"));
+  RequireAtLeast(scan_points, 1, FitOption("global.scan_points"));
+  RequireAtLeast(joint_scan_lat_points, 0, FitOption("global.joint_scan_lat_points"));
   if (!(joint_scan_lat_fraction >= 0.0 && joint_scan_lat_fraction < 1.0)) {
     throw InvalidArgument(
         fmt::format("fit option global.joint_scan_lat_fraction must lie in [0, 1), got {}", joint_scan_lat_fraction));
   }
-  RequireAtLeast(ridge_points, 0, "global.ridge_points");
-  RequirePositive(ridge_t0_halfwidth_s, "global.ridge_t0_halfwidth_s");
-  RequirePositive(ridge_lambda_lon_step, "global.ridge_lambda_lon_step");
-  RequirePositive(ridge_alpha_difference_rad, "global.ridge_alpha_difference_rad");
+  RequireAtLeast(ridge_points, 0, FitOption("global.ridge_points"));
+  RequirePositive(ridge_t0_halfwidth_s, FitOption("global.ridge_t0_halfwidth_s"));
+  RequirePositive(ridge_lambda_lon_step, FitOption("global.ridge_lambda_lon_step"));
+  RequirePositive(ridge_alpha_difference_rad, FitOption("global.ridge_alpha_difference_rad"));
   if (!(continuation_step_fraction > 0.0 && continuation_step_fraction <= 1.0)) {
     throw InvalidArgument(fmt::format("fit option global.continuation_step_fraction must lie in (0, 1], got {}",
                                       continuation_step_fraction));
   }
-  RequirePositive(t0_halfwidth_s, "global.t0_halfwidth_s");
+  RequirePositive(t0_halfwidth_s, FitOption("global.t0_halfwidth_s"));
   if (!(simulation_rel_tol == 0.0 || (simulation_rel_tol >= 1e-14 && simulation_rel_tol <= 1e-3))) {
     throw InvalidArgument(fmt::format(
         "fit option global.simulation_rel_tol must be 0 (the model's own) or lie in [1e-14, 1e-3], got {}",
         simulation_rel_tol));
   }
-  RequirePositive(alpha_halfwidth_rad, "global.alpha_halfwidth_rad");
+  RequirePositive(alpha_halfwidth_rad, FitOption("global.alpha_halfwidth_rad"));
 }
 
 const char* ToString(IntervalMethod method) {
@@ -124,18 +122,18 @@ void IntervalOptions::Validate() const {
     throw InvalidArgument(fmt::format("intervals: t0_floor_samples must be a finite number of sample periods ≥ 0, got {}",
                                       t0_floor_samples));
   }
-  RequirePositive(noise_correlation_window_s, "intervals.noise_correlation_window_s");
+  RequirePositive(noise_correlation_window_s, FitOption("intervals.noise_correlation_window_s"));
   if (!(model_error_allowance >= 1.0 && std::isfinite(model_error_allowance))) {
     throw InvalidArgument(fmt::format("fit option intervals.model_error_allowance must be at least 1, got {}",
                                       model_error_allowance));
   }
-  RequireAtLeast(profile_evaluations, 1, "intervals.profile_evaluations");
-  RequireAtLeast(centre_evaluations, 0, "intervals.centre_evaluations");
-  RequireAtLeast(profile_points, 2, "intervals.profile_points");
+  RequireAtLeast(profile_evaluations, 1, FitOption("intervals.profile_evaluations"));
+  RequireAtLeast(centre_evaluations, 0, FitOption("intervals.centre_evaluations"));
+  RequireAtLeast(profile_points, 2, FitOption("intervals.profile_points"));
   if (!(profile_growth > 1.0 && std::isfinite(profile_growth))) {
     throw InvalidArgument(fmt::format("fit option intervals.profile_growth must be above 1, got {}", profile_growth));
   }
-  RequirePositive(min_step, "intervals.min_step");
+  RequirePositiveEach(min_step, "intervals.min_step");
   if (!(undetermined_range_fraction > 0.0 && undetermined_range_fraction <= 1.0)) {
     throw InvalidArgument(fmt::format("fit option intervals.undetermined_range_fraction must lie in (0, 1], got {}",
                                       undetermined_range_fraction));
@@ -143,8 +141,8 @@ void IntervalOptions::Validate() const {
 }
 
 void IdentifiabilityOptions::Validate() const {
-  RequirePositive(probe_step, "identifiability.probe_step");
-  RequirePositive(relative_tolerance, "identifiability.relative_tolerance");
+  RequirePositiveEach(probe_step, "identifiability.probe_step");
+  RequirePositive(relative_tolerance, FitOption("identifiability.relative_tolerance"));
 }
 
 void FitOptions::Validate() const {
@@ -156,7 +154,7 @@ void FitOptions::Validate() const {
   lateral_motion.Validate();
   model_error.Validate();
   lateral_rescan.Validate();
-  RequireAtLeast(num_threads, 0, "num_threads");
+  RequireAtLeast(num_threads, 0, FitOption("num_threads"));
   if (!(at_bound_fraction >= 0.0 && at_bound_fraction < 0.5)) {
     throw InvalidArgument(fmt::format("fit option at_bound_fraction must lie in [0, 0.5), got {}", at_bound_fraction));
   }

@@ -145,7 +145,7 @@ std::vector<std::string> OptionalColumn(const io::hdf5::Group& fit, const std::s
 }
 
 template <class T>
-void CheckColumnLength(const io::hdf5::Group& fit, const std::string& column, const std::vector<T>& values,
+void RequireColumnLength(const io::hdf5::Group& fit, const std::string& column, const std::vector<T>& values,
                        std::size_t rows) {
   if (values.size() == rows) return;
   throw BadInput(fit.file_name() + ": " + fit.path() + "/parameters has " + std::to_string(rows) + " names but " +
@@ -379,7 +379,7 @@ StoredParameters ReadFitParameters(const io::hdf5::Group& fit) {
   s.name = fit.ReadStrings("parameters/name");
   s.value = fit.ReadDoubles("parameters/value");
   const std::size_t rows = s.name.size();
-  CheckColumnLength(fit, "value", s.value, rows);
+  RequireColumnLength(fit, "value", s.value, rows);
   const double nan = std::nan("");
   s.unit = OptionalColumn<std::string>(fit, "unit", rows, "");
   s.lower = OptionalColumn(fit, "lower", rows, nan);
@@ -392,17 +392,17 @@ StoredParameters ReadFitParameters(const io::hdf5::Group& fit) {
   s.has_intervals = fit.IsDataset("parameters/interval_95_lower");
   if (fit.IsDataset("parameters/fixed")) {
     const std::vector<std::int64_t> fixed = fit.ReadInts("parameters/fixed");
-    CheckColumnLength(fit, "fixed", fixed, rows);
+    RequireColumnLength(fit, "fixed", fixed, rows);
     s.fixed.assign(fixed.begin(), fixed.end());
   } else {
     s.fixed.assign(rows, false);
   }
   for (const auto* column : {&s.lower, &s.upper, &s.interval_68_lower, &s.interval_68_upper, &s.interval_95_lower,
                              &s.interval_95_upper}) {
-    CheckColumnLength(fit, "interval or bound", *column, rows);
+    RequireColumnLength(fit, "interval or bound", *column, rows);
   }
-  CheckColumnLength(fit, "unit", s.unit, rows);
-  CheckColumnLength(fit, "determined", s.determined, rows);
+  RequireColumnLength(fit, "unit", s.unit, rows);
+  RequireColumnLength(fit, "determined", s.determined, rows);
   return s;
 }
 

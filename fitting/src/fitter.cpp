@@ -77,7 +77,7 @@ std::vector<std::pair<Eigen::VectorXd, double>> RunStages(const Objective& objec
     summary->epsilon_initial_rad_s = e.epsilon_rad_s;
     candidates.push_back({"start", x_start, e.epsilon_rad_s, e.feasible, false, TerminationType::kNotASearch, "start point"});
     summary->stages.push_back({"start", e.epsilon_rad_s, 1, SecondsSince(t), TerminationType::kNotASearch,
-                               e.feasible ? "evaluated" : e.failure});
+                               e.feasible ? "evaluated" : e.failure_category()});
   }
   Eigen::VectorXd x_current = x_start;
   std::vector<std::pair<Eigen::VectorXd, double>> global_candidates;

@@ -111,19 +111,20 @@ Evaluation Objective::Evaluate(const ParameterSet& values) const {
 Evaluation Objective::EvaluateDetailed(const ParameterSet& values, ErrorNodes* nodes, ModelOutput* output,
                                        bool sensitivities) const {
   Evaluation result;
-  auto infeasible = [&](const std::string& reason) {
-    counters_->CountFailure(reason);
+  auto infeasible = [&](ModelFailure reason, core::ImpactStatus impact_status = core::ImpactStatus::kOk) {
     result.feasible = false;
     result.failure = reason;
+    result.impact_status = impact_status;
+    counters_->CountFailure(result.failure_category());
     result.epsilon_rad_s = options_.failure_penalty_rad_s;
     return result;
   };
   output->Clear();
   for (ParameterId id : kAllParameters) {
-    if (!std::isfinite(values.value(id))) return infeasible("non-finite parameter");
+    if (!std::isfinite(values.value(id))) return infeasible(ModelFailure::kNonFiniteParameter);
   }
   const double t0 = values.value(ParameterId::kT0);
-  if (!BuildErrorNodes(*signal_, t0, t_end_s_, nodes)) return infeasible("t0 outside the recording window");
+  if (!BuildErrorNodes(*signal_, t0, t_end_s_, nodes)) return infeasible(ModelFailure::kT0OutsideWindow);
 
   counters_->CountRun();
   if (sensitivities) {
@@ -131,12 +132,12 @@ Evaluation Objective::EvaluateDetailed(const ParameterSet& values, ErrorNodes* n
   } else {
     model_->Evaluate(values.ToModel(), nodes->t_after_release_s, output);
   }
-  if (!output->ok()) return infeasible(output->failure);
+  if (!output->ok()) return infeasible(output->failure, output->impact_status);
   if (output->w_B.size() != nodes->size()) {
-    return infeasible("model returned a wrong number of samples");
+    return infeasible(ModelFailure::kWrongSampleCount);
   }
   const double epsilon = TrajectoryError(*nodes, output->w_B);
-  if (!std::isfinite(epsilon)) return infeasible("non-finite simulated angular velocity");
+  if (!std::isfinite(epsilon)) return infeasible(ModelFailure::kNonFiniteOutput);
   result.feasible = true;
   result.epsilon_rad_s = epsilon;
   return result;

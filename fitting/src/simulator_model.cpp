@@ -32,27 +32,6 @@ void SimulatorModelOptions::Validate() const {
   }
 }
 
-std::string SimulationFailureCategory(core::FailureReason reason, core::ImpactStatus status) {
-  switch (reason) {
-    case core::FailureReason::kEdgeImpact:
-    case core::FailureReason::kFacetImpact:
-      // A map that reports ok but gave a non-finite ω⁺ has no status to name.
-      if (status == core::ImpactStatus::kOk) return "failed";
-      return fmt::format("{} impact {}", reason == core::FailureReason::kEdgeImpact ? "edge" : "facet",
-                         core::ToString(status));
-    case core::FailureReason::kIntegratorStep:
-      return "integrator";
-    case core::FailureReason::kImpactCascade:
-      return "impact cascade";
-    case core::FailureReason::kMaxImpacts:
-      return "too many impacts";
-    case core::FailureReason::kEnergyBlowUp:
-    case core::FailureReason::kNone:
-      break;
-  }
-  return "failed";
-}
-
 SimulatorModel::SimulatorModel(const core::Block& block, SimulatorModelOptions options)
     : block_(block), options_(std::move(options)) {
   options_.Validate();
@@ -83,30 +62,31 @@ void SimulatorModel::Run(const core::ModelParameters& params, const std::vector<
   try {
     trajectory = core::Simulate(block_, params, run);
   } catch (const InvalidArgument& e) {
-    out->failure = "invalid parameters";
+    out->failure = ModelFailure::kInvalidParameters;
     out->failure_detail = e.what();
     return;
   } catch (const std::exception& e) {
-    out->failure = "simulator exception";
+    out->failure = ModelFailure::kSimulatorException;
     out->failure_detail = e.what();
     return;
   }
   switch (trajectory.end_reason) {
     case core::EndReason::kOverturned:
-      out->failure = "overturned";
+      out->failure = ModelFailure::kOverturned;
       out->failure_detail = fmt::format("the block overturns at t = {:.4f} s after the release", trajectory.t_end_s);
       return;
     case core::EndReason::kFailed:
       // The failing impact, if any, is the last of the log.
-      out->failure = SimulationFailureCategory(
-          trajectory.failure, trajectory.impacts.empty() ? core::ImpactStatus::kOk : trajectory.impacts.back().status);
+      out->impact_status = trajectory.impacts.empty() ? core::ImpactStatus::kOk : trajectory.impacts.back().status;
+      out->failure = FromSimulation(trajectory.failure, out->impact_status);
+      if (out->failure == ModelFailure::kFailed) out->impact_status = core::ImpactStatus::kOk;
       out->failure_detail = trajectory.message;
       return;
     default:
       break;
   }
   if (trajectory.w_B.size() != times.size()) {
-    out->failure = "incomplete run";
+    out->failure = ModelFailure::kIncompleteRun;
     out->failure_detail = fmt::format("the run ended ({}) at t = {:.4f} s with {} of {} samples",
                                       core::ToString(trajectory.end_reason), trajectory.t_end_s, trajectory.w_B.size(),
                                       times.size());

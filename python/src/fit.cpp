@@ -43,7 +43,7 @@ class InterruptibleModel final : public fitting::TrajectoryModel {
                 fitting::ModelOutput* out) const override {
     if (interrupted_->load(std::memory_order_relaxed)) {
       out->Clear();
-      out->failure = "interrupted";
+      out->failure = fitting::ModelFailure::kInterrupted;
       out->failure_detail = "the fit was interrupted (Ctrl-C)";
       return;
     }
@@ -370,7 +370,7 @@ py::object Evaluate(const TrialRecording& r, const std::optional<core::Block>& g
   d["trial"] = r.trial;
   d["epsilon"] = e.feasible ? py::object(py::float_(e.epsilon_rad_s)) : py::none();
   d["feasible"] = e.feasible;
-  d["failure"] = e.failure;
+  d["failure"] = e.failure_category();
   d["t_end"] = window_end;
   d["parameters"] = parameters;
   return MakeRecord("Evaluation", d);

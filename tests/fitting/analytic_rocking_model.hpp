@@ -40,7 +40,7 @@ class AnalyticRockingModel final : public fitting::TrajectoryModel {
                 fitting::ModelOutput* out) const override {
     out->Clear();
     const double alpha = params.alpha_rad;
-    if (!(alpha > 0.0) || alpha >= lon_.theta_c) return Fail(out, "overturned", "release tilt beyond θ_c");
+    if (!(alpha > 0.0) || alpha >= lon_.theta_c) return Fail(out, fitting::ModelFailure::kOverturned, "release tilt beyond θ_c");
     const double t_max = times.empty() ? 0.0 : times.back();
 
     // Longitudinal segments: [start, end) with the start velocity w0 (signed) of a rocking half-cycle;
@@ -63,7 +63,7 @@ class AnalyticRockingModel final : public fitting::TrajectoryModel {
         lon_rest = true;
         break;
       }
-      if (std::abs(w) >= lon_.p * lon_.theta_c) return Fail(out, "overturned", "longitudinal overturning");
+      if (std::abs(w) >= lon_.p * lon_.theta_c) return Fail(out, fitting::ModelFailure::kOverturned, "longitudinal overturning");
       const double half = lon_.HalfCycle(w);
       lon.push_back({t, t + half, w, false});
       t += half;
@@ -78,14 +78,17 @@ class AnalyticRockingModel final : public fitting::TrajectoryModel {
     const double r_lat = lat_.Avrf(params.lambda);
     t = t1;
     while (t <= t_max && std::abs(wx) >= kZenoOmega) {
-      if (std::abs(wx) >= lat_.p * lat_.theta_c) return Fail(out, "overturned", "lateral overturning");
+      if (std::abs(wx) >= lat_.p * lat_.theta_c) return Fail(out, fitting::ModelFailure::kOverturned, "lateral overturning");
       const double half = lat_.HalfCycle(wx);
       if (half < kZenoDt) break;
       lat.push_back({t, t + half, wx, false});
       t += half;
       if (t <= t_max) out->events.push_back({t, core::ImpactKind::kEdge});
       wx = -r_lat * wx;
-      if (r_lat >= 1.0 && lat.size() > 10000) return Fail(out, "impact infeasible", "lateral energy gain");
+      if (r_lat >= 1.0 && lat.size() > 10000) {
+        out->impact_status = core::ImpactStatus::kInfeasible;
+        return Fail(out, fitting::ModelFailure::kFacetImpact, "lateral energy gain");
+      }
     }
     std::sort(out->events.begin(), out->events.end(),
               [](const fitting::ModelEvent& a, const fitting::ModelEvent& b) { return a.t_s < b.t_s; });
@@ -131,7 +134,7 @@ class AnalyticRockingModel final : public fitting::TrajectoryModel {
     double theta_c = 0.0, p = 0.0, num = 0.0, mb2 = 0.0;
   };
 
-  static void Fail(fitting::ModelOutput* out, const char* reason, const char* detail) {
+  static void Fail(fitting::ModelOutput* out, fitting::ModelFailure reason, const char* detail) {
     out->w_B.clear();
     out->failure = reason;
     out->failure_detail = detail;

@@ -18,7 +18,7 @@ class ConstantModel final : public TrajectoryModel {
   void Evaluate(const core::ModelParameters& p, const std::vector<double>& times, ModelOutput* out) const override {
     out->Clear();
     if (p.lambda_lat > 0.5) {
-      out->failure = "overturned";
+      out->failure = ModelFailure::kOverturned;
       return;
     }
     last_times = times;
@@ -63,14 +63,14 @@ TEST(Objective, AFailedModelRunIsAFinitePenaltyCountedByReason) {
   const Objective objective(ZeroSignal(), 1.0, model, StartAt(0.1, 0.7, 0.0));
   const Evaluation failed = objective.Evaluate(StartAt(0.1, 0.7, 1.0));
   EXPECT_FALSE(failed.feasible);
-  EXPECT_EQ(failed.failure, "overturned");
+  EXPECT_EQ(failed.failure, ModelFailure::kOverturned);
   EXPECT_EQ(failed.epsilon_rad_s, objective.options().failure_penalty_rad_s);
   const Evaluation nan = objective.Evaluate(StartAt(0.1, 0.7, -1.0));
   EXPECT_FALSE(nan.feasible);
   EXPECT_TRUE(std::isfinite(nan.epsilon_rad_s));
   const Evaluation outside = objective.Evaluate(StartAt(1.5, 0.7, 0.0));
   EXPECT_FALSE(outside.feasible);
-  EXPECT_EQ(outside.failure, "t0 outside the recording window");
+  EXPECT_EQ(outside.failure, ModelFailure::kT0OutsideWindow);
   const auto by_reason = objective.counters().failures_by_reason();
   EXPECT_EQ(by_reason.at("overturned"), 1);
   EXPECT_EQ(by_reason.at("t0 outside the recording window"), 1);

@@ -47,11 +47,11 @@ TEST(RandomPhysicsProperty, FitEvaluateGivesAFiniteErrorOrAReasonForRandomParame
     ASSERT_TRUE(std::isfinite(e.epsilon_rad_s)) << what;
     EXPECT_GE(e.epsilon_rad_s, 0.0) << what;
     if (e.feasible) {
-      EXPECT_TRUE(e.failure.empty()) << what;
+      EXPECT_EQ(e.failure, ModelFailure::kNone) << what;
       ++counts["feasible"];
     } else {
-      EXPECT_FALSE(e.failure.empty()) << what;
-      ++counts["infeasible: " + e.failure.substr(0, e.failure.find_first_of(":(0123456789"))];
+      EXPECT_NE(e.failure, ModelFailure::kNone) << what;
+      ++counts["infeasible: " + e.failure_category()];
     }
   }
   EXPECT_GT(counts["feasible"], runs / 10);

@@ -78,7 +78,7 @@ Residuals At(const Objective& objective, const Eigen::VectorXd& x, const Residua
   ErrorNodes nodes;
   ModelOutput output;
   const Evaluation e = objective.EvaluateDetailed(objective.WithFree(x), &nodes, &output, true);
-  EXPECT_TRUE(e.feasible) << e.failure;
+  EXPECT_TRUE(e.feasible) << e.failure_category();
   r.summary = NodeResiduals(objective, nodes, output, scale, &r.nodes);
   r.node_times_s = nodes.t_after_release_s;
   for (const ModelEvent& event : output.events) r.event_times_s.push_back(event.t_s);

@@ -64,7 +64,7 @@ TEST(SimulatorModel, ATiltBeyondTheCriticalAngleIsAFailureNotAnException) {
   ModelOutput out;
   SimulatorModel(kBlock).Evaluate(Params(0.26, 0.0), {0.0, 0.1, 0.5}, &out);  // θ_c = atan(0.05/0.2) = 0.245
   EXPECT_FALSE(out.ok());
-  EXPECT_EQ(out.failure, "overturned");
+  EXPECT_EQ(out.failure, ModelFailure::kOverturned);
   EXPECT_TRUE(out.w_B.empty());
 }
 
@@ -72,22 +72,24 @@ TEST(SimulatorModel, InvalidParametersAreAFailureNotAnException) {
   ModelOutput out;
   SimulatorModel(kBlock).Evaluate(Params(-0.1, 0.0), {0.0, 0.1}, &out);
   EXPECT_FALSE(out.ok());
-  EXPECT_EQ(out.failure, "invalid parameters");
+  EXPECT_EQ(out.failure, ModelFailure::kInvalidParameters);
   EXPECT_FALSE(out.failure_detail.empty());
 }
 
-TEST(SimulationFailureCategory, NamesTheImpactStatusOrTheIntegrator) {
+TEST(ModelFailure, FromSimulationNamesTheImpactStatusOrTheIntegrator) {
   using core::FailureReason;
   using core::ImpactStatus;
-  EXPECT_EQ(SimulationFailureCategory(FailureReason::kEdgeImpact, ImpactStatus::kSingular), "edge impact singular");
-  EXPECT_EQ(SimulationFailureCategory(FailureReason::kEdgeImpact, ImpactStatus::kAmbiguous), "edge impact ambiguous");
-  EXPECT_EQ(SimulationFailureCategory(FailureReason::kFacetImpact, ImpactStatus::kInfeasible),
-            "facet impact infeasible");
-  EXPECT_EQ(SimulationFailureCategory(FailureReason::kFacetImpact, ImpactStatus::kOk), "failed");  // non-finite ω⁺
-  EXPECT_EQ(SimulationFailureCategory(FailureReason::kIntegratorStep), "integrator");
-  EXPECT_EQ(SimulationFailureCategory(FailureReason::kImpactCascade), "impact cascade");
-  EXPECT_EQ(SimulationFailureCategory(FailureReason::kMaxImpacts), "too many impacts");
-  EXPECT_EQ(SimulationFailureCategory(FailureReason::kEnergyBlowUp), "failed");
+  const auto category = [](FailureReason reason, ImpactStatus status = ImpactStatus::kOk) {
+    return FailureCategory(FromSimulation(reason, status), status);
+  };
+  EXPECT_EQ(category(FailureReason::kEdgeImpact, ImpactStatus::kSingular), "edge impact singular");
+  EXPECT_EQ(category(FailureReason::kEdgeImpact, ImpactStatus::kAmbiguous), "edge impact ambiguous");
+  EXPECT_EQ(category(FailureReason::kFacetImpact, ImpactStatus::kInfeasible), "facet impact infeasible");
+  EXPECT_EQ(FromSimulation(FailureReason::kFacetImpact, ImpactStatus::kOk), ModelFailure::kFailed);  // non-finite ω⁺
+  EXPECT_EQ(category(FailureReason::kIntegratorStep), "integrator");
+  EXPECT_EQ(category(FailureReason::kImpactCascade), "impact cascade");
+  EXPECT_EQ(category(FailureReason::kMaxImpacts), "too many impacts");
+  EXPECT_EQ(FromSimulation(FailureReason::kEnergyBlowUp, ImpactStatus::kOk), ModelFailure::kFailed);
 }
 
 TEST(SimulatorModel, ARunWithTooManyImpactsFailsAsTooManyImpacts) {
@@ -95,7 +97,7 @@ TEST(SimulatorModel, ARunWithTooManyImpactsFailsAsTooManyImpacts) {
   options.simulation.max_impacts = 2;
   ModelOutput out;
   SimulatorModel(kBlock, options).Evaluate(Params(0.2, -2.0), {0.0, 0.5, 1.0, 2.0}, &out);
-  EXPECT_EQ(out.failure, "too many impacts") << out.failure_detail;
+  EXPECT_EQ(out.failure, ModelFailure::kTooManyImpacts) << out.failure_detail;
   EXPECT_NE(out.failure_detail.find("max_impacts"), std::string::npos) << out.failure_detail;
 }
 

@@ -53,7 +53,7 @@ inline SyntheticSignal MakeSyntheticSignal(const fitting::TrajectoryModel& model
   }
   fitting::ModelOutput model_out;
   model.Evaluate(params, after_release, &model_out);
-  if (!model_out.ok()) throw std::runtime_error("synthetic signal: model failed: " + model_out.failure);
+  if (!model_out.ok()) throw std::runtime_error("synthetic signal: model failed: " + model_out.failure_category());
   out.events = model_out.events;
   out.signal.w_B.assign(n, Eigen::Vector3d::Zero());
   for (std::size_t i = 0; i < after_release.size(); ++i) out.signal.w_B[first_after + i] = model_out.w_B[i];

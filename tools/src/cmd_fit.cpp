@@ -56,7 +56,7 @@ int RunEvaluate(const FitCommand& cmd, const TrialInput& input, const PreparedFi
     PrintJson({{"trial", input.trial_id},
                {"epsilon", e.feasible ? nlohmann::json(e.epsilon_rad_s) : nlohmann::json()},
                {"feasible", e.feasible},
-               {"failure", e.failure},
+               {"failure", e.failure_category()},
                {"t_end", prepared.objective.t_end_s()},
                {"parameters", params}});
   } else {
@@ -69,11 +69,11 @@ int RunEvaluate(const FitCommand& cmd, const TrialInput& input, const PreparedFi
       std::cout << fmt::format("ε (28)       {:.6g} rad/s over [t0, {:.4f} s]\n", e.epsilon_rad_s,
                                prepared.objective.t_end_s());
     } else {
-      std::cout << "ε (28)       — (the simulation failed: " << e.failure << ")\n";
+      std::cout << "ε (28)       — (the simulation failed: " << e.failure_category() << ")\n";
     }
   }
   if (!e.feasible) {
-    std::cerr << "rockfit: the model cannot run at these parameters (" << e.failure
+    std::cerr << "rockfit: the model cannot run at these parameters (" << e.failure_category()
               << "); try values inside the bounds shown by `rockfit fit --help`\n";
     return kExitNumerical;
   }

@@ -161,7 +161,7 @@ int RunSimulate(SimulateCommand& cmd) {
     throw InvalidArgument("--format hdf5 writes a file: give it with -o FILE");
   }
   if (cmd.options.sample_times_s.empty()) {
-    CheckTrajectorySamples(cmd.options.t_max_s, cmd.options.rate_hz, "--t-max and --rate");
+    RequireTrajectorySamplesWithinLimit(cmd.options.t_max_s, cmd.options.rate_hz, "--t-max and --rate");
   }
   const Activity activity("simulating the motion and keeping its samples");
   const core::Trajectory trajectory = core::Simulate(block, cmd.params, cmd.options);

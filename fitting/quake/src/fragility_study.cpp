@@ -105,7 +105,7 @@ std::string FragilityStudyOptions::SettingsText() const {
   const core::SimulationOptions& o = response.simulation;
   s += fmt::format("; response: start={} tail={:.17g} end_at_rest={} rate={:.17g} gravity={:.17g} rel_tol={:.17g} "
                    "abs_tol={:.17g} event_tol={:.17g} max_step={:.17g} zeno_dt={:.17g} rest_height={:.17g} max_impacts={}",
-                   response.start == core::GroundStart::kFlatAtRest ? "flat" : "options", response.tail_s,
+                   core::ToString(response.start), response.tail_s,
                    response.end_at_rest, o.rate_hz, o.gravity_m_s2, o.rel_tol, o.abs_tol, o.event_time_tol_s,
                    o.max_step_s, o.zeno_dt_s, o.rest_energy_height_m, o.max_impacts);
   // Only when not the default, so that journals of studies under the default rule still resume.

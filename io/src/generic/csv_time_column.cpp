@@ -16,14 +16,14 @@ constexpr const char* kBackwardsTodo =
     "Time cannot run backwards: the file mixes two recordings or was edited or sorted. Split it where the values "
     "restart, or restore the original file.";
 
-[[noreturn]] void FailNotIncreasing(const CsvTable& table, std::size_t row, std::size_t column, bool repeated) {
+[[noreturn]] void ThrowNotIncreasing(const CsvTable& table, std::size_t row, std::size_t column, bool repeated) {
   const std::string cell(table.Cell(row, column));
   const std::string previous_line = std::to_string(table.Line(row - 1));
   if (repeated) {
-    table.FailAt(row, column, "'" + cell + "' again (as on line " + previous_line + ")",
+    table.ThrowBadCell(row, column, "'" + cell + "' again (as on line " + previous_line + ")",
                  "a value larger than on the line before", kRepeatTodo);
   }
-  table.FailAt(row, column,
+  table.ThrowBadCell(row, column,
                "'" + cell + "', smaller than '" + std::string(table.Cell(row - 1, column)) + "' on line " + previous_line,
                "values that increase from line to line (or a counter that wraps at 2^16 or 2^32)", kBackwardsTodo);
 }
@@ -45,7 +45,7 @@ bool ReadIntegers(const CsvTable& table, std::size_t column, double to_si, CsvTi
     if (step > 0) {
       longest_step = std::max(longest_step, step);
     } else {
-      if (step == 0) FailNotIncreasing(table, row, column, true);
+      if (step == 0) ThrowNotIncreasing(table, row, column, true);
       std::optional<std::uint64_t> modulus;
       for (const std::uint64_t m : {std::uint64_t{1} << 16, std::uint64_t{1} << 32}) {
         if (values[row] < 0 || values[row - 1] >= static_cast<std::int64_t>(m)) continue;
@@ -56,7 +56,7 @@ bool ReadIntegers(const CsvTable& table, std::size_t column, double to_si, CsvTi
           break;
         }
       }
-      if (!modulus || (out.wrap_modulus != 0 && out.wrap_modulus != *modulus)) FailNotIncreasing(table, row, column, false);
+      if (!modulus || (out.wrap_modulus != 0 && out.wrap_modulus != *modulus)) ThrowNotIncreasing(table, row, column, false);
       out.wrap_modulus = *modulus;
       ++out.wraps;
       offset += static_cast<__int128>(*modulus);
@@ -80,7 +80,7 @@ void ReadReals(const CsvTable& table, std::size_t column, double to_si, CsvTimeC
   double previous = first;
   for (std::size_t row = 1; row < n; ++row) {
     const double value = table.Real(row, column);
-    if (!(value > previous)) FailNotIncreasing(table, row, column, value == previous);
+    if (!(value > previous)) ThrowNotIncreasing(table, row, column, value == previous);
     out.t_s[row] = (value - first) * to_si;
     previous = value;
   }
@@ -96,7 +96,7 @@ CsvTimeColumn ReadCsvTimeColumn(const CsvTable& table, std::size_t column, TimeU
   if (!integers) ReadReals(table, column, to_si, out);
   for (std::size_t row = 1; row < out.t_s.size(); ++row) {
     if (!std::isfinite(out.t_s[row])) {
-      table.FailAt(row, column, "a time too large to convert to seconds", "a time within a recording's span",
+      table.ThrowBadCell(row, column, "a time too large to convert to seconds", "a time within a recording's span",
                    "Check the time column's unit in the column map (time=NAME@s, @ms, @us or @ns).");
     }
   }

@@ -48,6 +48,15 @@ GroundAccelerationUnit ParseGroundAccelerationUnit(const std::string& text) {
   throw InvalidArgument("unknown acceleration unit '" + text + "'; use g, m/s2 or cm/s2");
 }
 
+const char* UnitName(GroundAccelerationUnit unit) {
+  switch (unit) {
+    case GroundAccelerationUnit::kG: return "g";
+    case GroundAccelerationUnit::kMetrePerSecond2: return "m/s2";
+    case GroundAccelerationUnit::kCentimetrePerSecond2: return "cm/s2";
+  }
+  return "g";
+}
+
 double ToMetrePerSecond2(GroundAccelerationUnit unit) {
   switch (unit) {
     case GroundAccelerationUnit::kG: return core::kRecordGravity;
@@ -104,12 +113,12 @@ GroundMotionComponents ReadGroundMotionCsv(const std::filesystem::path& path, co
     const double t0 = table.Real(0, tc);
     out.dt_s = table.Real(1, tc) - t0;
     if (!(out.dt_s > 0.0)) {
-      table.FailAt(1, tc, "a time not after the one before", "increasing times", "Sort the rows by time.");
+      table.ThrowBadCell(1, tc, "a time not after the one before", "increasing times", "Sort the rows by time.");
     }
     for (std::size_t r = 1; r < rows; ++r) {
       const double step = table.Real(r, tc) - table.Real(r - 1, tc);
       if (std::abs(step - out.dt_s) > kUniformStepRelTol * out.dt_s) {
-        table.FailAt(r, tc, "a step of " + std::to_string(step) + " s",
+        table.ThrowBadCell(r, tc, "a step of " + std::to_string(step) + " s",
                      "the uniform step of the first two rows, " + std::to_string(out.dt_s) + " s",
                      "Resample the record to a uniform step.");
       }
@@ -134,7 +143,7 @@ GroundMotionComponents ReadGroundMotionCsv(const std::filesystem::path& path, co
       values[r] = factor * table.Real(r, c);
       // A finite value in the file's unit can overflow in m/s² (1e308 g); such a cell is as bad as "inf".
       if (!std::isfinite(values[r])) {
-        table.FailAt(r, c, "a value too large to convert to m/s²", "a ground acceleration",
+        table.ThrowBadCell(r, c, "a value too large to convert to m/s²", "a ground acceleration",
                      "Check the column's unit and the value on this line.");
       }
     }

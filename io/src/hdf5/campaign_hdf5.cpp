@@ -61,7 +61,7 @@ void WriteFileAttributes(const hdf5::Group& root, const std::string& rockfit_ver
   root.SetString("rockfit_version", rockfit_version);
 }
 
-void CheckSchemaVersion(const hdf5::Group& root) {
+void RequireSchemaVersion(const hdf5::Group& root) {
   const std::optional<std::int64_t> version = root.GetInt("rockfit_schema_version");
   if (!version) {
     throw BadInput(fmt::format("{}: not a rockfit file (no root attribute rockfit_schema_version)", root.file_name()));
@@ -197,14 +197,14 @@ void WriteTrialHdf5(const hdf5::Group& root, const std::string& trial_id, const 
 std::vector<std::string> ListTrialsHdf5(const std::filesystem::path& path) {
   const hdf5::File file = hdf5::File::Open(path);
   const hdf5::Group root = file.Root();
-  CheckSchemaVersion(root);
+  RequireSchemaVersion(root);
   return root.IsGroup("trials") ? root.OpenGroup("trials").Children() : std::vector<std::string>{};
 }
 
 StoredTrial ReadTrialHdf5(const std::filesystem::path& path, const std::string& trial_id) {
   const hdf5::File file = hdf5::File::Open(path);
   const hdf5::Group root = file.Root();
-  CheckSchemaVersion(root);
+  RequireSchemaVersion(root);
   StoredTrial stored;
   const hdf5::Group g = OpenTrial(root, path, trial_id, &stored.id);
   stored.labels.block_id = g.GetString("block_id").value_or("");
@@ -366,7 +366,7 @@ void WriteSummaryHdf5(const hdf5::Group& root, const CampaignSummary& summary) {
 CampaignSummary ReadSummaryHdf5(const std::filesystem::path& path) {
   const hdf5::File file = hdf5::File::Open(path);
   const hdf5::Group root = file.Root();
-  CheckSchemaVersion(root);
+  RequireSchemaVersion(root);
   if (!root.IsGroup("summary")) {
     throw BadInput(fmt::format("{}: no /summary group; write one with `rockfit summary MANIFEST -o {}`", path.string(),
                                path.filename().string()));

@@ -41,10 +41,10 @@ std::string Hdf5Reason() {
   return reason.empty() ? std::string() : " (HDF5: " + reason + ")";
 }
 
-[[noreturn]] void FailRead(const std::string& file, const std::string& what) {
+[[noreturn]] void ThrowUnreadable(const std::string& file, const std::string& what) {
   throw BadInput(fmt::format("{}: {}{}", file, what, Hdf5Reason()));
 }
-[[noreturn]] void FailWrite(const std::string& file, const std::string& what) {
+[[noreturn]] void ThrowOutputError(const std::string& file, const std::string& what) {
   throw OutputError(fmt::format("{}: {}{}; check free space and permissions", file, what, Hdf5Reason()));
 }
 
@@ -94,7 +94,7 @@ File File::Create(const std::filesystem::path& path) {
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), ClosePlist);
   H5Pset_fclose_degree(fapl.id(), H5F_CLOSE_STRONG);
   const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id());
-  if (id < 0) FailWrite(path.string(), "cannot create the HDF5 file");
+  if (id < 0) ThrowOutputError(path.string(), "cannot create the HDF5 file");
   return File(Handle(id, CloseFile), path);
 }
 
@@ -104,19 +104,19 @@ File File::CreateInMemory(const std::filesystem::path& name) {
   constexpr std::size_t kMemoryIncrement = std::size_t{1} << 20;
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), ClosePlist);
   H5Pset_fclose_degree(fapl.id(), H5F_CLOSE_STRONG);
-  if (H5Pset_fapl_core(fapl.id(), kMemoryIncrement, 0) < 0) FailWrite(name.string(), "cannot set up an in-memory file");
+  if (H5Pset_fapl_core(fapl.id(), kMemoryIncrement, 0) < 0) ThrowOutputError(name.string(), "cannot set up an in-memory file");
   const hid_t id = H5Fcreate(name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id());
-  if (id < 0) FailWrite(name.string(), "cannot create the HDF5 file in memory");
+  if (id < 0) ThrowOutputError(name.string(), "cannot create the HDF5 file in memory");
   return File(Handle(id, CloseFile), name);
 }
 
 std::string File::Image() const {
   Flush();
   const ssize_t size = H5Fget_file_image(handle_.id(), nullptr, 0);
-  if (size < 0) FailWrite(path_.string(), "cannot get the size of the file image");
+  if (size < 0) ThrowOutputError(path_.string(), "cannot get the size of the file image");
   std::string image(static_cast<std::size_t>(size), '\0');
   if (H5Fget_file_image(handle_.id(), image.data(), image.size()) != size) {
-    FailWrite(path_.string(), "cannot get the file image");
+    ThrowOutputError(path_.string(), "cannot get the file image");
   }
   return image;
 }
@@ -137,7 +137,7 @@ File File::Open(const std::filesystem::path& path, bool writable) {
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), ClosePlist);
   H5Pset_fclose_degree(fapl.id(), H5F_CLOSE_STRONG);
   const hid_t id = H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, fapl.id());
-  if (id < 0) FailRead(path.string(), "cannot open the HDF5 file");
+  if (id < 0) ThrowUnreadable(path.string(), "cannot open the HDF5 file");
   return File(Handle(id, CloseFile), path);
 }
 
@@ -152,17 +152,17 @@ bool File::IsHdf5(const std::filesystem::path& path) {
 
 Group File::Root() const {
   const hid_t id = H5Gopen2(handle_.id(), "/", H5P_DEFAULT);
-  if (id < 0) FailRead(path_.string(), "cannot open the root group");
+  if (id < 0) ThrowUnreadable(path_.string(), "cannot open the root group");
   return Group(Handle(id, CloseGroup), "/", path_.string());
 }
 
 void File::Flush() const {
-  if (H5Fflush(handle_.id(), H5F_SCOPE_GLOBAL) < 0) FailWrite(path_.string(), "cannot flush the file");
+  if (H5Fflush(handle_.id(), H5F_SCOPE_GLOBAL) < 0) ThrowOutputError(path_.string(), "cannot flush the file");
 }
 
 void File::Close() {
   if (!handle_.valid()) return;
-  if (H5Fclose(handle_.Release()) < 0) FailWrite(path_.string(), "cannot close the file");
+  if (H5Fclose(handle_.Release()) < 0) ThrowOutputError(path_.string(), "cannot close the file");
 }
 
 // ---------------------------------------------------------------- Group: structure
@@ -195,12 +195,12 @@ bool Group::Exists(const std::string& name) const {
 Handle Group::OpenObject(const std::string& object) const {
   if (object.empty()) {
     const hid_t id = H5Oopen(handle_.id(), ".", H5P_DEFAULT);
-    if (id < 0) FailRead(file_name_, fmt::format("cannot open {}", path_));
+    if (id < 0) ThrowUnreadable(file_name_, fmt::format("cannot open {}", path_));
     return Handle(id, CloseObject);
   }
-  if (!Exists(object)) FailRead(file_name_, fmt::format("{} does not exist", ChildPath(object)));
+  if (!Exists(object)) ThrowUnreadable(file_name_, fmt::format("{} does not exist", ChildPath(object)));
   const hid_t id = H5Oopen(handle_.id(), object.c_str(), H5P_DEFAULT);
-  if (id < 0) FailRead(file_name_, fmt::format("cannot open {}", ChildPath(object)));
+  if (id < 0) ThrowUnreadable(file_name_, fmt::format("cannot open {}", ChildPath(object)));
   return Handle(id, CloseObject);
 }
 
@@ -222,7 +222,7 @@ Group Group::OpenGroup(const std::string& name) const {
                                Exists(name) ? " (it is not a group)" : ""));
   }
   const hid_t id = H5Gopen2(handle_.id(), name.c_str(), H5P_DEFAULT);
-  if (id < 0) FailRead(file_name_, fmt::format("cannot open group {}", ChildPath(name)));
+  if (id < 0) ThrowUnreadable(file_name_, fmt::format("cannot open group {}", ChildPath(name)));
   return Group(Handle(id, CloseGroup), ChildPath(name), file_name_);
 }
 
@@ -230,7 +230,7 @@ Group Group::CreateGroup(const std::string& name) const {
   if (Exists(name)) throw OutputError(fmt::format("{}: {} exists already", file_name_, ChildPath(name)));
   const Handle lcpl = LinkCreationPlist();
   const hid_t id = H5Gcreate2(handle_.id(), name.c_str(), lcpl.id(), H5P_DEFAULT, H5P_DEFAULT);
-  if (id < 0) FailWrite(file_name_, fmt::format("cannot create group {}", ChildPath(name)));
+  if (id < 0) ThrowOutputError(file_name_, fmt::format("cannot create group {}", ChildPath(name)));
   return Group(Handle(id, CloseGroup), ChildPath(name), file_name_);
 }
 
@@ -239,7 +239,7 @@ Group Group::RequireGroup(const std::string& name) const { return Exists(name) ?
 void Group::Remove(const std::string& name) const {
   if (!Exists(name)) return;
   if (H5Ldelete(handle_.id(), name.c_str(), H5P_DEFAULT) < 0) {
-    FailWrite(file_name_, fmt::format("cannot remove {}", ChildPath(name)));
+    ThrowOutputError(file_name_, fmt::format("cannot remove {}", ChildPath(name)));
   }
 }
 
@@ -253,7 +253,7 @@ std::vector<std::string> Group::Children() const {
         return 0;
       },
       &names);
-  if (status < 0) FailRead(file_name_, fmt::format("cannot list {}", path_));
+  if (status < 0) ThrowUnreadable(file_name_, fmt::format("cannot list {}", path_));
   return names;
 }
 
@@ -272,11 +272,11 @@ void WriteDataset(const Group& group, const std::string& name, hid_t memory_type
   Handle dataset(H5Dcreate2(group.id(), name.c_str(), file_type, space.id(), lcpl.id(), H5P_DEFAULT, H5P_DEFAULT),
                  CloseDataset);
   const std::string where = group.path() == "/" ? "/" + name : group.path() + "/" + name;
-  if (!dataset.valid()) FailWrite(group.file_name(), fmt::format("cannot create dataset {}", where));
+  if (!dataset.valid()) ThrowOutputError(group.file_name(), fmt::format("cannot create dataset {}", where));
   bool empty = false;
   for (hsize_t d : dims) empty = empty || d == 0;
   if (!empty && H5Dwrite(dataset.id(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0) {
-    FailWrite(group.file_name(), fmt::format("cannot write dataset {}", where));
+    ThrowOutputError(group.file_name(), fmt::format("cannot write dataset {}", where));
   }
   if (!units.empty()) group.SetString("units", units, name);
 }
@@ -338,17 +338,17 @@ OpenedDataset OpenDataset(const Group& group, const std::string& name) {
   }
   OpenedDataset out;
   out.dataset = Handle(H5Dopen2(group.id(), name.c_str(), H5P_DEFAULT), CloseDataset);
-  if (!out.dataset.valid()) FailRead(group.file_name(), fmt::format("cannot open dataset {}", where));
+  if (!out.dataset.valid()) ThrowUnreadable(group.file_name(), fmt::format("cannot open dataset {}", where));
   out.space = Handle(H5Dget_space(out.dataset.id()), CloseSpace);
   const int rank = H5Sget_simple_extent_ndims(out.space.id());
-  if (rank < 0) FailRead(group.file_name(), fmt::format("cannot read the shape of {}", where));
+  if (rank < 0) ThrowUnreadable(group.file_name(), fmt::format("cannot read the shape of {}", where));
   out.dims.resize(static_cast<std::size_t>(rank));
   H5Sget_simple_extent_dims(out.space.id(), out.dims.data(), nullptr);
   // The element count, with the bytes it needs (8 per value at most as rockfit reads it) bounded by the file.
   hsize_t file_bytes = 0;
   const Handle file(H5Iget_file_id(out.dataset.id()), CloseFile);
   if (!file.valid() || H5Fget_filesize(file.id(), &file_bytes) < 0) {
-    FailRead(group.file_name(), fmt::format("cannot read the size of the file holding {}", where));
+    ThrowUnreadable(group.file_name(), fmt::format("cannot read the size of the file holding {}", where));
   }
   out.max_bytes = kMaxExpansion * static_cast<double>(file_bytes);
   const double max_count = out.max_bytes / 8.0;
@@ -382,7 +382,7 @@ std::vector<double> Group::ReadDoubles(const std::string& name, std::vector<std:
   std::vector<double> values(d.count);
   if (!values.empty() &&
       H5Dread(d.dataset.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
-    FailRead(file_name_, fmt::format("cannot read dataset {}", ChildPath(name)));
+    ThrowUnreadable(file_name_, fmt::format("cannot read dataset {}", ChildPath(name)));
   }
   if (shape) shape->assign(d.dims.begin(), d.dims.end());
   return values;
@@ -410,7 +410,7 @@ std::vector<std::int64_t> Group::ReadInts(const std::string& name) const {
   std::vector<std::int64_t> values(d.count);
   if (!values.empty() &&
       H5Dread(d.dataset.id(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
-    FailRead(file_name_, fmt::format("cannot read dataset {}", ChildPath(name)));
+    ThrowUnreadable(file_name_, fmt::format("cannot read dataset {}", ChildPath(name)));
   }
   return values;
 }
@@ -429,7 +429,7 @@ std::vector<std::string> Group::ReadStrings(const std::string& name) const {
     const Handle type = StringType();
     std::vector<char*> pointers(n, nullptr);
     if (H5Dread(d.dataset.id(), type.id(), H5S_ALL, H5S_ALL, H5P_DEFAULT, pointers.data()) < 0) {
-      FailRead(file_name_, fmt::format("cannot read dataset {}", ChildPath(name)));
+      ThrowUnreadable(file_name_, fmt::format("cannot read dataset {}", ChildPath(name)));
     }
     for (char* p : pointers) values.emplace_back(p ? p : "");
     H5Dvlen_reclaim(type.id(), d.space.id(), H5P_DEFAULT, pointers.data());
@@ -442,7 +442,7 @@ std::vector<std::string> Group::ReadStrings(const std::string& name) const {
     }
     std::vector<char> buffer(n * width);
     if (H5Dread(d.dataset.id(), file_type.id(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()) < 0) {
-      FailRead(file_name_, fmt::format("cannot read dataset {}", ChildPath(name)));
+      ThrowUnreadable(file_name_, fmt::format("cannot read dataset {}", ChildPath(name)));
     }
     for (std::size_t i = 0; i < n; ++i) {
       const char* begin = buffer.data() + i * width;
@@ -463,7 +463,7 @@ void WriteAttribute(const Group& group, const Handle& object, const std::string&
   Handle attr(H5Acreate2(object.id(), attribute.c_str(), file_type, space.id(), H5P_DEFAULT, H5P_DEFAULT),
               CloseAttribute);
   if (!attr.valid() || H5Awrite(attr.id(), memory_type, data) < 0) {
-    FailWrite(group.file_name(), fmt::format("cannot write attribute '{}' of {}", attribute, where));
+    ThrowOutputError(group.file_name(), fmt::format("cannot write attribute '{}' of {}", attribute, where));
   }
 }
 
@@ -515,7 +515,7 @@ std::optional<std::string> Group::GetString(const std::string& attribute, const 
     const Handle type = StringType();
     char* pointer = nullptr;
     if (H5Aread(attr.id(), type.id(), &pointer) < 0) {
-      FailRead(file_name_, fmt::format("cannot read attribute '{}' of {}", attribute, ChildPath(object)));
+      ThrowUnreadable(file_name_, fmt::format("cannot read attribute '{}' of {}", attribute, ChildPath(object)));
     }
     std::string value = pointer ? pointer : "";
     H5free_memory(pointer);
@@ -524,7 +524,7 @@ std::optional<std::string> Group::GetString(const std::string& attribute, const 
   const std::size_t width = H5Tget_size(file_type.id());
   std::vector<char> buffer(width + 1, '\0');
   if (H5Aread(attr.id(), file_type.id(), buffer.data()) < 0) {
-    FailRead(file_name_, fmt::format("cannot read attribute '{}' of {}", attribute, ChildPath(object)));
+    ThrowUnreadable(file_name_, fmt::format("cannot read attribute '{}' of {}", attribute, ChildPath(object)));
   }
   return std::string(buffer.data(), strnlen(buffer.data(), width));
 }
@@ -536,7 +536,7 @@ std::optional<double> Group::GetDouble(const std::string& attribute, const std::
   if (!attr.valid()) return std::nullopt;
   double value = 0.0;
   if (H5Aread(attr.id(), H5T_NATIVE_DOUBLE, &value) < 0) {
-    FailRead(file_name_, fmt::format("attribute '{}' of {} is not a number", attribute, ChildPath(object)));
+    ThrowUnreadable(file_name_, fmt::format("attribute '{}' of {} is not a number", attribute, ChildPath(object)));
   }
   return value;
 }
@@ -548,7 +548,7 @@ std::optional<std::int64_t> Group::GetInt(const std::string& attribute, const st
   if (!attr.valid()) return std::nullopt;
   std::int64_t value = 0;
   if (H5Aread(attr.id(), H5T_NATIVE_INT64, &value) < 0) {
-    FailRead(file_name_, fmt::format("attribute '{}' of {} is not an integer", attribute, ChildPath(object)));
+    ThrowUnreadable(file_name_, fmt::format("attribute '{}' of {} is not an integer", attribute, ChildPath(object)));
   }
   return value;
 }
@@ -557,7 +557,7 @@ std::optional<std::int64_t> Group::GetInt(const std::string& attribute, const st
 
 void CopyObject(const Group& from, const std::string& name, const Group& to) {
   if (H5Ocopy(from.id(), name.c_str(), to.id(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT) < 0) {
-    FailWrite(to.file_name(), fmt::format("cannot copy {} from {}", name, from.file_name()));
+    ThrowOutputError(to.file_name(), fmt::format("cannot copy {} from {}", name, from.file_name()));
   }
 }
 
@@ -587,7 +587,7 @@ void CopyAttributes(const Group& from, const Group& to) {
         return written < 0 ? -1 : 0;
       },
       &context);
-  if (status < 0) FailWrite(to.file_name(), fmt::format("cannot copy the attributes of {}", from.path()));
+  if (status < 0) ThrowOutputError(to.file_name(), fmt::format("cannot copy the attributes of {}", from.path()));
 }
 
 }  // namespace rockfit::io::hdf5

@@ -58,7 +58,7 @@ std::size_t EditDistance(const std::string& a, const std::string& b) {
 class Reporter {
  public:
   explicit Reporter(std::string name) : name_(std::move(name)) {}
-  [[noreturn]] void Fail(SourcePosition where, const std::string& message) const {
+  [[noreturn]] void ThrowBadInput(SourcePosition where, const std::string& message) const {
     if (where.line == 0) throw BadInput(fmt::format("{}: {}", name_, message));
     throw BadInput(fmt::format("{}:{}:{}: {}", name_, where.line, where.column, message));
   }
@@ -68,7 +68,7 @@ class Reporter {
   std::string name_;
 };
 
-void CheckKeys(const Reporter& report, const toml::table& table, const std::string& what,
+void RequireKnownKeys(const Reporter& report, const toml::table& table, const std::string& what,
                const std::vector<std::string>& allowed) {
   for (const auto& [key, node] : table) {
     const std::string name(key.str());
@@ -80,7 +80,7 @@ void CheckKeys(const Reporter& report, const toml::table& table, const std::stri
         break;
       }
     }
-    report.Fail(PositionOf(key.source()),
+    report.ThrowBadInput(PositionOf(key.source()),
                 fmt::format("unknown key '{}' in {}{}; allowed keys: {}", name, what, hint, fmt::join(allowed, ", ")));
   }
 }
@@ -91,7 +91,7 @@ const toml::node* Find(const toml::table& table, const char* key) { return table
 const std::string& WithoutNul(const Reporter& report, const std::string& value, const char* key,
                               const std::string& what, SourcePosition where) {
   if (value.find('\0') != std::string::npos) {
-    report.Fail(where,
+    report.ThrowBadInput(where,
                 fmt::format("'{}' in {} holds a NUL byte (\\u0000): {}; remove it", key, what, QuoteCell(value)));
   }
   return value;
@@ -100,10 +100,10 @@ const std::string& WithoutNul(const Reporter& report, const std::string& value, 
 std::string ReadRequiredString(const Reporter& report, const toml::table& table, const char* key,
                                const std::string& what, SourcePosition table_where) {
   const toml::node* node = Find(table, key);
-  if (!node) report.Fail(table_where, fmt::format("{} has no '{}' (a string); add {} = \"…\"", what, key, key));
+  if (!node) report.ThrowBadInput(table_where, fmt::format("{} has no '{}' (a string); add {} = \"…\"", what, key, key));
   const auto* value = node->as_string();
   if (!value) {
-    report.Fail(PositionOf(node->source()), fmt::format("'{}' in {} must be a string in quotes", key, what));
+    report.ThrowBadInput(PositionOf(node->source()), fmt::format("'{}' in {} must be a string in quotes", key, what));
   }
   return WithoutNul(report, value->get(), key, what, PositionOf(node->source()));
 }
@@ -114,7 +114,7 @@ std::string ReadOptionalString(const Reporter& report, const toml::table& table,
   if (!node) return fallback;
   const auto* value = node->as_string();
   if (!value) {
-    report.Fail(PositionOf(node->source()), fmt::format("'{}' in {} must be a string in quotes", key, what));
+    report.ThrowBadInput(PositionOf(node->source()), fmt::format("'{}' in {} must be a string in quotes", key, what));
   }
   return WithoutNul(report, value->get(), key, what, PositionOf(node->source()));
 }
@@ -129,10 +129,10 @@ std::optional<double> ReadOptionalPositive(const Reporter& report, const toml::t
   } else if (const auto* i = node->as_integer()) {
     value = static_cast<double>(i->get());
   } else {
-    report.Fail(PositionOf(node->source()), fmt::format("'{}' in {} must be a number [{}]", key, what, unit));
+    report.ThrowBadInput(PositionOf(node->source()), fmt::format("'{}' in {} must be a number [{}]", key, what, unit));
   }
   if (!std::isfinite(value) || value <= 0.0) {
-    report.Fail(PositionOf(node->source()),
+    report.ThrowBadInput(PositionOf(node->source()),
                 fmt::format("'{}' in {} must be a positive number [{}], got {}", key, what, unit, value));
   }
   return value;
@@ -141,16 +141,16 @@ std::optional<double> ReadOptionalPositive(const Reporter& report, const toml::t
 double ReadRequiredPositive(const Reporter& report, const toml::table& table, const char* key,
                             const std::string& what, const char* unit, SourcePosition table_where) {
   const auto value = ReadOptionalPositive(report, table, key, what, unit);
-  if (!value) report.Fail(table_where, fmt::format("{} has no '{}' (a positive number [{}])", what, key, unit));
+  if (!value) report.ThrowBadInput(table_where, fmt::format("{} has no '{}' (a positive number [{}])", what, key, unit));
   return *value;
 }
 
-void CheckId(const Reporter& report, const std::string& id, const std::string& what, SourcePosition where) {
+void RequireValidId(const Reporter& report, const std::string& id, const std::string& what, SourcePosition where) {
   const bool ok = !id.empty() && id != "." && id != ".." && std::all_of(id.begin(), id.end(), [](char c) {
     return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
   });
   if (!ok) {
-    report.Fail(where, fmt::format("{} id {} may only contain letters, digits, '-', '_' and '.' (it names groups "
+    report.ThrowBadInput(where, fmt::format("{} id {} may only contain letters, digits, '-', '_' and '.' (it names groups "
                                    "in HDF5 files)", what, QuoteCell(id)));
   }
 }
@@ -161,11 +161,11 @@ const toml::array* TableArray(const Reporter& report, const toml::table& root, c
   if (!node) return nullptr;
   const auto* array = node->as_array();
   if (!array || !array->is_array_of_tables()) {
-    report.Fail(PositionOf(node->source()),
+    report.ThrowBadInput(PositionOf(node->source()),
                 fmt::format("'{}' must be an array of tables: write each entry as [[{}]]", key, key));
   }
   if (array->size() > kMaxManifestEntries) {
-    report.Fail(PositionOf((*array)[kMaxManifestEntries].source()),
+    report.ThrowBadInput(PositionOf((*array)[kMaxManifestEntries].source()),
                 fmt::format("{} [[{}]] entries, more than the {} a manifest may have (docs/file-formats.md, "
                             "\"Limits\"); split the campaign into several manifests",
                             array->size(), key, kMaxManifestEntries));
@@ -179,12 +179,12 @@ void ReadRecordingKeys(const Reporter& report, const toml::table& table, const s
                        std::optional<double>* rate_hz, std::string* mounting, std::string* columns) {
   *format = ReadOptionalString(report, table, "format", what);
   if (!format->empty() && !ParseFormatName(*format)) {
-    report.Fail(PositionOf(table.get("format")->source()),
+    report.ThrowBadInput(PositionOf(table.get("format")->source()),
                 fmt::format("{}: unknown format '{}'; use one of {}", what, *format, fmt::join(ManifestFormats(), ", ")));
   }
   *rate_hz = ReadOptionalPositive(report, table, "rate", what, "Hz");
   if (*rate_hz && **rate_hz > kMaxRate_hz) {
-    report.Fail(PositionOf(table.get("rate")->source()),
+    report.ThrowBadInput(PositionOf(table.get("rate")->source()),
                 fmt::format("{}: rate {} Hz is above {} Hz, faster than any IMU rockfit reads", what, **rate_hz,
                             kMaxRate_hz));
   }
@@ -193,7 +193,7 @@ void ReadRecordingKeys(const Reporter& report, const toml::table& table, const s
     try {
       (void)MountingOption::Parse(*mounting);
     } catch (const InvalidArgument& e) {
-      report.Fail(PositionOf(table.get("mounting")->source()), fmt::format("{}: {}", what, e.what()));
+      report.ThrowBadInput(PositionOf(table.get("mounting")->source()), fmt::format("{}: {}", what, e.what()));
     }
   }
   *columns = ReadOptionalString(report, table, "columns", what);
@@ -201,7 +201,7 @@ void ReadRecordingKeys(const Reporter& report, const toml::table& table, const s
     try {
       (void)ColumnMap::Parse(*columns);
     } catch (const InvalidArgument& e) {
-      report.Fail(PositionOf(table.get("columns")->source()), fmt::format("{}: {}", what, e.what()));
+      report.ThrowBadInput(PositionOf(table.get("columns")->source()), fmt::format("{}: {}", what, e.what()));
     }
   }
 }
@@ -210,19 +210,19 @@ BlockSpec ParseBlock(const Reporter& report, const toml::table& table, std::size
   BlockSpec block;
   block.where = PositionOf(table.source());
   const std::string anonymous = fmt::format("[[blocks]] number {}", ordinal);
-  CheckKeys(report, table, anonymous,
+  RequireKnownKeys(report, table, anonymous,
             {"id", "b1", "b2", "h", "density", "mass", "notes", "format", "columns", "rate", "mounting"});
   block.id = ReadRequiredString(report, table, "id", anonymous, block.where);
   const std::string what = fmt::format("[[blocks]] '{}'", block.id);
   const toml::node* id_node = table.get("id");
-  CheckId(report, block.id, "block", PositionOf(id_node->source()));
+  RequireValidId(report, block.id, "block", PositionOf(id_node->source()));
   block.b1_m = ReadRequiredPositive(report, table, "b1", what, "m", block.where);
   block.b2_m = ReadRequiredPositive(report, table, "b2", what, "m", block.where);
   block.h_m = ReadRequiredPositive(report, table, "h", what, "m", block.where);
   block.density_kg_m3 = ReadOptionalPositive(report, table, "density", what, "kg/m³");
   block.mass_kg = ReadOptionalPositive(report, table, "mass", what, "kg");
   if (block.density_kg_m3.has_value() == block.mass_kg.has_value()) {
-    report.Fail(block.where, fmt::format("{} needs exactly one of 'density' [kg/m³] or 'mass' [kg]{}", what,
+    report.ThrowBadInput(block.where, fmt::format("{} needs exactly one of 'density' [kg/m³] or 'mass' [kg]{}", what,
                                          block.mass_kg ? ", not both" : ""));
   }
   block.notes = ReadOptionalString(report, table, "notes", what);
@@ -235,16 +235,16 @@ TrialSpec ParseTrial(const Reporter& report, const toml::table& table, std::size
   TrialSpec trial;
   trial.where = PositionOf(table.source());
   const std::string anonymous = fmt::format("[[trials]] number {}", ordinal);
-  CheckKeys(report, table, anonymous,
+  RequireKnownKeys(report, table, anonymous,
             {"id", "block", "position", "files", "format", "rate", "mounting", "columns", "notes"});
   trial.id = ReadRequiredString(report, table, "id", anonymous, trial.where);
-  CheckId(report, trial.id, "trial", PositionOf(table.get("id")->source()));
+  RequireValidId(report, trial.id, "trial", PositionOf(table.get("id")->source()));
   const std::string what = fmt::format("[[trials]] '{}'", trial.id);
   trial.block_id = ReadRequiredString(report, table, "block", what, trial.where);
   trial.position = ReadRequiredString(report, table, "position", what, trial.where);
-  if (trial.position.empty()) report.Fail(PositionOf(table.get("position")->source()), what + ": 'position' is empty");
+  if (trial.position.empty()) report.ThrowBadInput(PositionOf(table.get("position")->source()), what + ": 'position' is empty");
   trial.files_as_written = ReadRequiredString(report, table, "files", what, trial.where);
-  if (trial.files_as_written.empty()) report.Fail(PositionOf(table.get("files")->source()), what + ": 'files' is empty");
+  if (trial.files_as_written.empty()) report.ThrowBadInput(PositionOf(table.get("files")->source()), what + ": 'files' is empty");
   const std::filesystem::path files(trial.files_as_written);
   trial.files = files.is_absolute() ? files : (base_dir / files).lexically_normal();
   std::string format;
@@ -259,7 +259,7 @@ TrialSpec ParseTrial(const Reporter& report, const toml::table& table, std::size
 Manifest ParseManifest(std::string_view text, const std::filesystem::path& path) {
   const Reporter report(path.string());
   if (const DottedKeyDepth deep = FindDeepDottedKey(text, kMaxManifestKeyParts); deep.line > 0) {
-    report.Fail({deep.line, deep.column},
+    report.ThrowBadInput({deep.line, deep.column},
                 fmt::format("a dotted key or table name of more than {} parts; rockfit reads keys of up to {} parts "
                             "(a manifest needs at most two, such as [[blocks]] and id): check that this is a "
                             "manifest, or shorten the key",
@@ -269,9 +269,9 @@ Manifest ParseManifest(std::string_view text, const std::filesystem::path& path)
   try {
     root = toml::parse(text, path.string());
   } catch (const toml::parse_error& e) {
-    report.Fail(PositionOf(e.source()), fmt::format("TOML syntax error: {}", e.description()));
+    report.ThrowBadInput(PositionOf(e.source()), fmt::format("TOML syntax error: {}", e.description()));
   }
-  CheckKeys(report, root, "the manifest (top level)", {"blocks", "trials"});
+  RequireKnownKeys(report, root, "the manifest (top level)", {"blocks", "trials"});
   Manifest manifest;
   manifest.path = path;
   const std::filesystem::path base_dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
@@ -283,13 +283,13 @@ Manifest ParseManifest(std::string_view text, const std::filesystem::path& path)
       BlockSpec block = ParseBlock(report, *node.as_table(), ++ordinal);
       const SourcePosition id_where = PositionOf(node.as_table()->get("id")->source());
       if (const auto it = block_ids.find(block.id); it != block_ids.end()) {
-        report.Fail(id_where, fmt::format("duplicate block id '{}' (first defined at line {}); block ids must be "
+        report.ThrowBadInput(id_where, fmt::format("duplicate block id '{}' (first defined at line {}); block ids must be "
                                           "unique", block.id, it->second.line));
       }
       try {
         (void)block.ToBlock();
       } catch (const InvalidArgument& e) {
-        report.Fail(block.where, fmt::format("[[blocks]] '{}': {}", block.id, e.what()));
+        report.ThrowBadInput(block.where, fmt::format("[[blocks]] '{}': {}", block.id, e.what()));
       }
       block_ids[block.id] = id_where;
       manifest.blocks.push_back(std::move(block));
@@ -303,13 +303,13 @@ Manifest ParseManifest(std::string_view text, const std::filesystem::path& path)
       TrialSpec trial = ParseTrial(report, table, ++ordinal, base_dir);
       const SourcePosition id_where = PositionOf(table.get("id")->source());
       if (const auto it = trial_ids.find(trial.id); it != trial_ids.end()) {
-        report.Fail(id_where, fmt::format("duplicate trial id '{}' (first defined at line {}); trial ids must be "
+        report.ThrowBadInput(id_where, fmt::format("duplicate trial id '{}' (first defined at line {}); trial ids must be "
                                           "unique", trial.id, it->second.line));
       }
       if (block_ids.count(trial.block_id) == 0) {
         std::vector<std::string> known;
         for (const auto& b : manifest.blocks) known.push_back(b.id);
-        report.Fail(PositionOf(table.get("block")->source()),
+        report.ThrowBadInput(PositionOf(table.get("block")->source()),
                     fmt::format("[[trials]] '{}' names block '{}', which no [[blocks]] entry defines; known blocks: {}",
                                 trial.id, trial.block_id, known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
       }
@@ -325,7 +325,7 @@ Manifest ParseManifest(std::string_view text, const std::filesystem::path& path)
     }
   }
   if (manifest.blocks.empty() && manifest.trials.empty()) {
-    report.Fail({}, "the manifest defines no [[blocks]] and no [[trials]]; see io/README.md for the format");
+    report.ThrowBadInput({}, "the manifest defines no [[blocks]] and no [[trials]]; see io/README.md for the format");
   }
   return manifest;
 }

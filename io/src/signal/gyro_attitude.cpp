@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "rockfit/core/enum_names.hpp"
 #include "rockfit/core/errors.hpp"
 #include "recording/attitude.hpp"
 #include "rockfit/io/impact_detection.hpp"
@@ -19,6 +20,11 @@ const char* ToString(AttitudeStart start) {
     case AttitudeStart::kLevel: return "level";
   }
   return "unknown";
+}
+
+bool FromString(std::string_view text, AttitudeStart* value) {
+  static constexpr AttitudeStart kAll[] = {AttitudeStart::kAccelerometer, AttitudeStart::kLevel};
+  return core::FromStringAmong(text, kAll, value);
 }
 
 Eigen::Quaterniond BodyRateStep(const Eigen::Vector3d& w_B, double dt_s) {

@@ -163,7 +163,7 @@ namespace {
 constexpr const char* kExpectedLayout = "a header line naming the columns, then one line of numbers per sample";
 
 // Refuses what is no text at all (empty, UTF-16, NUL bytes) and drops a UTF-8 byte-order mark with a warning.
-void CheckReadableText(std::string* text, const std::string& name, std::vector<std::string>& warnings) {
+void RequireReadableText(std::string* text, const std::string& name, std::vector<std::string>& warnings) {
   if (text->empty()) {
     ThrowBadInput({{name}, "", "an empty file (0 bytes)", kExpectedLayout,
                    "The recording was not written or not copied completely; copy it again from the device or "
@@ -243,7 +243,7 @@ CsvTable CsvTable::FromText(std::string text, std::string display_name, std::vec
   CsvTable table;
   table.name_ = std::move(display_name);
   const std::string& name = table.name_;
-  CheckReadableText(&text, name, warnings);
+  RequireReadableText(&text, name, warnings);
   table.text_ = std::move(text);
   std::string& body = table.text_;
 
@@ -353,7 +353,7 @@ std::string CsvTable::DescribeColumn(std::size_t column) const {
   return "column " + std::to_string(column + 1) + " '" + header_[column] + "'";
 }
 
-void CsvTable::FailAt(std::size_t row, std::size_t column, std::string found, std::string expected,
+void CsvTable::ThrowBadCell(std::size_t row, std::size_t column, std::string found, std::string expected,
                       std::string todo) const {
   if (IsUnterminatedLastRow(row)) {
     todo += " This is the last line and the file does not end with a line end, so it was probably cut off while "
@@ -371,24 +371,24 @@ double CsvTable::ParseCell(std::size_t row, std::size_t column, bool allow_nan) 
   switch (number.status) {
     case NumberStatus::kOk:
     case NumberStatus::kNaN:
-      FailAt(row, column, QuoteCell(cell), "a finite number",
+      ThrowBadCell(row, column, QuoteCell(cell), "a finite number",
              "The device wrote no valid value for this sample and rockfit does not invent one: export the "
              "recording again, or cut the file before or after line " + line + ".");
     case NumberStatus::kInfinite:
     case NumberStatus::kOutOfRange:
-      FailAt(row, column, QuoteCell(cell), "a finite number",
+      ThrowBadCell(row, column, QuoteCell(cell), "a finite number",
              "An IMU cannot measure an infinite value: export the recording again, or cut the file before or "
              "after line " + line + ".");
     case NumberStatus::kEmpty:
-      FailAt(row, column, "an empty cell", kNumberExample, "Fill in or delete line " + line + ".");
+      ThrowBadCell(row, column, "an empty cell", kNumberExample, "Fill in or delete line " + line + ".");
     case NumberStatus::kDecimalComma:
-      FailAt(row, column, QuoteCell(cell) + " (a decimal comma)", "a decimal point",
+      ThrowBadCell(row, column, QuoteCell(cell) + " (a decimal comma)", "a decimal point",
              "Save the file with '.' as decimal separator, or with ';' between fields (then decimal commas are "
              "read).");
     case NumberStatus::kNotANumber:
       break;
   }
-  FailAt(row, column, QuoteCell(cell), kNumberExample, "Correct or delete line " + line + ".");
+  ThrowBadCell(row, column, QuoteCell(cell), kNumberExample, "Correct or delete line " + line + ".");
 }
 
 double CsvTable::Real(std::size_t row, std::size_t column) const { return ParseCell(row, column, false); }
@@ -396,7 +396,7 @@ double CsvTable::Real(std::size_t row, std::size_t column) const { return ParseC
 double CsvTable::RealInSi(std::size_t row, std::size_t column, double to_si) const {
   const double value = Real(row, column) * to_si;
   if (!std::isfinite(value)) {
-    FailAt(row, column, "a value too large to convert to SI units", "a measured value within the sensor's range",
+    ThrowBadCell(row, column, "a value too large to convert to SI units", "a measured value within the sensor's range",
            "An IMU cannot measure this value: export the recording again, or cut the file before line " +
                std::to_string(Line(row)) + ".");
   }
@@ -408,7 +408,7 @@ double CsvTable::RealOrNaN(std::size_t row, std::size_t column) const { return P
 std::int64_t CsvTable::Integer(std::size_t row, std::size_t column) const {
   const std::string_view cell = Cell(row, column);
   if (const auto value = ParseInteger(cell)) return *value;
-  FailAt(row, column, QuoteCell(cell), "a whole number", "Correct or delete line " + std::to_string(Line(row)) + ".");
+  ThrowBadCell(row, column, QuoteCell(cell), "a whole number", "Correct or delete line " + std::to_string(Line(row)) + ".");
 }
 
 }  // namespace rockfit::io

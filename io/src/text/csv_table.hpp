@@ -78,7 +78,7 @@ class CsvTable {
   std::int64_t Integer(std::size_t row, std::size_t column) const;
 
   // Throws BadInput about one cell: "file:line:col: column c 'header': found F, expected E. TODO".
-  [[noreturn]] void FailAt(std::size_t row, std::size_t column, std::string found, std::string expected,
+  [[noreturn]] void ThrowBadCell(std::size_t row, std::size_t column, std::string found, std::string expected,
                            std::string todo) const;
 
  private:

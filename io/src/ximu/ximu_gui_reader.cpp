@@ -49,7 +49,7 @@ Eigen::Quaterniond QuaternionRow(const CsvTable& table, std::size_t row, const s
                                   table.Real(row, *c[4]));
   const double norm = q_file.norm();
   if (!(std::abs(norm - 1.0) <= kQuaternionNormTolerance)) {
-    table.FailAt(row, *c[1], fmt::format("a quaternion of norm {:.6g}", norm),
+    table.ThrowBadCell(row, *c[1], fmt::format("a quaternion of norm {:.6g}", norm),
                  fmt::format("a unit quaternion (norm 1 within {:g})", kQuaternionNormTolerance),
                  "The row is damaged; correct or delete line " + std::to_string(table.Line(row)) + ".");
   }
@@ -121,13 +121,13 @@ AttitudeRows ReadEulerFile(const std::filesystem::path& path, const std::optiona
     // The GUI writes NaN when rounding puts |2(q1q3 + q0q2)| above 1, i.e. at pitch ±90°.
     const std::string line = std::to_string(table.Line(row));
     if (!quaternion_path) {
-      table.FailAt(row, *c[2], "'NaN'", "a finite pitch",
+      table.ThrowBadCell(row, *c[2], "'NaN'", "a finite pitch",
                    "The x-IMU GUI writes NaN when the pitch is ±90°. Put the recording's _Quaternion.csv beside this "
                    "file so that rockfit can recompute the angles of this sample, read the attitude from it with "
                    "--orientation quaternion, or read the gyro data alone with --orientation none.");
     }
     if (rows.packets.empty()) {
-      table.FailAt(row, *c[2], "'NaN'", "a finite pitch",
+      table.ThrowBadCell(row, *c[2], "'NaN'", "a finite pitch",
                    "The file has no packet numbers, so the quaternion of this sample cannot be found; read the "
                    "attitude with --orientation quaternion instead.");
     }
@@ -136,7 +136,7 @@ AttitudeRows ReadEulerFile(const std::filesystem::path& path, const std::optiona
       const CsvTable quaternions = CsvTable::ReadFile(*quaternion_path, ignored);
       const auto qc = ResolveColumns(quaternions, QuaternionSpecs());
       if (!qc[0]) {
-        table.FailAt(row, *c[2], "'NaN'", "a finite pitch",
+        table.ThrowBadCell(row, *c[2], "'NaN'", "a finite pitch",
                      FileName(*quaternion_path) + " has no packet numbers to find this sample in; read the attitude "
                      "with --orientation quaternion instead.");
       }
@@ -145,7 +145,7 @@ AttitudeRows ReadEulerFile(const std::filesystem::path& path, const std::optiona
     }
     const auto hit = std::lower_bound(lookup->packets.begin(), lookup->packets.end(), rows.packets[row]);
     if (hit == lookup->packets.end() || *hit != rows.packets[row]) {
-      table.FailAt(row, *c[2], "'NaN'", "a finite pitch",
+      table.ThrowBadCell(row, *c[2], "'NaN'", "a finite pitch",
                    fmt::format("{} has no row with packet number {:.0f} to recompute it from; read the attitude "
                                "with --orientation quaternion, or cut the recording before line {}.",
                                FileName(*quaternion_path), rows.packets[row], line));

@@ -38,13 +38,13 @@ XimuRegisterSettings ReadXimuRegisters(const CsvTable& registers) {
     const std::string name = address == kXimuInertialRateRegister ? "InertialAndMagneticDataRate (register 69)"
                                                                   : "QuaternionDataRate (register 70)";
     if (!rate) {
-      registers.FailAt(row, value_column, std::to_string(value) + " for " + name,
+      registers.ThrowBadCell(row, value_column, std::to_string(value) + " for " + name,
                        "0 (disabled) or 1 … 10 (2^(v-1) Hz: 1 … 512 Hz)",
                        "The registers file is damaged; delete it and give the rate with --rate.");
     }
     std::optional<XimuRegisterRate>& slot = address == kXimuInertialRateRegister ? rates.inertial : rates.orientation;
     if (slot && slot->value != value) {
-      registers.FailAt(row, value_column,
+      registers.ThrowBadCell(row, value_column,
                        fmt::format("{} = {} ({:g} Hz), but {} it was {} ({:g} Hz)", name, value, *rate,
                                    FormatPosition(slot->at), slot->value, slot->rate_hz),
                        "one rate per recording",

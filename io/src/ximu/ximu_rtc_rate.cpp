@@ -24,7 +24,7 @@ std::optional<RtcRateEstimate> EstimateRateFromDateTime(const CsvTable& date_tim
   const auto field = [&](std::size_t row, std::size_t column, std::int64_t lo, std::int64_t hi, const char* what) {
     const std::int64_t v = date_time.Integer(row, column);
     if (v < lo || v > hi) {
-      date_time.FailAt(row, column, std::to_string(v), fmt::format("{} from {} to {}", what, lo, hi),
+      date_time.ThrowBadCell(row, column, std::to_string(v), fmt::format("{} from {} to {}", what, lo, hi),
                        "The date-time file is damaged: remove it to use the register rate alone.");
     }
     return v;

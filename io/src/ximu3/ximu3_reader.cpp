@@ -108,7 +108,7 @@ bool ReadAhrsFile(const std::filesystem::path& path, AhrsKind kind, int priority
       const Eigen::Quaterniond q(table.Real(row, *c[1]), table.Real(row, *c[2]), table.Real(row, *c[3]),
                                  table.Real(row, *c[4]));
       if (!(std::abs(q.norm() - 1.0) <= kQuaternionNormTolerance)) {
-        table.FailAt(row, *c[1], fmt::format("a quaternion of norm {:.6g}", q.norm()),
+        table.ThrowBadCell(row, *c[1], fmt::format("a quaternion of norm {:.6g}", q.norm()),
                      fmt::format("a unit quaternion (norm 1 within {:g})", kQuaternionNormTolerance),
                      "The row is damaged; correct or delete line " + std::to_string(table.Line(row)) + ".");
       }

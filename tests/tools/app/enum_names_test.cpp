@@ -15,15 +15,19 @@
 #include "rockfit/fitting/fit_options.hpp"
 #include "rockfit/fitting/fit_summary.hpp"
 #include "rockfit/fitting/local_optimizer.hpp"
+#include "rockfit/fitting/model_failure.hpp"
 #include "rockfit/fitting/parameters.hpp"
 #include "rockfit/fitting/uncertainty.hpp"
 #include "rockfit/io/avrf.hpp"
 #include "rockfit/io/drift_correction.hpp"
+#include "rockfit/io/ground_motion_csv.hpp"
+#include "rockfit/io/gyro_attitude.hpp"
 #include "rockfit/io/hdf5_file.hpp"
 #include "rockfit/io/load_options.hpp"
 #include "rockfit/io/opmf.hpp"
 #include "rockfit/io/recording.hpp"
 #include "rockfit/io/trial_metrics.hpp"
+#include "rockfit/io/units.hpp"
 #include "rockfit/quake/fragility_study.hpp"
 #include "rockfit/quake/lognormal_fragility.hpp"
 #include "scratch_dir.hpp"
@@ -94,6 +98,10 @@ TEST(EnumNames, CoreEnumsRoundTripThroughTextJsonAndHdf5) {
                    ByFromString(FailureReason::kNone));
   ExpectRoundTrips("ImpactStatus", {ImpactStatus::kOk, ImpactStatus::kInfeasible, ImpactStatus::kAmbiguous,
                                     ImpactStatus::kSingular}, ByFromString(ImpactStatus::kOk));
+  ExpectRoundTrips("ModeKind", {ModeKind::kEdge, ModeKind::kVertex, ModeKind::kRest, ModeKind::kOverturned,
+                                ModeKind::kFailed}, ByFromString(ModeKind::kEdge));
+  ExpectRoundTrips("GroundStart", {GroundStart::kFlatAtRest, GroundStart::kAsOptions},
+                   ByFromString(GroundStart::kFlatAtRest));
 }
 
 TEST(EnumNames, IoEnumsRoundTripThroughTextJsonAndHdf5) {
@@ -126,6 +134,27 @@ TEST(EnumNames, IoEnumsRoundTripThroughTextJsonAndHdf5) {
                                      MetricsStatus::kLoadError}, ByFromString(MetricsStatus::kOk));
   ExpectRoundTrips("OpmfStatus", {OpmfStatus::kOk, OpmfStatus::kNoImpact, OpmfStatus::kNoInPlaneMotion},
                    ByFromString(OpmfStatus::kOk));
+  ExpectRoundTrips("AttitudeStart", {AttitudeStart::kAccelerometer, AttitudeStart::kLevel},
+                   ByFromString(AttitudeStart::kAccelerometer));
+  // Units: the canonical spelling (UnitName) is one of the spellings the column grammar reads.
+  ExpectRoundTripsNamed("AngularRateUnit", {AngularRateUnit::kDegreesPerSecond, AngularRateUnit::kRadiansPerSecond},
+                        [](const std::string& name) { return ParseAngularRateUnit(name).value(); },
+                        [](AngularRateUnit u) { return UnitName(u); });
+  ExpectRoundTripsNamed("AngleUnit", {AngleUnit::kDegrees, AngleUnit::kRadians},
+                        [](const std::string& name) { return ParseAngleUnit(name).value(); },
+                        [](AngleUnit u) { return UnitName(u); });
+  ExpectRoundTripsNamed("AccelerationUnit", {AccelerationUnit::kG, AccelerationUnit::kMetresPerSecond2},
+                        [](const std::string& name) { return ParseAccelerationUnit(name).value(); },
+                        [](AccelerationUnit u) { return UnitName(u); });
+  ExpectRoundTripsNamed("TimeUnit",
+                        {TimeUnit::kSeconds, TimeUnit::kMilliseconds, TimeUnit::kMicroseconds, TimeUnit::kNanoseconds},
+                        [](const std::string& name) { return ParseTimeUnit(name).value(); },
+                        [](TimeUnit u) { return UnitName(u); });
+  ExpectRoundTripsNamed("GroundAccelerationUnit",
+                        {GroundAccelerationUnit::kG, GroundAccelerationUnit::kMetrePerSecond2,
+                         GroundAccelerationUnit::kCentimetrePerSecond2},
+                        [](const std::string& name) { return ParseGroundAccelerationUnit(name); },
+                        [](GroundAccelerationUnit u) { return std::string(UnitName(u)); });
 }
 
 TEST(EnumNames, FittingAndQuakeEnumsRoundTripThroughTextJsonAndHdf5) {
@@ -153,6 +182,14 @@ TEST(EnumNames, FittingAndQuakeEnumsRoundTripThroughTextJsonAndHdf5) {
   ExpectRoundTrips("TerminationType", {TerminationType::kConvergence, TerminationType::kNoConvergence,
                                        TerminationType::kFailure, TerminationType::kNotASearch},
                    ByFromString(TerminationType::kConvergence));
+  ExpectRoundTrips("ModelFailure",
+                   {ModelFailure::kNone, ModelFailure::kNonFiniteParameter, ModelFailure::kT0OutsideWindow,
+                    ModelFailure::kInvalidParameters, ModelFailure::kSimulatorException, ModelFailure::kOverturned,
+                    ModelFailure::kEdgeImpact, ModelFailure::kFacetImpact, ModelFailure::kIntegrator,
+                    ModelFailure::kImpactCascade, ModelFailure::kTooManyImpacts, ModelFailure::kFailed,
+                    ModelFailure::kIncompleteRun, ModelFailure::kWrongSampleCount, ModelFailure::kNonFiniteOutput,
+                    ModelFailure::kInterrupted},
+                   ByFromString(ModelFailure::kNone));
   ExpectRoundTrips("Determination", {Determination::kYes, Determination::kSignOnly, Determination::kNo},
                    ByFromString(Determination::kYes));
   ExpectRoundTrips("LognormalFitStatus",

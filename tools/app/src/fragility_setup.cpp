@@ -91,7 +91,7 @@ std::vector<quake::FragilityBlock> MakeBlocks(const FragilityArgs& cmd) {
 }
 
 // Refuses a study whose records would hold more than kMaxStudyRecordSamples samples, before the next `adding`.
-void CheckRecordSamples(std::size_t held, double adding, const std::string& what) {
+void RequireRecordSamplesWithinLimit(std::size_t held, double adding, const std::string& what) {
   if (static_cast<double>(held) + adding > static_cast<double>(kMaxStudyRecordSamples)) {
     throw InvalidArgument(fmt::format("{} would bring the study's records to {:.4g} samples, more than the {} a study "
                                       "may hold (docs/file-formats.md, \"Limits\"); use fewer or shorter records",
@@ -115,13 +115,13 @@ std::vector<quake::FragilityRecord> LoadRecords(const FragilityArgs& cmd) {
     a.units = cmd.units;
     a.csv_dt_s = cmd.csv_dt_s;
     records.push_back({path, LoadGroundMotion(a).assembled.ground});
-    CheckResponseLength(records.back().ground, path, true, cmd.tail_s, cmd.rate_hz);
-    CheckRecordSamples(held, static_cast<double>(records.back().ground.size()), "--record " + path);
+    RequireResponseWithinLimit(records.back().ground, path, true, cmd.tail_s, cmd.rate_hz);
+    RequireRecordSamplesWithinLimit(held, static_cast<double>(records.back().ground.size()), "--record " + path);
     held += records.back().ground.size();
   }
   if (cmd.synthetic_records > 0) {
     const double each = cmd.synthetic_duration_s / cmd.synthetic_dt_s + 1.0;
-    CheckRecordSamples(held, static_cast<double>(cmd.synthetic_records) * each,
+    RequireRecordSamplesWithinLimit(held, static_cast<double>(cmd.synthetic_records) * each,
                        fmt::format("--synthetic-records {} of {} s at {} s", cmd.synthetic_records,
                                    cmd.synthetic_duration_s, cmd.synthetic_dt_s));
   }
@@ -131,7 +131,7 @@ std::vector<quake::FragilityRecord> LoadRecords(const FragilityArgs& cmd) {
     a.synthetic_duration_s = cmd.synthetic_duration_s;
     a.synthetic_dt_s = cmd.synthetic_dt_s;
     records.push_back({fmt::format("synthetic:{}", *a.synthetic_seed), LoadGroundMotion(a).assembled.ground});
-    CheckResponseLength(records.back().ground, records.back().name, false, cmd.tail_s, cmd.rate_hz);
+    RequireResponseWithinLimit(records.back().ground, records.back().name, false, cmd.tail_s, cmd.rate_hz);
   }
   if (records.empty()) {
     throw InvalidArgument("give ground motions: --record FILE (repeatable; PEER AT2 or CSV) and/or --synthetic-records N");

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "rockfit/app/json_values.hpp"
+#include "rockfit/core/checks.hpp"
 #include "rockfit/core/errors.hpp"
 
 namespace rockfit::app {
@@ -21,9 +22,8 @@ namespace {
 // Dimensionless; only decides whether a hint is given.
 constexpr double kWarningRelTol = 1e-9;
 
-void RequireFinite(double value, const std::string& name, const char* what) {
-  if (!std::isfinite(value)) throw InvalidArgument(fmt::format("{} must be a finite number ({})", name, what));
-}
+// The option's name and what it stands for, for the shared checks (rockfit/core/checks.hpp).
+std::string Described(const std::string& name, const char* what) { return fmt::format("{} ({})", name, what); }
 
 void RequireVertex(int k, const std::string& name) {
   if (k < 1 || k > 4) {
@@ -67,12 +67,12 @@ ImpactEvaluation EvaluateEdgeImpact(const core::Block& block, const EdgeImpactAr
                                       a.pivot, core::Block::WrapVertex(a.pivot - 1),
                                       core::Block::WrapVertex(a.pivot + 1), a.landing));
   }
-  RequireFinite(a.tilt_rad, n.tilt, "rad, in [0, π/2]");
+  RequireFinite(a.tilt_rad, Described(n.tilt, "rad, in [0, π/2]"));
   if (a.tilt_rad < 0.0 || a.tilt_rad > core::kMaxEdgeImpactTilt) {
     throw InvalidArgument(fmt::format("{} must be in [0, π/2] rad (0: flat base), got {}", n.tilt, a.tilt_rad));
   }
-  RequireFinite(a.lambda, n.lambda, "position of the resultant along the edge, (19)");
-  RequireFinite(a.tau, n.tau, "N·m·s");
+  RequireFinite(a.lambda, Described(n.lambda, "position of the resultant along the edge, (19)"));
+  RequireFinite(a.tau, Described(n.tau, "N·m·s"));
 
   const Eigen::Matrix3d R_WB = core::EdgeImpactAttitude(block, a.pivot, a.landing, a.tilt_rad);
   ImpactEvaluation result;
@@ -88,9 +88,9 @@ ImpactEvaluation EvaluateEdgeImpact(const core::Block& block, const EdgeImpactAr
 }
 
 ImpactEvaluation EvaluateFacetImpact(const core::Block& block, const FacetImpactArgs& a, const ImpactArgumentNames& n) {
-  RequireFinite(a.lambda_lat, n.lambda_lat, "(21)");
-  RequireFinite(a.lambda_lon, n.lambda_lon, "(21)");
-  if (a.tau) RequireFinite(*a.tau, n.tau, "N·m·s");
+  RequireFinite(a.lambda_lat, Described(n.lambda_lat, "(21)"));
+  RequireFinite(a.lambda_lon, Described(n.lambda_lon, "(21)"));
+  if (a.tau) RequireFinite(*a.tau, Described(n.tau, "N·m·s"));
   core::FacetImpactParameters params;
   params.lambda_lat = a.lambda_lat;
   params.lambda_lon = a.lambda_lon;

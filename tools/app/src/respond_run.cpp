@@ -130,16 +130,17 @@ RespondRun RunRespond(const core::Block& block, const RespondArgs& args) {
     throw InvalidArgument("--trial and --group need --fits FILE");
   }
   cmd.params.facet_tau_rule = ParseFacetTauRule(cmd.facet_tau);
-  if (cmd.start != "flat" && cmd.start != "tilted") throw InvalidArgument("the start is flat or tilted, got '" + cmd.start + "'");
+  if (!core::FromString(cmd.start, &cmd.options.start)) {
+    throw InvalidArgument("the start is flat or tilted, got '" + cmd.start + "'");
+  }
   if (cmd.until != "rest" && cmd.until != "t_max") throw InvalidArgument("until is rest or t_max, got '" + cmd.until + "'");
   if (cmd.round_off_runs < 0) throw InvalidArgument("the round-off runs must be ≥ 0");
-  cmd.options.start = cmd.start == "flat" ? core::GroundStart::kFlatAtRest : core::GroundStart::kAsOptions;
   cmd.options.end_at_rest = cmd.until == "rest";
   cmd.options.simulation.overturn = ParseOverturnRule(cmd.overturn);
   RespondRun run;
   run.ground = LoadGroundMotion(cmd.ground);
   const LoadedGroundMotion& ground = run.ground;
-  CheckResponseLength(ground.assembled.ground, cmd.ground.record, !cmd.ground.synthetic_seed, cmd.options.tail_s,
+  RequireResponseWithinLimit(ground.assembled.ground, cmd.ground.record, !cmd.ground.synthetic_seed, cmd.options.tail_s,
                       cmd.options.simulation.rate_hz);
   const Activity activity("simulating the response and keeping its samples");
   run.response = core::Respond(block, cmd.params, ground.assembled.ground, cmd.options);

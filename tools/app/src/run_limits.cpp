@@ -29,7 +29,7 @@ std::string LimitsHelp() {
       kMaxStudyRecordSamples);
 }
 
-void CheckTrajectorySamples(double seconds, double rate_hz, const std::string& options) {
+void RequireTrajectorySamplesWithinLimit(double seconds, double rate_hz, const std::string& options) {
   const double samples = seconds * rate_hz;
   if (std::isfinite(samples) && samples <= kMaxTrajectorySamples) return;
   if (!(seconds > 0.0) || !(rate_hz > 0.0)) return;  // refused where they are used, with their own message
@@ -38,7 +38,7 @@ void CheckTrajectorySamples(double seconds, double rate_hz, const std::string& o
                                     options, samples, seconds, rate_hz, kMaxTrajectorySamples));
 }
 
-void CheckResponseLength(const core::GroundMotion& ground, const std::string& source, bool from_file, double tail_s,
+void RequireResponseWithinLimit(const core::GroundMotion& ground, const std::string& source, bool from_file, double tail_s,
                          double rate_hz) {
   if (!(tail_s >= 0.0) || !std::isfinite(tail_s)) {
     throw InvalidArgument(fmt::format("--tail must be a finite number of seconds ≥ 0, got {}", tail_s));

@@ -1,5 +1,8 @@
 // Argument checks shared by every rockfit library. Each throws InvalidArgument (exit code 1) with a message that
 // names the value and what it had to be: "block b1 must be a positive finite number of metres, got -0.05".
+// A `Require…` throws unless its condition holds, a `Throw…` always throws, a `Check…` returns a verdict and
+// never throws (docs/design.md §9, "The words of the checks"). Libraries wrap `what` to name their options
+// instead of defining these again.
 #pragma once
 
 #include <string_view>

@@ -25,6 +25,8 @@
 namespace rockfit::core {
 
 enum class ModeKind { kEdge, kVertex, kRest, kOverturned, kFailed };
+const char* ToString(ModeKind kind);                      // "edge", "vertex", "rest", "overturned", "failed"
+bool FromString(std::string_view text, ModeKind* value);  // the inverse of ToString
 
 struct Mode {
   ModeKind kind = ModeKind::kEdge;
@@ -204,6 +206,8 @@ Trajectory Simulate(const Block& block, const ModelParameters& params, const Sim
 // How a run under ground motion starts: flat at rest on the table (the usual case), or as the free run does
 // (the release at α on the release edge, or options.initial_state).
 enum class GroundStart { kFlatAtRest, kAsOptions };
+const char* ToString(GroundStart start);                     // "flat", "tilted" (as respond --start)
+bool FromString(std::string_view text, GroundStart* value);  // the inverse of ToString
 
 // The same hybrid simulation in the frame of a table that moves with `ground` (ground_motion.hpp): the inertial
 // force −m a_g acts at the COM, impacts act on velocities relative to the table, the flat block at rest starts

@@ -46,7 +46,9 @@ struct ObjectiveOptions {
 struct Evaluation {
   double epsilon_rad_s = 0.0;  // (28), or the penalty when infeasible
   bool feasible = false;
-  std::string failure;         // why not feasible (empty when feasible)
+  ModelFailure failure = ModelFailure::kNone;                  // why not feasible
+  core::ImpactStatus impact_status = core::ImpactStatus::kOk;  // the failing impact's status, if any
+  std::string failure_category() const { return FailureCategory(failure, impact_status); }  // "" when feasible
 };
 
 class Objective {

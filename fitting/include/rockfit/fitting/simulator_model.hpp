@@ -43,10 +43,5 @@ class SimulatorModel final : public TrajectoryModel {
   SimulatorModelOptions options_;
 };
 
-// The failure category of a failed simulator run (core::Trajectory::failure; for an impact failure the map's status
-// from the last impact record): "edge impact infeasible" (and the other statuses, and "facet impact …"),
-// "integrator", "impact cascade", "too many impacts", or "failed" (the energy blow-up, and an impact map that
-// reported ok but gave a non-finite ω⁺).
-std::string SimulationFailureCategory(core::FailureReason reason, core::ImpactStatus status = core::ImpactStatus::kOk);
 
 }  // namespace rockfit::fitting

@@ -11,6 +11,7 @@
 
 #include "rockfit/core/planar_sensitivity.hpp"
 #include "rockfit/core/simulator.hpp"
+#include "rockfit/fitting/model_failure.hpp"
 
 namespace rockfit::fitting {
 
@@ -27,16 +28,19 @@ struct ModelOutput {
   // does not exist). Filled only by EvaluateWithSensitivities, and only where the model can give them exactly;
   // empty otherwise.
   std::vector<core::SampleSensitivity> dw_B_dparams;
-  // Empty when the run succeeded. Otherwise a short category that failures are counted by ("overturned",
-  // "impact infeasible", "t_max", …) and a human-readable detail.
-  std::string failure;
+  // kNone when the run succeeded. Otherwise why not (with the failing impact's status for an impact failure)
+  // and a human-readable detail.
+  ModelFailure failure = ModelFailure::kNone;
+  core::ImpactStatus impact_status = core::ImpactStatus::kOk;
   std::string failure_detail;
-  bool ok() const { return failure.empty(); }
+  bool ok() const { return failure == ModelFailure::kNone; }
+  std::string failure_category() const { return FailureCategory(failure, impact_status); }
   void Clear() {
     w_B.clear();
     events.clear();
     dw_B_dparams.clear();
-    failure.clear();
+    failure = ModelFailure::kNone;
+    impact_status = core::ImpactStatus::kOk;
     failure_detail.clear();
   }
 };

@@ -25,7 +25,7 @@ inline constexpr std::int64_t kHdf5SchemaVersion = 1;
 // Sets the root attributes rockfit_schema_version and rockfit_version.
 void WriteFileAttributes(const hdf5::Group& root, const std::string& rockfit_version);
 // BadInput unless the root carries a schema version this rockfit can read.
-void CheckSchemaVersion(const hdf5::Group& root);
+void RequireSchemaVersion(const hdf5::Group& root);
 
 // /blocks/<id>: attributes b1_m, b2_m, h_m, mass_kg, density_kg_m3, notes; dataset inertia_com_B_kg_m2 (3×3).
 // Replaces an existing group of that id.

@@ -17,6 +17,8 @@ namespace rockfit::io {
 enum class GroundAccelerationUnit { kG, kMetrePerSecond2, kCentimetrePerSecond2 };
 // "g", "m/s2", "cm/s2"; throws InvalidArgument for anything else (also accepts "m/s^2", "gal").
 GroundAccelerationUnit ParseGroundAccelerationUnit(const std::string& text);
+// The canonical spelling, "g", "m/s2" or "cm/s2", which ParseGroundAccelerationUnit reads back.
+const char* UnitName(GroundAccelerationUnit unit);
 // The factor to m/s² (g is standard gravity, 9.80665 m/s²).
 double ToMetrePerSecond2(GroundAccelerationUnit unit);
 

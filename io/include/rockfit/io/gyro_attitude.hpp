@@ -42,6 +42,7 @@ enum class AttitudeStart {
   kLevel,          // "level": φx = φy = 0 at the first impact (no accelerometer or no rest; else at the first sample)
 };
 const char* ToString(AttitudeStart start);
+bool FromString(std::string_view text, AttitudeStart* value);  // the inverse of ToString
 
 struct GyroAttitude {
   std::vector<Eigen::Vector3d> euler_zyx;  // (φz, φy, φx) of R_WB at every sample [rad], unwrapped

@@ -32,13 +32,13 @@ std::string LimitsHelp();
 
 // InvalidArgument naming `options` (e.g. "--t-max × --rate") when `seconds` × `rate_hz` samples would exceed
 // kMaxTrajectorySamples; also when either is not a positive finite number (they are checked again where used).
-void CheckTrajectorySamples(double seconds, double rate_hz, const std::string& options);
+void RequireTrajectorySamplesWithinLimit(double seconds, double rate_hz, const std::string& options);
 
 // Throws before a response is simulated whose samples would exceed kMaxTrajectorySamples: when the record alone is
 // too long, BadInput naming the record file `source` (InvalidArgument naming --synthetic-duration when the record
 // is generated, `from_file` false); else InvalidArgument naming --tail and --rate. Also refuses a --tail or --rate
 // that is negative or not finite.
-void CheckResponseLength(const core::GroundMotion& ground, const std::string& source, bool from_file, double tail_s,
+void RequireResponseWithinLimit(const core::GroundMotion& ground, const std::string& source, bool from_file, double tail_s,
                          double rate_hz);
 
 }  // namespace rockfit::app
