@@ -10,8 +10,9 @@
 // T = T_ref, under ceres::SoftLOneLoss with a = c·√Δt. For ‖ω_m − ω_s‖ ≫ c, ½ρ(‖f_k‖²) ≈ a‖f_k‖ =
 // c·T_ref·w_k‖ω_m − ω_s‖/T, so the Ceres cost approaches c·T_ref·ε of (28) (README, "Ceres back end").
 //
-// All residual blocks share one model run per parameter vector through a small cache; Jacobians are central
-// differences with per-parameter steps (one-sided at a bound).
+// All residual blocks share one model run per parameter vector through a small cache. Jacobians are exact where
+// the model gives sensitivities and CeresOptions::exact_jacobian asks for them (residual_jacobian.hpp), otherwise
+// limited central differences with per-parameter steps (one-sided at a bound).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -26,6 +27,7 @@
 #include <glog/logging.h>
 
 #include "rockfit/fitting/local_optimizer.hpp"
+#include "rockfit/fitting/residual_jacobian.hpp"
 #include "rockfit/fitting/uncertainty.hpp"
 
 namespace rockfit::fitting {
@@ -47,8 +49,8 @@ enum class ResidualScaling {
 // blocks (and the 2n perturbed points of their Jacobians) share one model run per distinct vector.
 class ResidualEvaluator {
  public:
-  ResidualEvaluator(const Objective& objective, ResidualScaling scaling, double t_ref_s)
-      : objective_(objective), scaling_(scaling), t_ref_s_(t_ref_s) {
+  ResidualEvaluator(const Objective& objective, ResidualScaling scaling, double t_ref_s, bool exact_jacobian)
+      : objective_(objective), scaling_(scaling), t_ref_s_(t_ref_s), exact_jacobian_(exact_jacobian) {
     const MeasuredSignal& s = objective.signal();
     double t0_min = s.t_s.front();
     const Parameter& t0 = objective.parameters()[ParameterId::kT0];
@@ -64,10 +66,12 @@ class ResidualEvaluator {
     std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
     nominal_dt_s_ = dt[dt.size() / 2];
     capacity_ = 2 * objective.num_free() + 3;
+    cache_.reserve(capacity_);
   }
 
   std::size_t num_slots() const { return num_slots_; }
   std::int64_t evaluations() const { return evaluations_; }
+  std::int64_t exact_jacobians() const { return exact_jacobians_; }
   double nominal_dt_s() const { return nominal_dt_s_; }
   std::size_t num_nodes_at(const double* x) {
     return Lookup(x) ? last_num_nodes_ : 0;
@@ -76,12 +80,20 @@ class ResidualEvaluator {
   // Residuals (3 per slot) at x, or nullptr when the model fails there. The pointer stays valid until the
   // next call.
   const double* Residuals(const double* x) { return Lookup(x); }
+  // The exact Jacobian of all residuals at x (row-major, 3 rows per slot, one column per free parameter), or
+  // nullptr when it is not available there (then the caller differentiates numerically).
+  const double* Jacobian(const double* x) {
+    if (Lookup(x) == nullptr) return nullptr;
+    return last_entry_->jacobian_ok ? last_entry_->jacobian.data() : nullptr;
+  }
 
  private:
   struct Entry {
     std::vector<double> key;
     std::vector<double> residuals;
+    std::vector<double> jacobian;
     bool ok = false;
+    bool jacobian_ok = false;
     std::size_t num_nodes = 0;
     std::uint64_t last_used = 0;
   };
@@ -93,6 +105,7 @@ class ResidualEvaluator {
       if (std::equal(e.key.begin(), e.key.end(), x)) {
         e.last_used = clock_;
         last_num_nodes_ = e.num_nodes;
+        last_entry_ = &e;
         return e.ok ? e.residuals.data() : nullptr;
       }
     }
@@ -105,24 +118,37 @@ class ResidualEvaluator {
                                  [](const Entry& a, const Entry& b) { return a.last_used < b.last_used; });
     }
     ++evaluations_;
+    last_entry_ = entry;
+    entry->jacobian_ok = false;
     entry->key.assign(x, x + n);
     entry->last_used = clock_;
     entry->residuals.assign(3 * num_slots_, 0.0);
     Eigen::VectorXd xv = Eigen::Map<const Eigen::VectorXd>(x, static_cast<Eigen::Index>(n));
-    const Evaluation e = objective_.EvaluateDetailed(objective_.WithFree(xv), &nodes_, &output_);
+    const Evaluation e = objective_.EvaluateDetailed(objective_.WithFree(xv), &nodes_, &output_, exact_jacobian_);
     entry->ok = e.feasible && nodes_.size() >= 2 && nodes_.first_sample >= first_slot_sample_;
     entry->num_nodes = entry->ok ? nodes_.size() : 0;
     last_num_nodes_ = entry->num_nodes;
     if (!entry->ok) return nullptr;
-    const double window_s = nodes_.weighted_duration_s();
+    ResidualScale scale;
+    scale.kind = scaling_ == ResidualScaling::kSoftL1 ? ResidualScale::Kind::kSoftL1 : ResidualScale::Kind::kLeastSquares;
+    scale.t_ref_s = t_ref_s_;
+    scale.nominal_dt_s = nominal_dt_s_;
+    const ResidualJacobianSummary exact = NodeResiduals(objective_, nodes_, output_, scale, &node_residuals_);
+    entry->jacobian_ok = exact_jacobian_ && exact.available;
+    if (entry->jacobian_ok) {
+      entry->jacobian.assign(3 * num_slots_ * n, 0.0);
+      ++exact_jacobians_;
+    }
     const std::size_t last = nodes_.size() - 1;
     for (std::size_t i = 0; i <= last; ++i) {
       const std::size_t slot = i == 0 ? 0 : (i == last ? num_slots_ - 1 : 1 + nodes_.first_sample + i - 1 - first_slot_sample_);
-      const double w = nodes_.weight_s[i];
-      const double scale = scaling_ == ResidualScaling::kSoftL1 ? (t_ref_s_ / window_s) * w / std::sqrt(nominal_dt_s_)
-                                                                : std::sqrt(w);
-      const Eigen::Vector3d r = scale * (nodes_.w_m_B[i] - output_.w_B[i]);
-      for (int c = 0; c < 3; ++c) entry->residuals[3 * slot + static_cast<std::size_t>(c)] = r[c];
+      const NodeResidual& r = node_residuals_[i];
+      for (int c = 0; c < 3; ++c) {
+        const std::size_t row = 3 * slot + static_cast<std::size_t>(c);
+        entry->residuals[row] = r.f[c];
+        if (!entry->jacobian_ok) continue;
+        for (std::size_t j = 0; j < n; ++j) entry->jacobian[row * n + j] = r.df_dx(c, static_cast<Eigen::Index>(j));
+      }
     }
     return entry->residuals.data();
   }
@@ -130,6 +156,7 @@ class ResidualEvaluator {
   const Objective& objective_;
   ResidualScaling scaling_;
   double t_ref_s_;
+  bool exact_jacobian_ = false;
   std::size_t first_slot_sample_ = 0;
   std::size_t num_slots_ = 0;
   double nominal_dt_s_ = 0.0;
@@ -137,9 +164,12 @@ class ResidualEvaluator {
   std::uint64_t clock_ = 0;
   std::size_t last_num_nodes_ = 0;
   std::int64_t evaluations_ = 0;
-  std::vector<Entry> cache_;
+  std::int64_t exact_jacobians_ = 0;
+  std::vector<Entry> cache_;  // reserved to capacity_: entries never move, so last_entry_ stays valid
+  Entry* last_entry_ = nullptr;
   ErrorNodes nodes_;
   ModelOutput output_;
+  std::vector<NodeResidual> node_residuals_;
 };
 
 // One slot: three residuals, one parameter block (all free parameters), central differences.
@@ -159,6 +189,10 @@ class SlotCost final : public ceres::CostFunction {
     std::copy(r + 3 * slot_, r + 3 * slot_ + 3, residuals);
     if (jacobians == nullptr || jacobians[0] == nullptr) return true;
     const auto n = static_cast<std::size_t>(lower_.size());
+    if (const double* exact = evaluator_->Jacobian(x)) {
+      std::copy(exact + 3 * slot_ * n, exact + 3 * (slot_ + 1) * n, jacobians[0]);
+      return true;
+    }
     std::vector<double> xp(x, x + n), xm(x, x + n);
     for (std::size_t j = 0; j < n; ++j) {
       const auto k = static_cast<Eigen::Index>(j);
@@ -248,7 +282,8 @@ class CeresLeastSquares final : public LocalOptimizer {
     const auto start = std::chrono::steady_clock::now();
     Eigen::VectorXd x = x0.cwiseMax(objective.FreeLower()).cwiseMin(objective.FreeUpper());
     const double t0_start = objective.WithFree(x).value(ParameterId::kT0);
-    ResidualEvaluator evaluator(objective, ResidualScaling::kSoftL1, objective.t_end_s() - t0_start);
+    ResidualEvaluator evaluator(objective, ResidualScaling::kSoftL1, objective.t_end_s() - t0_start,
+                                options_.exact_jacobian);
     ceres::SoftLOneLoss loss(options_.soft_l1_scale_rad_s * std::sqrt(evaluator.nominal_dt_s()));
     ceres::Problem::Options problem_options;
     problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -305,7 +340,7 @@ StandardErrors ComputeStandardErrors(const Objective& objective, const Eigen::Ve
   const auto n = static_cast<Eigen::Index>(objective.num_free());
   result.std_error = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN());
   Eigen::VectorXd x = x_in;
-  ResidualEvaluator evaluator(objective, ResidualScaling::kLeastSquares, 1.0);
+  ResidualEvaluator evaluator(objective, ResidualScaling::kLeastSquares, 1.0, options.exact_jacobian);
   const double* r = evaluator.Residuals(x.data());
   if (r == nullptr) {
     result.message = "the model fails at the optimum";

@@ -108,7 +108,8 @@ Evaluation Objective::Evaluate(const ParameterSet& values) const {
   return EvaluateDetailed(values, &nodes, &output);
 }
 
-Evaluation Objective::EvaluateDetailed(const ParameterSet& values, ErrorNodes* nodes, ModelOutput* output) const {
+Evaluation Objective::EvaluateDetailed(const ParameterSet& values, ErrorNodes* nodes, ModelOutput* output,
+                                       bool sensitivities) const {
   Evaluation result;
   auto infeasible = [&](ModelFailure reason, core::ImpactStatus impact_status = core::ImpactStatus::kOk) {
     result.feasible = false;
@@ -129,7 +130,11 @@ Evaluation Objective::EvaluateDetailed(const ParameterSet& values, ErrorNodes* n
   }
 
   counters_->CountRun();
-  model_->Evaluate(values.ToModel(), nodes->t_after_release_s, output);
+  if (sensitivities) {
+    model_->EvaluateWithSensitivities(values.ToModel(), nodes->t_after_release_s, output);
+  } else {
+    model_->Evaluate(values.ToModel(), nodes->t_after_release_s, output);
+  }
   if (!output->ok()) return infeasible(output->failure, output->impact_status);
   if (output->w_B.size() != nodes->size()) {
     return infeasible(ModelFailure::kWrongSampleCount);

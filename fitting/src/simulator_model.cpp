@@ -39,6 +39,16 @@ SimulatorModel::SimulatorModel(const core::Block& block, SimulatorModelOptions o
 
 void SimulatorModel::Evaluate(const core::ModelParameters& params, const std::vector<double>& times,
                               ModelOutput* out) const {
+  Run(params, times, false, out);
+}
+
+void SimulatorModel::EvaluateWithSensitivities(const core::ModelParameters& params, const std::vector<double>& times,
+                                               ModelOutput* out) const {
+  Run(params, times, true, out);
+}
+
+void SimulatorModel::Run(const core::ModelParameters& params, const std::vector<double>& times, bool sensitivities,
+                         ModelOutput* out) const {
   out->Clear();
   if (times.empty()) return;
   // Per-thread options, so that the sample-time vector keeps its storage between runs.
@@ -81,6 +91,10 @@ void SimulatorModel::Evaluate(const core::ModelParameters& params, const std::ve
                                       core::ToString(trajectory.end_reason), trajectory.t_end_s, trajectory.w_B.size(),
                                       times.size());
     return;
+  }
+  if (sensitivities) {
+    core::PlanarSensitivitySummary planar = core::PlanarSampleSensitivities(block_, params, run, trajectory);
+    if (planar.available) out->dw_B_dparams = std::move(planar.dw_B);
   }
   out->w_B = std::move(trajectory.w_B);
   out->events.reserve(trajectory.impacts.size());

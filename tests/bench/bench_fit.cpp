@@ -4,14 +4,17 @@
 // `--intervals` (none, fast, thorough).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <random>
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "rockfit/fitting/fitter.hpp"
+#include "rockfit/fitting/local_optimizer.hpp"
 #include "rockfit/fitting/objective.hpp"
 #include "rockfit/fitting/simulator_model.hpp"
 #include "rockfit/fitting/trial_problem.hpp"
@@ -95,6 +98,192 @@ BENCHMARK(BM_FitOneTrialIntervalsNone)->Unit(benchmark::kMillisecond)->Iteration
 BENCHMARK(BM_FitOneTrialIntervalsThorough)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_FitOneTrialNelderMead)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_FitOneTrialCeres)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+// A planar trial of the same block (λ_lat = 0, so the run stays in the plane), fitted with λ_lat fixed at 0: the
+// case where the simulator gives exact derivatives (core/planar_sensitivity.hpp). Arg 1 uses them in Ceres
+// (CeresOptions::exact_jacobian), Arg 0 the limited differences; same binary, same trial.
+const Trial& PlanarSyntheticTrial() {
+  static const Trial trial = [] {
+    Trial t;
+    core::ModelParameters p;
+    p.alpha_rad = 0.15;
+    p.lambda = 1.0;
+    p.lambda_lat = 0.0;
+    p.lambda_lon = 0.6;
+    io::SynthRecordingOptions o;
+    o.t0_s = 1.0;
+    o.duration_s = 2.5;
+    o.files.rotation_matrix_file = false;
+    const io::SynthRecording rec = io::Synthesize(t.block, p, o);
+    for (std::size_t n = 0; n < rec.device.size(); ++n) {
+      t.signal.t_s.push_back(static_cast<double>(n) / rec.device.rate_hz);
+      t.signal.w_B.push_back(rec.device.gyro_dps[n].cast<double>() * (M_PI / 180.0));
+    }
+    return t;
+  }();
+  return trial;
+}
+
+fitting::ParameterSet PlanarParameters() {
+  fitting::ParameterSet p = fitting::ParameterSet::Defaults();
+  p[fitting::ParameterId::kLambdaLat].value = 0.0;
+  p[fitting::ParameterId::kLambdaLat].fixed = true;
+  return p;
+}
+
+// The whole fit (global stage, Nelder–Mead, Ceres; no intervals).
+void BM_FitPlanarTrial(benchmark::State& state) {
+  const Trial& trial = PlanarSyntheticTrial();
+  fitting::FitOptions options;
+  options.intervals.method = fitting::IntervalMethod::kNone;
+  options.num_threads = 1;
+  options.ceres.exact_jacobian = state.range(0) != 0;
+  double simulations = 0.0, epsilon = 0.0;
+  fitting::FitSummary summary;
+  for (auto _ : state) {
+    const fitting::TrialProblem problem = fitting::PrepareTrialProblem(trial.signal, trial.block, PlanarParameters());
+    summary = fitting::Fit(problem.objective, problem.start, options);
+    simulations = static_cast<double>(summary.simulations);
+    epsilon = summary.epsilon_rad_s;
+    benchmark::ClobberMemory();
+  }
+  // Where the simulations go: per stage, and the rest (start, identifiability, checks).
+  double in_stages = 0.0;
+  for (const fitting::StageReport& stage : summary.stages) {
+    state.counters["sims_" + stage.name] += static_cast<double>(stage.evaluations);
+    in_stages += static_cast<double>(stage.evaluations);
+  }
+  state.counters["sims_other"] = simulations - in_stages;
+  state.counters["simulations"] = simulations;
+  state.counters["epsilon_mrad_s"] = 1e3 * epsilon;
+}
+BENCHMARK(BM_FitPlanarTrial)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+// The Ceres local stage alone, from a start a few resolutions away from the truth (t0 + 2 ms, α − 4 mrad,
+// λ_lon + 0.03).
+void BM_CeresLocalStagePlanar(benchmark::State& state) {
+  const Trial& trial = PlanarSyntheticTrial();
+  const fitting::TrialProblem problem = fitting::PrepareTrialProblem(trial.signal, trial.block, PlanarParameters());
+  fitting::ParameterSet start = problem.objective.parameters();
+  start[fitting::ParameterId::kT0].value = std::clamp(1.002, start[fitting::ParameterId::kT0].lower,
+                                                      start[fitting::ParameterId::kT0].upper);
+  start[fitting::ParameterId::kAlpha].value = 0.146;
+  start[fitting::ParameterId::kLambda].value = 1.0;
+  start[fitting::ParameterId::kLambdaLon].value = 0.63;
+  fitting::CeresOptions options;
+  options.exact_jacobian = state.range(0) != 0;
+  const auto ceres = fitting::MakeCeres(options);
+  double runs = 0.0, epsilon = 0.0;
+  for (auto _ : state) {
+    const fitting::LocalResult r = ceres->Minimize(problem.objective, problem.objective.FreeValues(start));
+    runs = static_cast<double>(r.evaluations);
+    epsilon = r.epsilon_rad_s;
+    benchmark::ClobberMemory();
+  }
+  state.counters["simulations"] = runs;
+  state.counters["epsilon_mrad_s"] = 1e3 * epsilon;
+}
+BENCHMARK(BM_CeresLocalStagePlanar)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// One model run of the planar trial's window (1 s at 256 Hz after the release) without (Arg 0) and with (Arg 1)
+// the exact derivatives: the price of the sensitivity pass.
+void BM_PlanarRunWithSensitivities(benchmark::State& state) {
+  const Trial& trial = PlanarSyntheticTrial();
+  const fitting::SimulatorModel model(trial.block);
+  core::ModelParameters p;
+  p.alpha_rad = 0.15;
+  p.lambda_lat = 0.0;
+  p.lambda_lon = 0.6;
+  std::vector<double> times;
+  for (int k = 0; k <= 256; ++k) times.push_back(k / 256.0);
+  fitting::ModelOutput out;
+  for (auto _ : state) {
+    if (state.range(0) == 0) {
+      model.Evaluate(p, times, &out);
+    } else {
+      model.EvaluateWithSensitivities(p, times, &out);
+    }
+    benchmark::ClobberMemory();
+  }
+  state.counters["with_derivatives"] = out.dw_B_dparams.empty() ? 0.0 : 1.0;
+}
+BENCHMARK(BM_PlanarRunWithSensitivities)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+// The quality criterion for CeresOptions::exact_jacobian: each trial fitted with and without it (no intervals, one
+// core), the largest relative rise of ε over the trials, and the simulations of each. Arg 0: the bundled sample
+// campaign (3D trials: the simulator has no derivatives there, so the fits must be the same); Arg 1: 20 planar
+// synthetic trials (α, λ_lon, t0 and the noise seed drawn with a fixed seed; λ_lat fixed at 0).
+void BM_ExactJacobianQuality(benchmark::State& state) {
+  std::vector<fitting::MeasuredSignal> signals;
+  std::vector<core::Block> blocks;
+  std::vector<fitting::ParameterSet> parameters;
+  if (state.range(0) == 0) {
+    const std::filesystem::path manifest_path = std::filesystem::path(ROCKFIT_SOURCE_DIR) / "data-samples" / "manifest.toml";
+    if (!std::filesystem::exists(manifest_path)) {
+      state.SkipWithError("data-samples/manifest.toml is not there");
+      return;
+    }
+    const io::Manifest manifest = io::ReadManifest(manifest_path);
+    for (const io::TrialSpec& trial : manifest.trials) {
+      io::LoadOptions o;
+      o.rate_hz = trial.rate_hz;
+      o.rate_origin = io::RateSource::kManifest;
+      if (!trial.mounting.empty()) o.mounting = io::Mounting::Parse(trial.mounting);
+      const io::Recording r = io::LoadRecording(trial.files, o);
+      signals.push_back({r.t_s, r.w_B});
+      blocks.push_back(manifest.FindBlock(trial.block_id).ToBlock());
+      parameters.push_back(fitting::ParameterSet::Defaults());
+    }
+  } else {
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<double> alpha(0.08, 0.2), lambda_lon(0.3, 0.9), t0(0.8, 1.2);
+    const core::Block block = core::Block::FromDensity(0.05, 0.04, 0.2, 2692.0);
+    for (int i = 0; i < 20; ++i) {
+      core::ModelParameters p;
+      p.alpha_rad = alpha(rng);
+      p.lambda_lat = 0.0;
+      p.lambda_lon = lambda_lon(rng);
+      io::SynthRecordingOptions o;
+      o.t0_s = t0(rng);
+      o.duration_s = 2.5;
+      o.measurement.seed = static_cast<std::uint64_t>(i + 1);
+      o.files.rotation_matrix_file = false;
+      const io::SynthRecording rec = io::Synthesize(block, p, o);
+      fitting::MeasuredSignal signal;
+      for (std::size_t n = 0; n < rec.device.size(); ++n) {
+        signal.t_s.push_back(static_cast<double>(n) / rec.device.rate_hz);
+        signal.w_B.push_back(rec.device.gyro_dps[n].cast<double>() * (M_PI / 180.0));
+      }
+      signals.push_back(signal);
+      blocks.push_back(block);
+      parameters.push_back(PlanarParameters());
+    }
+  }
+  double worst_rise = -1.0, simulations_off = 0.0, simulations_on = 0.0, exact_better = 0.0;
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < signals.size(); ++i) {
+      const fitting::TrialProblem problem = fitting::PrepareTrialProblem(signals[i], blocks[i], parameters[i]);
+      fitting::FitOptions options;
+      options.num_threads = 1;
+      options.intervals.method = fitting::IntervalMethod::kNone;
+      const fitting::FitSummary off = fitting::Fit(problem.objective, problem.start, options);
+      options.ceres.exact_jacobian = true;
+      const fitting::FitSummary on = fitting::Fit(problem.objective, problem.start, options);
+      const double rise = (on.epsilon_rad_s - off.epsilon_rad_s) / off.epsilon_rad_s;
+      worst_rise = std::max(worst_rise, rise);
+      exact_better += rise < 0.0 ? 1.0 : 0.0;
+      simulations_off += static_cast<double>(off.simulations);
+      simulations_on += static_cast<double>(on.simulations);
+    }
+  }
+  state.counters["trials"] = static_cast<double>(signals.size());
+  // In parts per million: this Google Benchmark prints counters below 1 wrongly.
+  state.counters["worst_epsilon_rise_ppm"] = 1e6 * worst_rise;
+  state.counters["trials_lower_epsilon"] = exact_better;
+  state.counters["simulations_off"] = simulations_off;
+  state.counters["simulations_on"] = simulations_on;
+}
+BENCHMARK(BM_ExactJacobianQuality)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1);
 
 // The synthetic trial's own parameters, t0 free within ±0.1 s.
 fitting::ParameterSet TruthOfSyntheticTrial() {

@@ -49,6 +49,10 @@ struct CeresOptions {
   // piecewise smooth in the parameters; steps of a fraction of a sample period (t0) or of the typical
   // resolution (others) average over that instead of differentiating it.
   PerParameter difference_step = {5e-4, 5e-4, 5e-3, 1e-2, 2e-3, 1e-4};
+  // Use the model's exact derivatives (residual_jacobian.hpp) wherever it gives them, in the search and in the
+  // covariance; the differences above elsewhere. The simulator gives them for planar runs only (λ_lat fixed at 0),
+  // so this is off until the general case exists and is shown to fit no worse.
+  bool exact_jacobian = false;
   void Validate() const;
 };
 

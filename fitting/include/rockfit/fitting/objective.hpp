@@ -87,7 +87,9 @@ class Objective {
 
   // The nodes of (28) and the model output at them (for residual-based back ends, plots, diagnostics).
   // Returns the evaluation; `nodes` and `output` are filled as far as the evaluation got.
-  Evaluation EvaluateDetailed(const ParameterSet& values, ErrorNodes* nodes, ModelOutput* output) const;
+  // With `sensitivities`, the model is asked for the exact derivatives of ω_s too (ModelOutput::dw_B_dparams).
+  Evaluation EvaluateDetailed(const ParameterSet& values, ErrorNodes* nodes, ModelOutput* output,
+                              bool sensitivities = false) const;
 
  private:
   std::shared_ptr<const MeasuredSignal> signal_;

@@ -27,12 +27,18 @@ class SimulatorModel final : public TrajectoryModel {
   SimulatorModel(const core::Block& block, SimulatorModelOptions options = {});
   void Evaluate(const core::ModelParameters& params, const std::vector<double>& t_after_release_s,
                 ModelOutput* out) const override;
+  // Exact derivatives for planar runs (λ_lat = 0, no edge impacts: core/planar_sensitivity.hpp); none otherwise.
+  void EvaluateWithSensitivities(const core::ModelParameters& params, const std::vector<double>& t_after_release_s,
+                                 ModelOutput* out) const override;
   std::string Describe() const override;
   std::shared_ptr<const TrajectoryModel> WithLooserTolerance(double rel_tol) const override;
   const core::Block& block() const { return block_; }
   const SimulatorModelOptions& options() const { return options_; }
 
  private:
+  void Run(const core::ModelParameters& params, const std::vector<double>& t_after_release_s, bool sensitivities,
+           ModelOutput* out) const;
+
   core::Block block_;
   SimulatorModelOptions options_;
 };

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "rockfit/core/planar_sensitivity.hpp"
 #include "rockfit/core/simulator.hpp"
 #include "rockfit/fitting/model_failure.hpp"
 
@@ -23,6 +24,10 @@ struct ModelEvent {
 struct ModelOutput {
   std::vector<Eigen::Vector3d> w_B;  // one per query time [rad/s]; valid only when ok()
   std::vector<ModelEvent> events;    // in time order
+  // ∂ω_s/∂(t, α, λ, λ_lat, λ_lon) at each query time (columns as core::SensitivityColumn; NaN where a derivative
+  // does not exist). Filled only by EvaluateWithSensitivities, and only where the model can give them exactly;
+  // empty otherwise.
+  std::vector<core::SampleSensitivity> dw_B_dparams;
   // kNone when the run succeeded. Otherwise why not (with the failing impact's status for an impact failure)
   // and a human-readable detail.
   ModelFailure failure = ModelFailure::kNone;
@@ -33,6 +38,7 @@ struct ModelOutput {
   void Clear() {
     w_B.clear();
     events.clear();
+    dw_B_dparams.clear();
     failure = ModelFailure::kNone;
     impact_status = core::ImpactStatus::kOk;
     failure_detail.clear();
@@ -46,6 +52,12 @@ class TrajectoryModel {
   // out->failure. Never throws for parameter values a fitter may try; never returns non-finite ω.
   virtual void Evaluate(const core::ModelParameters& params, const std::vector<double>& t_after_release_s,
                         ModelOutput* out) const = 0;
+  // Evaluate, plus the exact derivatives of ω_s in out->dw_B_dparams where the model has them (left empty where
+  // it has none: the default, and runs the model cannot differentiate).
+  virtual void EvaluateWithSensitivities(const core::ModelParameters& params,
+                                         const std::vector<double>& t_after_release_s, ModelOutput* out) const {
+    Evaluate(params, t_after_release_s, out);
+  }
   // One line for summaries ("hybrid simulator, rel_tol 1e-10", …).
   virtual std::string Describe() const = 0;
   // A copy that integrates with the relative tolerance rel_tol where that is looser than its own (for searches that
