@@ -147,7 +147,7 @@ std::vector<std::string> OptionalColumn(const io::hdf5::Group& fit, const std::s
 
 template <class T>
 void RequireColumnLength(const io::hdf5::Group& fit, const std::string& column, const std::vector<T>& values,
-                       std::size_t rows) {
+                         std::size_t rows) {
   if (values.size() == rows) return;
   throw BadInput(fit.file_name() + ": " + fit.path() + "/parameters has " + std::to_string(rows) + " names but " +
                  std::to_string(values.size()) + " " + (column == "value" ? "values" : column + " entries") +

@@ -109,7 +109,8 @@ int RunSynth(const SynthCommand& cmd) {
   const core::ModelParameters params = MakeSynthParameters(args);
   io::SynthRecordingOptions o = MakeSynthOptions(args);
   o.command_line = ReproducingCommand(cmd, params, o);
-  RequireTrajectorySamplesWithinLimit(o.duration_s, std::max(o.rate_hz, o.files.quaternion_rate_hz), "--duration and --rate");
+  RequireTrajectorySamplesWithinLimit(o.duration_s, std::max(o.rate_hz, o.files.quaternion_rate_hz),
+                                      "--duration and --rate");
   const Activity activity("making the synthetic recording and its files");
   const io::SynthRecording recording = io::Synthesize(block, params, o);
   const std::vector<std::string> files = io::WriteSynthRecording(cmd.output, block, params, o, recording);

@@ -21,11 +21,12 @@ constexpr const char* kBackwardsTodo =
   const std::string previous_line = std::to_string(table.Line(row - 1));
   if (repeated) {
     table.ThrowBadCell(row, column, "'" + cell + "' again (as on line " + previous_line + ")",
-                 "a value larger than on the line before", kRepeatTodo);
+                       "a value larger than on the line before", kRepeatTodo);
   }
-  table.ThrowBadCell(row, column,
-               "'" + cell + "', smaller than '" + std::string(table.Cell(row - 1, column)) + "' on line " + previous_line,
-               "values that increase from line to line (or a counter that wraps at 2^16 or 2^32)", kBackwardsTodo);
+  table.ThrowBadCell(
+      row, column,
+      "'" + cell + "', smaller than '" + std::string(table.Cell(row - 1, column)) + "' on line " + previous_line,
+      "values that increase from line to line (or a counter that wraps at 2^16 or 2^32)", kBackwardsTodo);
 }
 
 // Whole numbers: exact differences from the first, unwrapping 16- and 32-bit counters.
@@ -56,7 +57,8 @@ bool ReadIntegers(const CsvTable& table, std::size_t column, double to_si, CsvTi
           break;
         }
       }
-      if (!modulus || (out.wrap_modulus != 0 && out.wrap_modulus != *modulus)) ThrowNotIncreasing(table, row, column, false);
+      if (!modulus || (out.wrap_modulus != 0 && out.wrap_modulus != *modulus))
+        ThrowNotIncreasing(table, row, column, false);
       out.wrap_modulus = *modulus;
       ++out.wraps;
       offset += static_cast<__int128>(*modulus);
@@ -97,7 +99,7 @@ CsvTimeColumn ReadCsvTimeColumn(const CsvTable& table, std::size_t column, TimeU
   for (std::size_t row = 1; row < out.t_s.size(); ++row) {
     if (!std::isfinite(out.t_s[row])) {
       table.ThrowBadCell(row, column, "a time too large to convert to seconds", "a time within a recording's span",
-                   "Check the time column's unit in the column map (time=NAME@s, @ms, @us or @ns).");
+                         "Check the time column's unit in the column map (time=NAME@s, @ms, @us or @ns).");
     }
   }
   std::string how = fmt::format("time from {} in {}{}", table.DescribeColumn(column), UnitName(unit),

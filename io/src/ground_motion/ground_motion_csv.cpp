@@ -119,8 +119,8 @@ GroundMotionComponents ReadGroundMotionCsv(const std::filesystem::path& path, co
       const double step = table.Real(r, tc) - table.Real(r - 1, tc);
       if (std::abs(step - out.dt_s) > kUniformStepRelTol * out.dt_s) {
         table.ThrowBadCell(r, tc, "a step of " + std::to_string(step) + " s",
-                     "the uniform step of the first two rows, " + std::to_string(out.dt_s) + " s",
-                     "Resample the record to a uniform step.");
+                           "the uniform step of the first two rows, " + std::to_string(out.dt_s) + " s",
+                           "Resample the record to a uniform step.");
       }
     }
   } else {
@@ -144,7 +144,7 @@ GroundMotionComponents ReadGroundMotionCsv(const std::filesystem::path& path, co
       // A finite value in the file's unit can overflow in m/s² (1e308 g); such a cell is as bad as "inf".
       if (!std::isfinite(values[r])) {
         table.ThrowBadCell(r, c, "a value too large to convert to m/s²", "a ground acceleration",
-                     "Check the column's unit and the value on this line.");
+                           "Check the column's unit and the value on this line.");
       }
     }
     out.accel_m_s2.push_back(std::move(values));

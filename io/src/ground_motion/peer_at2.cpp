@@ -65,8 +65,8 @@ struct Header {
   double dt_s = 0.0;
 };
 
-[[noreturn]] void ThrowBadHeader(const std::string& name, std::size_t line, std::size_t column, const std::string& found,
-                             const std::string& expected) {
+[[noreturn]] void ThrowBadHeader(const std::string& name, std::size_t line, std::size_t column,
+                                 const std::string& found, const std::string& expected) {
   ThrowBadInput({{name, line, column}, "AT2 header", found, expected,
                  "Check that this is a PEER AT2 acceleration record (a header line such as `NPTS=  4000, DT= .01000 "
                  "SEC` before the values); other formats can be read as CSV (--record-format csv)."});
@@ -90,7 +90,8 @@ Header ParseHeaderLine(const std::string& name, std::size_t index, std::string_v
     const auto n = ParseInteger(a);
     const ParsedNumber d = ParseReal(b);
     if (!n) ThrowBadHeader(name, index + 1, npts_col, QuoteCell(a), "the number of points before `NPTS, DT`");
-    if (d.status != NumberStatus::kOk) ThrowBadHeader(name, index + 1, dt_col, QuoteCell(b), "the time step in seconds");
+    if (d.status != NumberStatus::kOk)
+      ThrowBadHeader(name, index + 1, dt_col, QuoteCell(b), "the time step in seconds");
     h.npts = *n;
     h.dt_s = d.value;
   } else {
@@ -99,7 +100,7 @@ Header ParseHeaderLine(const std::string& name, std::size_t index, std::string_v
     const ParsedNumber d = ParseReal(dt_text);
     if (d.status != NumberStatus::kOk) {
       ThrowBadHeader(name, index + 1, dt_col, dt_text.empty() ? "no DT=" : QuoteCell(dt_text),
-                 "the time step in seconds after DT= (e.g. `DT= .01000 SEC`)");
+                     "the time step in seconds after DT= (e.g. `DT= .01000 SEC`)");
     }
     h.npts = *n;
     h.dt_s = d.value;
@@ -107,8 +108,9 @@ Header ParseHeaderLine(const std::string& name, std::size_t index, std::string_v
   if (h.npts < 2) ThrowBadHeader(name, index + 1, npts_col, "NPTS = " + std::to_string(h.npts), "at least 2 points");
   if (static_cast<unsigned long long>(h.npts) > kMaxRecordSamples) {
     ThrowBadHeader(name, index + 1, npts_col, "NPTS = " + std::to_string(h.npts),
-               "at most " + std::to_string(kMaxRecordSamples) + " points, the largest record rockfit reads "
-               "(docs/file-formats.md, \"Limits\")");
+                   "at most " + std::to_string(kMaxRecordSamples) +
+                       " points, the largest record rockfit reads "
+                       "(docs/file-formats.md, \"Limits\")");
   }
   if (!(h.dt_s > 0.0)) ThrowBadHeader(name, index + 1, dt_col, "DT = " + std::string(dt_text), "a positive time step");
   return h;
@@ -152,7 +154,7 @@ PeerRecord ParsePeerAt2(const std::string& text, const std::string& display_name
   }
   if (header_index == lines.size()) {
     ThrowBadHeader(display_name, 0, 0, "no line with NPTS in the first " + std::to_string(kMaxHeaderLines) + " lines",
-               "a header line with the number of points and the time step");
+                   "a header line with the number of points and the time step");
   }
   const Header header = ParseHeaderLine(display_name, header_index, lines[header_index]);
   PeerRecord record;

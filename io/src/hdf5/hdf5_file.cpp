@@ -104,7 +104,8 @@ File File::CreateInMemory(const std::filesystem::path& name) {
   constexpr std::size_t kMemoryIncrement = std::size_t{1} << 20;
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), ClosePlist);
   H5Pset_fclose_degree(fapl.id(), H5F_CLOSE_STRONG);
-  if (H5Pset_fapl_core(fapl.id(), kMemoryIncrement, 0) < 0) ThrowOutputError(name.string(), "cannot set up an in-memory file");
+  if (H5Pset_fapl_core(fapl.id(), kMemoryIncrement, 0) < 0)
+    ThrowOutputError(name.string(), "cannot set up an in-memory file");
   const hid_t id = H5Fcreate(name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id());
   if (id < 0) ThrowOutputError(name.string(), "cannot create the HDF5 file in memory");
   return File(Handle(id, CloseFile), name);
@@ -234,7 +235,9 @@ Group Group::CreateGroup(const std::string& name) const {
   return Group(Handle(id, CloseGroup), ChildPath(name), file_name_);
 }
 
-Group Group::OpenOrCreateGroup(const std::string& name) const { return Exists(name) ? OpenGroup(name) : CreateGroup(name); }
+Group Group::OpenOrCreateGroup(const std::string& name) const {
+  return Exists(name) ? OpenGroup(name) : CreateGroup(name);
+}
 
 void Group::Remove(const std::string& name) const {
   if (!Exists(name)) return;

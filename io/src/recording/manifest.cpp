@@ -69,7 +69,7 @@ class Reporter {
 };
 
 void RequireKnownKeys(const Reporter& report, const toml::table& table, const std::string& what,
-               const std::vector<std::string>& allowed) {
+                      const std::vector<std::string>& allowed) {
   for (const auto& [key, node] : table) {
     const std::string name(key.str());
     if (std::find(allowed.begin(), allowed.end(), name) != allowed.end()) continue;
@@ -80,8 +80,8 @@ void RequireKnownKeys(const Reporter& report, const toml::table& table, const st
         break;
       }
     }
-    report.ThrowBadInput(PositionOf(key.source()),
-                fmt::format("unknown key '{}' in {}{}; allowed keys: {}", name, what, hint, fmt::join(allowed, ", ")));
+    report.ThrowBadInput(PositionOf(key.source()), fmt::format("unknown key '{}' in {}{}; allowed keys: {}", name, what,
+                                                               hint, fmt::join(allowed, ", ")));
   }
 }
 
@@ -91,8 +91,8 @@ const toml::node* Find(const toml::table& table, const char* key) { return table
 const std::string& WithoutNul(const Reporter& report, const std::string& value, const char* key,
                               const std::string& what, SourcePosition where) {
   if (value.find('\0') != std::string::npos) {
-    report.ThrowBadInput(where,
-                fmt::format("'{}' in {} holds a NUL byte (\\u0000): {}; remove it", key, what, QuoteCell(value)));
+    report.ThrowBadInput(
+        where, fmt::format("'{}' in {} holds a NUL byte (\\u0000): {}; remove it", key, what, QuoteCell(value)));
   }
   return value;
 }
@@ -100,7 +100,8 @@ const std::string& WithoutNul(const Reporter& report, const std::string& value, 
 std::string ReadRequiredString(const Reporter& report, const toml::table& table, const char* key,
                                const std::string& what, SourcePosition table_where) {
   const toml::node* node = Find(table, key);
-  if (!node) report.ThrowBadInput(table_where, fmt::format("{} has no '{}' (a string); add {} = \"…\"", what, key, key));
+  if (!node)
+    report.ThrowBadInput(table_where, fmt::format("{} has no '{}' (a string); add {} = \"…\"", what, key, key));
   const auto* value = node->as_string();
   if (!value) {
     report.ThrowBadInput(PositionOf(node->source()), fmt::format("'{}' in {} must be a string in quotes", key, what));
@@ -133,7 +134,7 @@ std::optional<double> ReadOptionalPositive(const Reporter& report, const toml::t
   }
   if (!std::isfinite(value) || value <= 0.0) {
     report.ThrowBadInput(PositionOf(node->source()),
-                fmt::format("'{}' in {} must be a positive number [{}], got {}", key, what, unit, value));
+                         fmt::format("'{}' in {} must be a positive number [{}], got {}", key, what, unit, value));
   }
   return value;
 }
@@ -141,7 +142,8 @@ std::optional<double> ReadOptionalPositive(const Reporter& report, const toml::t
 double ReadRequiredPositive(const Reporter& report, const toml::table& table, const char* key,
                             const std::string& what, const char* unit, SourcePosition table_where) {
   const auto value = ReadOptionalPositive(report, table, key, what, unit);
-  if (!value) report.ThrowBadInput(table_where, fmt::format("{} has no '{}' (a positive number [{}])", what, key, unit));
+  if (!value)
+    report.ThrowBadInput(table_where, fmt::format("{} has no '{}' (a positive number [{}])", what, key, unit));
   return *value;
 }
 
@@ -150,8 +152,10 @@ void RequireValidId(const Reporter& report, const std::string& id, const std::st
     return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
   });
   if (!ok) {
-    report.ThrowBadInput(where, fmt::format("{} id {} may only contain letters, digits, '-', '_' and '.' (it names groups "
-                                   "in HDF5 files)", what, QuoteCell(id)));
+    report.ThrowBadInput(where,
+                         fmt::format("{} id {} may only contain letters, digits, '-', '_' and '.' (it names groups "
+                                     "in HDF5 files)",
+                                     what, QuoteCell(id)));
   }
 }
 
@@ -162,13 +166,13 @@ const toml::array* TableArray(const Reporter& report, const toml::table& root, c
   const auto* array = node->as_array();
   if (!array || !array->is_array_of_tables()) {
     report.ThrowBadInput(PositionOf(node->source()),
-                fmt::format("'{}' must be an array of tables: write each entry as [[{}]]", key, key));
+                         fmt::format("'{}' must be an array of tables: write each entry as [[{}]]", key, key));
   }
   if (array->size() > kMaxManifestEntries) {
     report.ThrowBadInput(PositionOf((*array)[kMaxManifestEntries].source()),
-                fmt::format("{} [[{}]] entries, more than the {} a manifest may have (docs/file-formats.md, "
-                            "\"Limits\"); split the campaign into several manifests",
-                            array->size(), key, kMaxManifestEntries));
+                         fmt::format("{} [[{}]] entries, more than the {} a manifest may have (docs/file-formats.md, "
+                                     "\"Limits\"); split the campaign into several manifests",
+                                     array->size(), key, kMaxManifestEntries));
   }
   return array;
 }
@@ -179,14 +183,15 @@ void ReadRecordingKeys(const Reporter& report, const toml::table& table, const s
                        std::optional<double>* rate_hz, std::string* mounting, std::string* columns) {
   *format = ReadOptionalString(report, table, "format", what);
   if (!format->empty() && !ParseFormatName(*format)) {
-    report.ThrowBadInput(PositionOf(table.get("format")->source()),
-                fmt::format("{}: unknown format '{}'; use one of {}", what, *format, fmt::join(ManifestFormats(), ", ")));
+    report.ThrowBadInput(
+        PositionOf(table.get("format")->source()),
+        fmt::format("{}: unknown format '{}'; use one of {}", what, *format, fmt::join(ManifestFormats(), ", ")));
   }
   *rate_hz = ReadOptionalPositive(report, table, "rate", what, "Hz");
   if (*rate_hz && **rate_hz > kMaxRate_hz) {
-    report.ThrowBadInput(PositionOf(table.get("rate")->source()),
-                fmt::format("{}: rate {} Hz is above {} Hz, faster than any IMU rockfit reads", what, **rate_hz,
-                            kMaxRate_hz));
+    report.ThrowBadInput(
+        PositionOf(table.get("rate")->source()),
+        fmt::format("{}: rate {} Hz is above {} Hz, faster than any IMU rockfit reads", what, **rate_hz, kMaxRate_hz));
   }
   *mounting = ReadOptionalString(report, table, "mounting", what);
   if (!mounting->empty()) {
@@ -211,7 +216,7 @@ BlockSpec ParseBlock(const Reporter& report, const toml::table& table, std::size
   block.where = PositionOf(table.source());
   const std::string anonymous = fmt::format("[[blocks]] number {}", ordinal);
   RequireKnownKeys(report, table, anonymous,
-            {"id", "b1", "b2", "h", "density", "mass", "notes", "format", "columns", "rate", "mounting"});
+                   {"id", "b1", "b2", "h", "density", "mass", "notes", "format", "columns", "rate", "mounting"});
   block.id = ReadRequiredString(report, table, "id", anonymous, block.where);
   const std::string what = fmt::format("[[blocks]] '{}'", block.id);
   const toml::node* id_node = table.get("id");
@@ -223,7 +228,7 @@ BlockSpec ParseBlock(const Reporter& report, const toml::table& table, std::size
   block.mass_kg = ReadOptionalPositive(report, table, "mass", what, "kg");
   if (block.density_kg_m3.has_value() == block.mass_kg.has_value()) {
     report.ThrowBadInput(block.where, fmt::format("{} needs exactly one of 'density' [kg/m³] or 'mass' [kg]{}", what,
-                                         block.mass_kg ? ", not both" : ""));
+                                                  block.mass_kg ? ", not both" : ""));
   }
   block.notes = ReadOptionalString(report, table, "notes", what);
   ReadRecordingKeys(report, table, what, &block.format, &block.rate_hz, &block.mounting, &block.columns);
@@ -236,15 +241,17 @@ TrialSpec ParseTrial(const Reporter& report, const toml::table& table, std::size
   trial.where = PositionOf(table.source());
   const std::string anonymous = fmt::format("[[trials]] number {}", ordinal);
   RequireKnownKeys(report, table, anonymous,
-            {"id", "block", "position", "files", "format", "rate", "mounting", "columns", "notes"});
+                   {"id", "block", "position", "files", "format", "rate", "mounting", "columns", "notes"});
   trial.id = ReadRequiredString(report, table, "id", anonymous, trial.where);
   RequireValidId(report, trial.id, "trial", PositionOf(table.get("id")->source()));
   const std::string what = fmt::format("[[trials]] '{}'", trial.id);
   trial.block_id = ReadRequiredString(report, table, "block", what, trial.where);
   trial.position = ReadRequiredString(report, table, "position", what, trial.where);
-  if (trial.position.empty()) report.ThrowBadInput(PositionOf(table.get("position")->source()), what + ": 'position' is empty");
+  if (trial.position.empty())
+    report.ThrowBadInput(PositionOf(table.get("position")->source()), what + ": 'position' is empty");
   trial.files_as_written = ReadRequiredString(report, table, "files", what, trial.where);
-  if (trial.files_as_written.empty()) report.ThrowBadInput(PositionOf(table.get("files")->source()), what + ": 'files' is empty");
+  if (trial.files_as_written.empty())
+    report.ThrowBadInput(PositionOf(table.get("files")->source()), what + ": 'files' is empty");
   const std::filesystem::path files(trial.files_as_written);
   trial.files = files.is_absolute() ? files : (base_dir / files).lexically_normal();
   std::string format;
@@ -259,11 +266,12 @@ TrialSpec ParseTrial(const Reporter& report, const toml::table& table, std::size
 Manifest ParseManifest(std::string_view text, const std::filesystem::path& path) {
   const Reporter report(path.string());
   if (const DottedKeyDepth deep = FindDeepDottedKey(text, kMaxManifestKeyParts); deep.line > 0) {
-    report.ThrowBadInput({deep.line, deep.column},
-                fmt::format("a dotted key or table name of more than {} parts; rockfit reads keys of up to {} parts "
-                            "(a manifest needs at most two, such as [[blocks]] and id): check that this is a "
-                            "manifest, or shorten the key",
-                            kMaxManifestKeyParts, kMaxManifestKeyParts));
+    report.ThrowBadInput(
+        {deep.line, deep.column},
+        fmt::format("a dotted key or table name of more than {} parts; rockfit reads keys of up to {} parts "
+                    "(a manifest needs at most two, such as [[blocks]] and id): check that this is a "
+                    "manifest, or shorten the key",
+                    kMaxManifestKeyParts, kMaxManifestKeyParts));
   }
   toml::table root;
   try {
@@ -283,8 +291,10 @@ Manifest ParseManifest(std::string_view text, const std::filesystem::path& path)
       BlockSpec block = ParseBlock(report, *node.as_table(), ++ordinal);
       const SourcePosition id_where = PositionOf(node.as_table()->get("id")->source());
       if (const auto it = block_ids.find(block.id); it != block_ids.end()) {
-        report.ThrowBadInput(id_where, fmt::format("duplicate block id '{}' (first defined at line {}); block ids must be "
-                                          "unique", block.id, it->second.line));
+        report.ThrowBadInput(id_where,
+                             fmt::format("duplicate block id '{}' (first defined at line {}); block ids must be "
+                                         "unique",
+                                         block.id, it->second.line));
       }
       try {
         (void)block.ToBlock();
@@ -303,15 +313,18 @@ Manifest ParseManifest(std::string_view text, const std::filesystem::path& path)
       TrialSpec trial = ParseTrial(report, table, ++ordinal, base_dir);
       const SourcePosition id_where = PositionOf(table.get("id")->source());
       if (const auto it = trial_ids.find(trial.id); it != trial_ids.end()) {
-        report.ThrowBadInput(id_where, fmt::format("duplicate trial id '{}' (first defined at line {}); trial ids must be "
-                                          "unique", trial.id, it->second.line));
+        report.ThrowBadInput(id_where,
+                             fmt::format("duplicate trial id '{}' (first defined at line {}); trial ids must be "
+                                         "unique",
+                                         trial.id, it->second.line));
       }
       if (block_ids.count(trial.block_id) == 0) {
         std::vector<std::string> known;
         for (const auto& b : manifest.blocks) known.push_back(b.id);
-        report.ThrowBadInput(PositionOf(table.get("block")->source()),
-                    fmt::format("[[trials]] '{}' names block '{}', which no [[blocks]] entry defines; known blocks: {}",
-                                trial.id, trial.block_id, known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
+        report.ThrowBadInput(
+            PositionOf(table.get("block")->source()),
+            fmt::format("[[trials]] '{}' names block '{}', which no [[blocks]] entry defines; known blocks: {}",
+                        trial.id, trial.block_id, known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
       }
       for (const BlockSpec& block : manifest.blocks) {  // the block's defaults for what the trial leaves out
         if (block.id != trial.block_id) continue;

@@ -19,13 +19,14 @@ std::vector<double> ReadIncreasingColumn(const CsvTable& table, std::size_t colu
     const std::string previous_line = std::to_string(table.Line(row - 1));
     if (values[row] == values[row - 1]) {
       table.ThrowBadCell(row, column, "'" + cell + "' again (as on line " + previous_line + ")",
-                   "a value larger than on the line before", todo_on_repeat);
+                         "a value larger than on the line before", todo_on_repeat);
     }
-    table.ThrowBadCell(row, column,
-                 "'" + cell + "', smaller than '" + std::string(table.Cell(row - 1, column)) + "' on line " + previous_line,
-                 "values that increase from line to line",
-                 "Time cannot run backwards: the file mixes two recordings or was edited or sorted. Split it "
-                 "where the values restart, or restore the original file.");
+    table.ThrowBadCell(
+        row, column,
+        "'" + cell + "', smaller than '" + std::string(table.Cell(row - 1, column)) + "' on line " + previous_line,
+        "values that increase from line to line",
+        "Time cannot run backwards: the file mixes two recordings or was edited or sorted. Split it "
+        "where the values restart, or restore the original file.");
   }
   return values;
 }

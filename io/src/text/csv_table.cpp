@@ -354,7 +354,7 @@ std::string CsvTable::DescribeColumn(std::size_t column) const {
 }
 
 void CsvTable::ThrowBadCell(std::size_t row, std::size_t column, std::string found, std::string expected,
-                      std::string todo) const {
+                            std::string todo) const {
   if (IsUnterminatedLastRow(row)) {
     todo += " This is the last line and the file does not end with a line end, so it was probably cut off while "
             "the file was written: delete that line.";
@@ -372,19 +372,21 @@ double CsvTable::ParseCell(std::size_t row, std::size_t column, bool allow_nan) 
     case NumberStatus::kOk:
     case NumberStatus::kNaN:
       ThrowBadCell(row, column, QuoteCell(cell), "a finite number",
-             "The device wrote no valid value for this sample and rockfit does not invent one: export the "
-             "recording again, or cut the file before or after line " + line + ".");
+                   "The device wrote no valid value for this sample and rockfit does not invent one: export the "
+                   "recording again, or cut the file before or after line " +
+                       line + ".");
     case NumberStatus::kInfinite:
     case NumberStatus::kOutOfRange:
       ThrowBadCell(row, column, QuoteCell(cell), "a finite number",
-             "An IMU cannot measure an infinite value: export the recording again, or cut the file before or "
-             "after line " + line + ".");
+                   "An IMU cannot measure an infinite value: export the recording again, or cut the file before or "
+                   "after line " +
+                       line + ".");
     case NumberStatus::kEmpty:
       ThrowBadCell(row, column, "an empty cell", kNumberExample, "Fill in or delete line " + line + ".");
     case NumberStatus::kDecimalComma:
       ThrowBadCell(row, column, QuoteCell(cell) + " (a decimal comma)", "a decimal point",
-             "Save the file with '.' as decimal separator, or with ';' between fields (then decimal commas are "
-             "read).");
+                   "Save the file with '.' as decimal separator, or with ';' between fields (then decimal commas are "
+                   "read).");
     case NumberStatus::kNotANumber:
       break;
   }
@@ -397,8 +399,8 @@ double CsvTable::RealInSi(std::size_t row, std::size_t column, double to_si) con
   const double value = Real(row, column) * to_si;
   if (!std::isfinite(value)) {
     ThrowBadCell(row, column, "a value too large to convert to SI units", "a measured value within the sensor's range",
-           "An IMU cannot measure this value: export the recording again, or cut the file before line " +
-               std::to_string(Line(row)) + ".");
+                 "An IMU cannot measure this value: export the recording again, or cut the file before line " +
+                     std::to_string(Line(row)) + ".");
   }
   return value;
 }
@@ -408,7 +410,8 @@ double CsvTable::RealOrNaN(std::size_t row, std::size_t column) const { return P
 std::int64_t CsvTable::Integer(std::size_t row, std::size_t column) const {
   const std::string_view cell = Cell(row, column);
   if (const auto value = ParseInteger(cell)) return *value;
-  ThrowBadCell(row, column, QuoteCell(cell), "a whole number", "Correct or delete line " + std::to_string(Line(row)) + ".");
+  ThrowBadCell(row, column, QuoteCell(cell), "a whole number",
+               "Correct or delete line " + std::to_string(Line(row)) + ".");
 }
 
 }  // namespace rockfit::io

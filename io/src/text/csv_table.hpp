@@ -79,7 +79,7 @@ class CsvTable {
 
   // Throws BadInput about one cell: "file:line:col: column c 'header': found F, expected E. TODO".
   [[noreturn]] void ThrowBadCell(std::size_t row, std::size_t column, std::string found, std::string expected,
-                           std::string todo) const;
+                                 std::string todo) const;
 
  private:
   CsvTable() = default;

@@ -18,8 +18,9 @@ Eigen::Quaterniond RotationMatrixRow(const CsvTable& table, std::size_t row,
   double determinant = 0.0;
   const Eigen::Matrix3d R_WS = NearestRotation(M, &error, &determinant);
   if (!(error <= kRotationMatrixOrthogonalityTolerance) || determinant <= 0.0) {
-    table.ThrowBadCell(row, *c[first], fmt::format("a matrix with max |MᵀM − I| = {:.3g} and determinant {:.4g}", error, determinant),
-                 "a rotation matrix", "The row is damaged; correct or delete line " + std::to_string(table.Line(row)) + ".");
+    table.ThrowBadCell(
+        row, *c[first], fmt::format("a matrix with max |MᵀM − I| = {:.3g} and determinant {:.4g}", error, determinant),
+        "a rotation matrix", "The row is damaged; correct or delete line " + std::to_string(table.Line(row)) + ".");
   }
   return Eigen::Quaterniond(R_WS).normalized();
 }

@@ -50,8 +50,8 @@ Eigen::Quaterniond QuaternionRow(const CsvTable& table, std::size_t row, const s
   const double norm = q_file.norm();
   if (!(std::abs(norm - 1.0) <= kQuaternionNormTolerance)) {
     table.ThrowBadCell(row, *c[1], fmt::format("a quaternion of norm {:.6g}", norm),
-                 fmt::format("a unit quaternion (norm 1 within {:g})", kQuaternionNormTolerance),
-                 "The row is damaged; correct or delete line " + std::to_string(table.Line(row)) + ".");
+                       fmt::format("a unit quaternion (norm 1 within {:g})", kQuaternionNormTolerance),
+                       "The row is damaged; correct or delete line " + std::to_string(table.Line(row)) + ".");
   }
   return q_file.conjugate().normalized();  // q_WS = conj(q_file)
 }
@@ -121,15 +121,16 @@ AttitudeRows ReadEulerFile(const std::filesystem::path& path, const std::optiona
     // The GUI writes NaN when rounding puts |2(q1q3 + q0q2)| above 1, i.e. at pitch ±90°.
     const std::string line = std::to_string(table.Line(row));
     if (!quaternion_path) {
-      table.ThrowBadCell(row, *c[2], "'NaN'", "a finite pitch",
-                   "The x-IMU GUI writes NaN when the pitch is ±90°. Put the recording's _Quaternion.csv beside this "
-                   "file so that rockfit can recompute the angles of this sample, read the attitude from it with "
-                   "--orientation quaternion, or read the gyro data alone with --orientation none.");
+      table.ThrowBadCell(
+          row, *c[2], "'NaN'", "a finite pitch",
+          "The x-IMU GUI writes NaN when the pitch is ±90°. Put the recording's _Quaternion.csv beside this "
+          "file so that rockfit can recompute the angles of this sample, read the attitude from it with "
+          "--orientation quaternion, or read the gyro data alone with --orientation none.");
     }
     if (rows.packets.empty()) {
       table.ThrowBadCell(row, *c[2], "'NaN'", "a finite pitch",
-                   "The file has no packet numbers, so the quaternion of this sample cannot be found; read the "
-                   "attitude with --orientation quaternion instead.");
+                         "The file has no packet numbers, so the quaternion of this sample cannot be found; read the "
+                         "attitude with --orientation quaternion instead.");
     }
     if (!lookup) {
       std::vector<std::string> ignored;
@@ -137,8 +138,9 @@ AttitudeRows ReadEulerFile(const std::filesystem::path& path, const std::optiona
       const auto qc = ResolveColumns(quaternions, QuaternionSpecs());
       if (!qc[0]) {
         table.ThrowBadCell(row, *c[2], "'NaN'", "a finite pitch",
-                     FileName(*quaternion_path) + " has no packet numbers to find this sample in; read the attitude "
-                     "with --orientation quaternion instead.");
+                           FileName(*quaternion_path) +
+                               " has no packet numbers to find this sample in; read the attitude "
+                               "with --orientation quaternion instead.");
       }
       lookup = QuaternionLookup{PacketNumbers(quaternions, qc[0]), {}};
       for (std::size_t q = 0; q < quaternions.row_count(); ++q) lookup->q_WS.push_back(QuaternionRow(quaternions, q, qc));
@@ -146,9 +148,9 @@ AttitudeRows ReadEulerFile(const std::filesystem::path& path, const std::optiona
     const auto hit = std::lower_bound(lookup->packets.begin(), lookup->packets.end(), rows.packets[row]);
     if (hit == lookup->packets.end() || *hit != rows.packets[row]) {
       table.ThrowBadCell(row, *c[2], "'NaN'", "a finite pitch",
-                   fmt::format("{} has no row with packet number {:.0f} to recompute it from; read the attitude "
-                               "with --orientation quaternion, or cut the recording before line {}.",
-                               FileName(*quaternion_path), rows.packets[row], line));
+                         fmt::format("{} has no row with packet number {:.0f} to recompute it from; read the attitude "
+                                     "with --orientation quaternion, or cut the recording before line {}.",
+                                     FileName(*quaternion_path), rows.packets[row], line));
     }
     rows.q_WS.push_back(lookup->q_WS[static_cast<std::size_t>(hit - lookup->packets.begin())]);
     if (repaired++ == 0) first_repaired_line = table.Line(row);

@@ -39,16 +39,16 @@ XimuRegisterSettings ReadXimuRegisters(const CsvTable& registers) {
                                                                   : "QuaternionDataRate (register 70)";
     if (!rate) {
       registers.ThrowBadCell(row, value_column, std::to_string(value) + " for " + name,
-                       "0 (disabled) or 1 … 10 (2^(v-1) Hz: 1 … 512 Hz)",
-                       "The registers file is damaged; delete it and give the rate with --rate.");
+                             "0 (disabled) or 1 … 10 (2^(v-1) Hz: 1 … 512 Hz)",
+                             "The registers file is damaged; delete it and give the rate with --rate.");
     }
     std::optional<XimuRegisterRate>& slot = address == kXimuInertialRateRegister ? rates.inertial : rates.orientation;
     if (slot && slot->value != value) {
       registers.ThrowBadCell(row, value_column,
-                       fmt::format("{} = {} ({:g} Hz), but {} it was {} ({:g} Hz)", name, value, *rate,
-                                   FormatPosition(slot->at), slot->value, slot->rate_hz),
-                       "one rate per recording",
-                       "The rate was changed while recording; split the files at that packet, or record again.");
+                             fmt::format("{} = {} ({:g} Hz), but {} it was {} ({:g} Hz)", name, value, *rate,
+                                         FormatPosition(slot->at), slot->value, slot->rate_hz),
+                             "one rate per recording",
+                             "The rate was changed while recording; split the files at that packet, or record again.");
     }
     slot = XimuRegisterRate{*rate, value, registers.PositionOf(row, value_column)};
   }

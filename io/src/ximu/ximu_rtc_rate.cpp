@@ -25,7 +25,7 @@ std::optional<RtcRateEstimate> EstimateRateFromDateTime(const CsvTable& date_tim
     const std::int64_t v = date_time.Integer(row, column);
     if (v < lo || v > hi) {
       date_time.ThrowBadCell(row, column, std::to_string(v), fmt::format("{} from {} to {}", what, lo, hi),
-                       "The date-time file is damaged: remove it to use the register rate alone.");
+                             "The date-time file is damaged: remove it to use the register rate alone.");
     }
     return v;
   };

@@ -109,8 +109,8 @@ bool ReadAhrsFile(const std::filesystem::path& path, AhrsKind kind, int priority
                                  table.Real(row, *c[4]));
       if (!(std::abs(q.norm() - 1.0) <= kQuaternionNormTolerance)) {
         table.ThrowBadCell(row, *c[1], fmt::format("a quaternion of norm {:.6g}", q.norm()),
-                     fmt::format("a unit quaternion (norm 1 within {:g})", kQuaternionNormTolerance),
-                     "The row is damaged; correct or delete line " + std::to_string(table.Line(row)) + ".");
+                           fmt::format("a unit quaternion (norm 1 within {:g})", kQuaternionNormTolerance),
+                           "The row is damaged; correct or delete line " + std::to_string(table.Line(row)) + ".");
       }
       q_WS = q.normalized();  // sensor → Earth already (no conjugation on the x-IMU3)
     }

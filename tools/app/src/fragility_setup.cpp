@@ -122,8 +122,8 @@ std::vector<quake::FragilityRecord> LoadRecords(const FragilityArgs& cmd) {
   if (cmd.synthetic_records > 0) {
     const double each = cmd.synthetic_duration_s / cmd.synthetic_dt_s + 1.0;
     RequireRecordSamplesWithinLimit(held, static_cast<double>(cmd.synthetic_records) * each,
-                       fmt::format("--synthetic-records {} of {} s at {} s", cmd.synthetic_records,
-                                   cmd.synthetic_duration_s, cmd.synthetic_dt_s));
+                                    fmt::format("--synthetic-records {} of {} s at {} s", cmd.synthetic_records,
+                                                cmd.synthetic_duration_s, cmd.synthetic_dt_s));
   }
   for (int k = 0; k < cmd.synthetic_records; ++k) {
     GroundMotionArgs a;

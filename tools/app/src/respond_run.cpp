@@ -141,7 +141,7 @@ RespondRun RunRespond(const core::Block& block, const RespondArgs& args) {
   run.ground = LoadGroundMotion(cmd.ground);
   const LoadedGroundMotion& ground = run.ground;
   RequireResponseWithinLimit(ground.assembled.ground, cmd.ground.record, !cmd.ground.synthetic_seed, cmd.options.tail_s,
-                      cmd.options.simulation.rate_hz);
+                             cmd.options.simulation.rate_hz);
   const Activity activity("simulating the response and keeping its samples");
   run.response = core::Respond(block, cmd.params, ground.assembled.ground, cmd.options);
   if (cmd.round_off_runs > 0) {

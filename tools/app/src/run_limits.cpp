@@ -38,8 +38,8 @@ void RequireTrajectorySamplesWithinLimit(double seconds, double rate_hz, const s
                                     options, samples, seconds, rate_hz, kMaxTrajectorySamples));
 }
 
-void RequireResponseWithinLimit(const core::GroundMotion& ground, const std::string& source, bool from_file, double tail_s,
-                         double rate_hz) {
+void RequireResponseWithinLimit(const core::GroundMotion& ground, const std::string& source, bool from_file,
+                                double tail_s, double rate_hz) {
   if (!(tail_s >= 0.0) || !std::isfinite(tail_s)) {
     throw InvalidArgument(fmt::format("--tail must be a finite number of seconds ≥ 0, got {}", tail_s));
   }

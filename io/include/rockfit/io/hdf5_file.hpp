@@ -55,8 +55,8 @@ class Group {
   Group OpenGroup(const std::string& name) const;     // BadInput when missing
   Group CreateGroup(const std::string& name) const;   // creates missing intermediate groups; OutputError if it exists
   Group OpenOrCreateGroup(const std::string& name) const;  // open, or create when missing
-  void Remove(const std::string& name) const;         // unlinks; nothing when missing
-  std::vector<std::string> Children() const;          // names of the direct children, in name order
+  void Remove(const std::string& name) const;              // unlinks; nothing when missing
+  std::vector<std::string> Children() const;               // names of the direct children, in name order
 
   // Datasets.
   void WriteDoubles(const std::string& name, const std::vector<double>& values, const std::string& units) const;

@@ -38,7 +38,7 @@ void RequireTrajectorySamplesWithinLimit(double seconds, double rate_hz, const s
 // too long, BadInput naming the record file `source` (InvalidArgument naming --synthetic-duration when the record
 // is generated, `from_file` false); else InvalidArgument naming --tail and --rate. Also refuses a --tail or --rate
 // that is negative or not finite.
-void RequireResponseWithinLimit(const core::GroundMotion& ground, const std::string& source, bool from_file, double tail_s,
-                         double rate_hz);
+void RequireResponseWithinLimit(const core::GroundMotion& ground, const std::string& source, bool from_file,
+                                double tail_s, double rate_hz);
 
 }  // namespace rockfit::app
