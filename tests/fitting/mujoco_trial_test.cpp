@@ -167,7 +167,9 @@ TEST(MujocoTrial, WhereTheFittedModelMissesTheAvrfModelErrorIsFlagged) {
   const bool reproduced = std::abs(m.fitted.avrf.avrf / m.recorded.avrf.avrf - 1.0) <= kAvrfRelativeTolerance &&
                           std::abs(m.fitted.opmf.opmf - m.recorded.opmf.opmf) <= kOpmfTolerance;
   EXPECT_TRUE(reproduced || f.summary.model_error.dominates) << f.summary.FullReport();
-  if (f.summary.model_error.ratio > 2.0) EXPECT_TRUE(f.summary.model_error.dominates);
+  if (f.summary.model_error.ratio > 2.0) {
+    EXPECT_TRUE(f.summary.model_error.dominates);
+  }
 }
 
 #else
