@@ -34,6 +34,16 @@ struct Trial {
   fitting::MeasuredSignal signal;
 };
 
+// The gyro of a synthetic recording as the fitter reads it (ω in rad/s at the device's sample times).
+fitting::MeasuredSignal SignalOf(const io::SynthRecording& rec) {
+  fitting::MeasuredSignal signal;
+  for (std::size_t n = 0; n < rec.device.size(); ++n) {
+    signal.t_s.push_back(static_cast<double>(n) / rec.device.rate_hz);
+    signal.w_B.push_back(rec.device.gyro_dps[n].cast<double>() * (M_PI / 180.0));
+  }
+  return signal;
+}
+
 const Trial& SyntheticTrial() {
   static const Trial trial = [] {
     Trial t;
@@ -47,11 +57,7 @@ const Trial& SyntheticTrial() {
     o.duration_s = 2.5;
     o.measurement.gyro_bias_dps = Eigen::Vector3d(0.3, -0.2, 0.1);
     o.files.rotation_matrix_file = false;
-    const io::SynthRecording rec = io::Synthesize(t.block, p, o);
-    for (std::size_t n = 0; n < rec.device.size(); ++n) {
-      t.signal.t_s.push_back(static_cast<double>(n) / rec.device.rate_hz);
-      t.signal.w_B.push_back(rec.device.gyro_dps[n].cast<double>() * (M_PI / 180.0));
-    }
+    t.signal = SignalOf(io::Synthesize(t.block, p, o));
     return t;
   }();
   return trial;
@@ -114,11 +120,7 @@ const Trial& PlanarSyntheticTrial() {
     o.t0_s = 1.0;
     o.duration_s = 2.5;
     o.files.rotation_matrix_file = false;
-    const io::SynthRecording rec = io::Synthesize(t.block, p, o);
-    for (std::size_t n = 0; n < rec.device.size(); ++n) {
-      t.signal.t_s.push_back(static_cast<double>(n) / rec.device.rate_hz);
-      t.signal.w_B.push_back(rec.device.gyro_dps[n].cast<double>() * (M_PI / 180.0));
-    }
+    t.signal = SignalOf(io::Synthesize(t.block, p, o));
     return t;
   }();
   return trial;
@@ -230,7 +232,7 @@ void BM_ExactJacobianQuality(benchmark::State& state) {
       o.rate_origin = io::RateSource::kManifest;
       if (!trial.mounting.empty()) o.mounting = io::Mounting::Parse(trial.mounting);
       const io::Recording r = io::LoadRecording(trial.files, o);
-      signals.push_back({r.t_s, r.w_B});
+      signals.push_back({r.t_s, r.w_B, {}});
       blocks.push_back(manifest.FindBlock(trial.block_id).ToBlock());
       parameters.push_back(fitting::ParameterSet::Defaults());
     }
@@ -248,13 +250,7 @@ void BM_ExactJacobianQuality(benchmark::State& state) {
       o.duration_s = 2.5;
       o.measurement.seed = static_cast<std::uint64_t>(i + 1);
       o.files.rotation_matrix_file = false;
-      const io::SynthRecording rec = io::Synthesize(block, p, o);
-      fitting::MeasuredSignal signal;
-      for (std::size_t n = 0; n < rec.device.size(); ++n) {
-        signal.t_s.push_back(static_cast<double>(n) / rec.device.rate_hz);
-        signal.w_B.push_back(rec.device.gyro_dps[n].cast<double>() * (M_PI / 180.0));
-      }
-      signals.push_back(signal);
+      signals.push_back(SignalOf(io::Synthesize(block, p, o)));
       blocks.push_back(block);
       parameters.push_back(PlanarParameters());
     }
@@ -346,7 +342,7 @@ void FitSampleCampaign(benchmark::State& state, fitting::IntervalMethod interval
     o.rate_origin = io::RateSource::kManifest;
     if (!trial.mounting.empty()) o.mounting = io::Mounting::Parse(trial.mounting);
     const io::Recording r = io::LoadRecording(trial.files, o);
-    signals.push_back({r.t_s, r.w_B});
+    signals.push_back({r.t_s, r.w_B, {}});
     blocks.push_back(manifest.FindBlock(trial.block_id).ToBlock());
   }
   fitting::FitOptions options;

@@ -132,14 +132,20 @@ Metrics RecordedAndFitted(const MujocoFit& f, const testing::MujocoRockingOption
           io::ComputeTrialMetrics(GyroRecording(model.device), f.trial.block, {})};
 }
 
+// The release of the two metrics tests: α = 0.18 rad, measurement seed 5, and a roll about x [rad].
+testing::MujocoRockingOptions ReleaseOptions(double roll_rad) {
+  testing::MujocoRockingOptions o;
+  o.alpha_rad = 0.18;
+  o.roll_rad = roll_rad;
+  o.measurement.seed = 5;
+  return o;
+}
+
 TEST(MujocoTrial, TheFittedModelReproducesTheAvrfAndOpmfOfAPlanarRelease) {
   // MuJoCo's box rocks for several cycles after the release (peaks of |φ_y| up to 0.13 rad); the fit sees only
   // the window up to the first return impact, so the AVRF over the later cycles is a prediction.
   ROCKFIT_REQUIRE_OPTIMISED_BUILD();
-  testing::MujocoRockingOptions o;
-  o.alpha_rad = 0.18;
-  o.roll_rad = 0.0;
-  o.measurement.seed = 5;
+  const testing::MujocoRockingOptions o = ReleaseOptions(0.0);
   const MujocoFit f = FitMujocoTrial(o);
   ASSERT_TRUE(f.summary.feasible);
   const Metrics m = RecordedAndFitted(f, o);
@@ -156,10 +162,7 @@ TEST(MujocoTrial, WhereTheFittedModelMissesTheAvrfModelErrorIsFlagged) {
   // A roll at release is model error (the release is not the model's): the fit is biased, and the AVRF of the
   // fitted model can miss the recording's (0.815 against 0.910 here). What must hold is that the fit says so.
   ROCKFIT_REQUIRE_OPTIMISED_BUILD();
-  testing::MujocoRockingOptions o;
-  o.alpha_rad = 0.18;
-  o.roll_rad = 0.002;
-  o.measurement.seed = 5;
+  const testing::MujocoRockingOptions o = ReleaseOptions(0.002);
   const MujocoFit f = FitMujocoTrial(o);
   ASSERT_TRUE(f.summary.feasible);
   const Metrics m = RecordedAndFitted(f, o);
