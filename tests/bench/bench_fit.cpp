@@ -13,14 +13,13 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "rockfit/app/recording_input.hpp"
 #include "rockfit/fitting/fitter.hpp"
 #include "rockfit/fitting/local_optimizer.hpp"
 #include "rockfit/fitting/objective.hpp"
 #include "rockfit/fitting/simulator_model.hpp"
 #include "rockfit/fitting/trial_problem.hpp"
-#include "rockfit/io/load_recording.hpp"
 #include "rockfit/io/manifest.hpp"
-#include "rockfit/io/mounting.hpp"
 #include "rockfit/io/synth_recording.hpp"
 
 namespace {
@@ -42,6 +41,24 @@ fitting::MeasuredSignal SignalOf(const io::SynthRecording& rec) {
     signal.w_B.push_back(rec.device.gyro_dps[n].cast<double>() * (M_PI / 180.0));
   }
   return signal;
+}
+
+// The bundled sample campaign's trials as `rockfit batch` loads them (app::LoadManifestTrial), with their blocks;
+// false (the benchmark skipped) when data-samples/manifest.toml is not there.
+bool LoadSampleCampaign(benchmark::State& state, std::vector<fitting::MeasuredSignal>* signals,
+                        std::vector<core::Block>* blocks) {
+  const std::filesystem::path manifest_path = std::filesystem::path(ROCKFIT_SOURCE_DIR) / "data-samples" / "manifest.toml";
+  if (!std::filesystem::exists(manifest_path)) {
+    state.SkipWithError("data-samples/manifest.toml is not there");
+    return false;
+  }
+  const io::Manifest manifest = io::ReadManifest(manifest_path);
+  for (const io::TrialSpec& trial : manifest.trials) {
+    const io::Recording r = app::LoadManifestTrial(trial);
+    signals->push_back({r.t_s, r.w_B, {}});
+    blocks->push_back(manifest.FindBlock(trial.block_id).ToBlock());
+  }
+  return true;
 }
 
 const Trial& SyntheticTrial() {
@@ -220,22 +237,8 @@ void BM_ExactJacobianQuality(benchmark::State& state) {
   std::vector<core::Block> blocks;
   std::vector<fitting::ParameterSet> parameters;
   if (state.range(0) == 0) {
-    const std::filesystem::path manifest_path = std::filesystem::path(ROCKFIT_SOURCE_DIR) / "data-samples" / "manifest.toml";
-    if (!std::filesystem::exists(manifest_path)) {
-      state.SkipWithError("data-samples/manifest.toml is not there");
-      return;
-    }
-    const io::Manifest manifest = io::ReadManifest(manifest_path);
-    for (const io::TrialSpec& trial : manifest.trials) {
-      io::LoadOptions o;
-      o.rate_hz = trial.rate_hz;
-      o.rate_origin = io::RateSource::kManifest;
-      if (!trial.mounting.empty()) o.mounting = io::Mounting::Parse(trial.mounting);
-      const io::Recording r = io::LoadRecording(trial.files, o);
-      signals.push_back({r.t_s, r.w_B, {}});
-      blocks.push_back(manifest.FindBlock(trial.block_id).ToBlock());
-      parameters.push_back(fitting::ParameterSet::Defaults());
-    }
+    if (!LoadSampleCampaign(state, &signals, &blocks)) return;
+    parameters.assign(signals.size(), fitting::ParameterSet::Defaults());
   } else {
     std::mt19937 rng(31);
     std::uniform_real_distribution<double> alpha(0.08, 0.2), lambda_lon(0.3, 0.9), t0(0.8, 1.2);
@@ -328,23 +331,9 @@ BENCHMARK(BM_Error28EvaluationAtTolerance)->Arg(12)->Arg(10)->Arg(9)->Arg(8)->Ar
 
 // The bundled sample campaign, every trial, two trials at a time (as `rockfit batch -j 2`, without the files).
 void FitSampleCampaign(benchmark::State& state, fitting::IntervalMethod intervals) {
-  const std::filesystem::path manifest_path = std::filesystem::path(ROCKFIT_SOURCE_DIR) / "data-samples" / "manifest.toml";
-  if (!std::filesystem::exists(manifest_path)) {
-    state.SkipWithError("data-samples/manifest.toml is not there");
-    return;
-  }
-  const io::Manifest manifest = io::ReadManifest(manifest_path);
   std::vector<fitting::MeasuredSignal> signals;
   std::vector<core::Block> blocks;
-  for (const io::TrialSpec& trial : manifest.trials) {
-    io::LoadOptions o;
-    o.rate_hz = trial.rate_hz;
-    o.rate_origin = io::RateSource::kManifest;
-    if (!trial.mounting.empty()) o.mounting = io::Mounting::Parse(trial.mounting);
-    const io::Recording r = io::LoadRecording(trial.files, o);
-    signals.push_back({r.t_s, r.w_B, {}});
-    blocks.push_back(manifest.FindBlock(trial.block_id).ToBlock());
-  }
+  if (!LoadSampleCampaign(state, &signals, &blocks)) return;
   fitting::FitOptions options;
   options.num_threads = 1;
   options.intervals.method = intervals;
