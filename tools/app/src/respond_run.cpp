@@ -97,6 +97,9 @@ nlohmann::json ResponseJson(const core::Block& block, const RespondRun& run) {
 RespondRun RunRespond(const core::Block& block, const RespondArgs& args) {
   RespondArgs cmd = args;
   std::string source = "command line";
+  if (!core::FromString(cmd.start, &cmd.options.start)) {
+    throw InvalidArgument("the start is flat or tilted, got '" + cmd.start + "'");
+  }
   if (!cmd.fits.empty()) {
     if (cmd.trial.empty() == cmd.group.empty()) {
       throw InvalidArgument("with --fits give exactly one of --trial ID or --group BLOCK,POSITION");
@@ -124,15 +127,12 @@ RespondRun RunRespond(const core::Block& block, const RespondArgs& args) {
     }
     const double alpha = cmd.params.alpha_rad;
     cmd.params = fitted.params;
-    if (cmd.start == "flat") cmd.params.alpha_rad = alpha;
+    if (cmd.options.start == core::GroundStart::kFlatAtRest) cmd.params.alpha_rad = alpha;
     source = fitted.description + " in " + cmd.fits;
   } else if (!cmd.trial.empty() || !cmd.group.empty()) {
     throw InvalidArgument("--trial and --group need --fits FILE");
   }
   cmd.params.facet_tau_rule = ParseFacetTauRule(cmd.facet_tau);
-  if (!core::FromString(cmd.start, &cmd.options.start)) {
-    throw InvalidArgument("the start is flat or tilted, got '" + cmd.start + "'");
-  }
   if (cmd.until != "rest" && cmd.until != "t_max") throw InvalidArgument("until is rest or t_max, got '" + cmd.until + "'");
   if (cmd.round_off_runs < 0) throw InvalidArgument("the round-off runs must be ≥ 0");
   cmd.options.end_at_rest = cmd.until == "rest";
