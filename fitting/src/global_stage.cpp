@@ -16,10 +16,6 @@
 namespace rockfit::fitting {
 namespace {
 
-// Points of a screened scan run over the whole window in batches of this size (in parallel within a batch): small
-// enough that few runs are wasted once the best is found, large enough to keep two threads busy.
-constexpr std::size_t kScreenedBatchSize = 8;
-
 // Two starts closer than this in box-normalised coordinates (each axis scaled to [0, 1]) are the same start.
 constexpr double kDistinctStartDistance = 0.05;
 
@@ -118,46 +114,6 @@ ParameterSet ContinueToFullWindow(const Objective& objective, const ParameterSet
   ContinueTracks(objective, window_end, t_release_ref, scan_points, options, step_options, 0.0, &tracks);
   *converged = tracks[0].converged;
   return tracks[0].at;
-}
-
-// The index of the feasible point of `grid` with the lowest (28) on `objective` (the first of equal ones), nullopt
-// when none is feasible. Every point is first bounded from below by a run over a prefix of the window
-// (prefix_screen.hpp, in parallel); then the points run over the whole window in the order of their bounds, in
-// parallel batches, until the next bound lies above the best (28) found: the points left cannot win.
-std::optional<std::size_t> ScreenedArgmin(const Objective& objective, const std::vector<ParameterSet>& grid,
-                                          double prefix_fraction, int num_threads) {
-  const PrefixScreen screen(objective, prefix_fraction);
-  std::vector<PrefixBound> bounds(grid.size());
-  ParallelFor(grid.size(), num_threads, [&](std::size_t i) { bounds[i] = screen.Bound(grid[i]); });
-  std::vector<std::size_t> order;
-  for (std::size_t i = 0; i < grid.size(); ++i) {
-    if (bounds[i].feasible) order.push_back(i);
-  }
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return bounds[a].epsilon_lower_rad_s < bounds[b].epsilon_lower_rad_s;
-  });
-  std::optional<std::size_t> best;
-  double best_epsilon = std::numeric_limits<double>::infinity();
-  std::size_t next = 0;
-  while (next < order.size()) {
-    std::vector<std::size_t> batch;
-    while (next < order.size() && batch.size() < kScreenedBatchSize &&
-           !(best && PrefixScreen::CannotBeatWithBound(bounds[order[next]], best_epsilon))) {
-      batch.push_back(order[next++]);
-    }
-    if (batch.empty()) break;
-    std::vector<Evaluation> values(batch.size());
-    ParallelFor(batch.size(), num_threads, [&](std::size_t k) { values[k] = objective.Evaluate(grid[batch[k]]); });
-    for (std::size_t k = 0; k < batch.size(); ++k) {
-      const std::size_t i = batch[k];
-      if (!values[k].feasible) continue;
-      if (!best || values[k].epsilon_rad_s < best_epsilon || (values[k].epsilon_rad_s == best_epsilon && i < *best)) {
-        best = i;
-        best_epsilon = values[k].epsilon_rad_s;
-      }
-    }
-  }
-  return best;
 }
 
 // The joint scan of λ and λ_lat on the full window around `at`: λ at `scan_points` values over its bounds times

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <optional>
 #include <random>
+#include <vector>
 
 #include "rockfit/fitting/global_stage.hpp"
 #include "rockfit/fitting/simulator_model.hpp"
@@ -86,6 +88,27 @@ TEST(PrefixScreen, ScreenedScanFindsWhatTheFullScanFinds) {
     const ParameterSet full = ScanParameter(t.objective, start, id, 48);
     const ParameterSet screened = ScanParameter(t.objective, start, id, 48, 0.7);
     EXPECT_EQ(full.value(id), screened.value(id)) << Name(id);
+  }
+}
+
+TEST(PrefixScreen, ScreenedArgminIsTheArgminOfTheWholeWindowInAnyThreadCount) {
+  const ScreenTrial t;
+  std::mt19937_64 rng(3);
+  std::vector<ParameterSet> points;
+  for (int k = 0; k < 60; ++k) points.push_back(RandomPoint(t.trial.truth, &rng));
+  points.push_back(t.trial.truth);
+  std::optional<std::size_t> argmin;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Evaluation e = t.objective.Evaluate(points[i]);
+    if (e.feasible && (!argmin || e.epsilon_rad_s < t.objective.Evaluate(points[*argmin]).epsilon_rad_s)) argmin = i;
+  }
+  ASSERT_TRUE(argmin.has_value());
+  for (int threads : {1, 3}) {
+    double epsilon = 0.0;
+    const std::optional<std::size_t> screened = ScreenedArgmin(t.objective, points, 0.7, threads, &epsilon);
+    ASSERT_TRUE(screened.has_value());
+    EXPECT_EQ(*screened, *argmin) << threads << " threads";
+    EXPECT_EQ(epsilon, t.objective.Evaluate(points[*argmin]).epsilon_rad_s);
   }
 }
 

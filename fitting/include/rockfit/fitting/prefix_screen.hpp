@@ -9,6 +9,10 @@
 // A point whose shorter run fails fails over the whole window too.
 #pragma once
 
+#include <cstddef>
+#include <optional>
+#include <vector>
+
 #include "rockfit/fitting/objective.hpp"
 
 namespace rockfit::fitting {
@@ -38,5 +42,13 @@ class PrefixScreen {
   const Objective* window_;
   double prefix_fraction_;
 };
+
+// The index of the feasible point of `points` with the lowest (28) on `window` (the first of equal ones), nullopt
+// when none is feasible; its (28) in *best_epsilon_rad_s when given. Every point is first bounded from below by a
+// run over the prefix (in parallel on num_threads, 0: all cores); then the points run over the whole window in
+// the order of their bounds, in parallel batches, until the next bound lies above the best (28) found: the points
+// left cannot win. The same index as evaluating every point over the whole window, in any thread count.
+std::optional<std::size_t> ScreenedArgmin(const Objective& window, const std::vector<ParameterSet>& points,
+                                          double prefix_fraction, int num_threads, double* best_epsilon_rad_s = nullptr);
 
 }  // namespace rockfit::fitting
