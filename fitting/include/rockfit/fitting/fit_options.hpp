@@ -70,7 +70,7 @@ struct GlobalStageOptions {
   int continuation_evaluations = 100; // Nelder–Mead evaluations per continuation window
   double continuation_step_fraction = 0.25;  // their initial simplex, as a fraction of nelder_mead.initial_step
   // The stop rule of the continuation: after each window, a carried start whose (28) there exceeds this factor
-  // times the best carried start's is dropped (0: none is). On the sample campaign and 50 coverage-study trials
+  // times the best carried start's is dropped (0: none is). On the sample campaign and 100 coverage-study trials
   // the start that won on the full window had at most 2.2 times the best (28) of any window on its way.
   double continuation_prune_ratio = 3.0;
   // A parameter that starts acting in a continuation window (λ at the first edge impact) is first scanned
