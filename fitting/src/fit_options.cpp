@@ -79,7 +79,15 @@ void GlobalStageOptions::Validate() const {
     throw InvalidArgument(fmt::format("fit option global.continuation_growth must be above 1, got {}", continuation_growth));
   }
   RequireAtLeast(continuation_evaluations, 1, FitOption("global.continuation_evaluations"));
+  if (!(continuation_prune_ratio == 0.0 || continuation_prune_ratio > 1.0)) {
+    throw InvalidArgument(fmt::format("fit option global.continuation_prune_ratio must be 0 (no stop rule) or above 1, "
+                                      "got {}", continuation_prune_ratio));
+  }
   RequireAtLeast(scan_points, 1, FitOption("global.scan_points"));
+  if (!(scan_prefix_fraction >= 0.0 && scan_prefix_fraction < 1.0)) {
+    throw InvalidArgument(
+        fmt::format("fit option global.scan_prefix_fraction must lie in [0, 1), got {}", scan_prefix_fraction));
+  }
   RequireAtLeast(joint_scan_lat_points, 0, FitOption("global.joint_scan_lat_points"));
   if (!(joint_scan_lat_fraction >= 0.0 && joint_scan_lat_fraction < 1.0)) {
     throw InvalidArgument(

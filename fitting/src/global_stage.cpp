@@ -11,6 +11,7 @@
 #include "parallel_for.hpp"
 #include "rockfit/fitting/identifiability.hpp"
 #include "rockfit/fitting/latin_hypercube.hpp"
+#include "rockfit/fitting/prefix_screen.hpp"
 
 namespace rockfit::fitting {
 namespace {
@@ -35,36 +36,84 @@ std::optional<Objective> ActingParameters(const Objective& window, const Paramet
 
 // Nelder–Mead on `window` from the full parameter set `from`; returns the full parameter set it reached.
 ParameterSet MinimizeIn(const Objective& window, const ParameterSet& from, const NelderMeadOptions& options,
-                        bool* converged) {
+                        bool* converged, double* epsilon_rad_s = nullptr) {
   const LocalResult r = MakeNelderMead(options)->Minimize(window, window.FreeValues(from));
   *converged = r.converged;
+  if (epsilon_rad_s) *epsilon_rad_s = r.feasible ? r.epsilon_rad_s : std::numeric_limits<double>::quiet_NaN();
   return window.WithFree(r.x);
 }
 
-// Carries `from` through windows growing by `continuation_growth` after `t_release_ref` from `window_end` to the
-// full window, with a short Nelder–Mead run in each. A parameter not in `acting` that starts acting in a window
-// is first scanned over its bounds at `scan_points` values (0: no scans).
-ParameterSet ContinueToFullWindow(const Objective& objective, ParameterSet at, double window_end, double t_release_ref,
-                                  std::vector<ParameterId> acting, int scan_points, const FitOptions& options,
-                                  const NelderMeadOptions& step_options, bool* converged) {
+// One start on its way from the first window to the full window.
+struct Track {
+  ParameterSet at;
+  std::vector<ParameterId> acting;  // the parameters that have acted in a window so far
+  bool converged = true;            // the last local search converged
+  bool active = true;               // false: dropped by the stop rule (PruneTracks)
+  double window_epsilon_rad_s = std::numeric_limits<double>::quiet_NaN();  // (28) on the last window searched
+};
+
+// One window of the continuation for one track: a parameter not yet in `acting` that starts acting in the
+// window is first scanned over its bounds at `scan_points` values (0: no scans), then a short Nelder–Mead run.
+void StepTrack(const Objective& objective, double window_end, int scan_points, const FitOptions& options,
+               const NelderMeadOptions& step_options, Track* track) {
+  track->window_epsilon_rad_s = std::numeric_limits<double>::quiet_NaN();
+  const std::optional<Objective> window =
+      ActingParameters(objective.WithWindowEnd(window_end), track->at, options.identifiability);
+  if (!window) return;
+  // A parameter that starts acting in this window (λ at the first edge impact) has had no say so far:
+  // scan it over its bounds before the local search.
+  for (ParameterId id : window->free_ids()) {
+    if (std::find(track->acting.begin(), track->acting.end(), id) != track->acting.end()) continue;
+    track->acting.push_back(id);
+    if (scan_points > 0) track->at = ScanParameter(*window, track->at, id, scan_points, options.global.scan_prefix_fraction);
+  }
+  bool step_converged = false;
+  track->at = MinimizeIn(*window, track->at, step_options, &step_converged, &track->window_epsilon_rad_s);
+  track->converged = step_converged;
+}
+
+// The stop rule of the continuation: a track whose (28) on the window just searched exceeds prune_ratio times
+// the best track's there is dropped (0: none is). Tracks are compared on the same window, after all of them
+// were searched in it, so the rule does not depend on the number of threads.
+void PruneTracks(double prune_ratio, std::vector<Track>* tracks) {
+  if (!(prune_ratio > 0.0)) return;
+  double best = std::numeric_limits<double>::infinity();
+  for (const Track& t : *tracks) {
+    if (t.active && std::isfinite(t.window_epsilon_rad_s)) best = std::min(best, t.window_epsilon_rad_s);
+  }
+  if (!std::isfinite(best)) return;
+  for (Track& t : *tracks) {
+    if (t.active && std::isfinite(t.window_epsilon_rad_s) && t.window_epsilon_rad_s > prune_ratio * best) t.active = false;
+  }
+}
+
+// Carries the active tracks through windows growing by `continuation_growth` after `t_release_ref` from
+// `window_end` to the full window, all tracks window by window (in parallel within a window), with the stop rule
+// after each window.
+void ContinueTracks(const Objective& objective, double window_end, double t_release_ref, int scan_points,
+                    const FitOptions& options, const NelderMeadOptions& step_options, double prune_ratio,
+                    std::vector<Track>* tracks) {
   const GlobalStageOptions& g = options.global;
   while (window_end < objective.t_end_s()) {
     window_end = std::min(objective.t_end_s(), t_release_ref + (window_end - t_release_ref) * g.continuation_growth);
-    const std::optional<Objective> window =
-        ActingParameters(objective.WithWindowEnd(window_end), at, options.identifiability);
-    if (!window) continue;
-    // A parameter that starts acting in this window (λ at the first edge impact) has had no say so far:
-    // scan it over its bounds before the local search.
-    for (ParameterId id : window->free_ids()) {
-      if (std::find(acting.begin(), acting.end(), id) != acting.end()) continue;
-      acting.push_back(id);
-      if (scan_points > 0) at = ScanParameter(*window, at, id, scan_points);
-    }
-    bool step_converged = false;
-    at = MinimizeIn(*window, at, step_options, &step_converged);
-    *converged = step_converged;
+    ParallelFor(tracks->size(), options.num_threads, [&](std::size_t i) {
+      Track& track = (*tracks)[i];
+      if (track.active) StepTrack(objective, window_end, scan_points, options, step_options, &track);
+    });
+    PruneTracks(prune_ratio, tracks);
   }
-  return at;
+}
+
+// One start carried to the full window alone (no stop rule).
+ParameterSet ContinueToFullWindow(const Objective& objective, const ParameterSet& from, double window_end,
+                                  double t_release_ref, std::vector<ParameterId> acting, int scan_points,
+                                  const FitOptions& options, const NelderMeadOptions& step_options, bool* converged) {
+  std::vector<Track> tracks(1);
+  tracks[0].at = from;
+  tracks[0].acting = std::move(acting);
+  ContinueTracks(objective, window_end, t_release_ref, scan_points, options, step_options, 0.0, &tracks);
+  *converged = tracks[0].converged;
+  return tracks[0].at;
 }
 
 // The joint scan of λ and λ_lat on the full window around `at`: λ at `scan_points` values over its bounds times
@@ -88,12 +137,7 @@ std::optional<ParameterSet> JointLambdaScan(const Objective& objective, const Pa
       grid.push_back(std::move(q));
     }
   }
-  std::vector<Evaluation> values(grid.size());
-  ParallelFor(grid.size(), num_threads, [&](std::size_t i) { values[i] = objective.Evaluate(grid[i]); });
-  std::optional<std::size_t> best;
-  for (std::size_t i = 0; i < grid.size(); ++i) {
-    if (values[i].feasible && (!best || values[i].epsilon_rad_s < values[*best].epsilon_rad_s)) best = i;
-  }
+  const std::optional<std::size_t> best = ScreenedArgmin(objective, grid, g.scan_prefix_fraction, num_threads);
   if (!best) return std::nullopt;
   return grid[*best];
 }
@@ -325,20 +369,18 @@ NelderMeadOptions ContinuationStepOptions(const FitOptions& options) {
   return step_options;
 }
 
-// One carried start to the full window; there, every parameter sampled over its whole bounds (not t0 and α, which
+// A start carried to the full window: there, every parameter sampled over its whole bounds (not t0 and α, which
 // phase 1 pins down) is scanned once more: later impacts can make its landscape multimodal where the first windows
 // were not (e.g. λ with a long cascade of small lateral edge impacts). Then a last local search.
-ParameterSet ContinueAndRescan(const Objective& objective, const ParameterSet& start, const Continuation& plan,
-                               const FitOptions& options, bool* converged) {
+ParameterSet RescanOnFullWindow(const Objective& objective, ParameterSet at, const Continuation& plan,
+                                const FitOptions& options, bool* converged) {
   const GlobalStageOptions& g = options.global;
-  ParameterSet at = ContinueToFullWindow(objective, start, plan.first_window_end_s, plan.t_release_ref_s,
-                                         plan.first_acting, g.scan_points, options, plan.step_options, converged);
   if (!g.final_scan) return at;
   ParameterSet scanned = at;
   const Evaluation before = objective.Evaluate(at);
   for (ParameterId id : objective.free_ids()) {
     if (id == ParameterId::kT0 || id == ParameterId::kAlpha) continue;
-    scanned = ScanParameter(objective, scanned, id, g.scan_points);
+    scanned = ScanParameter(objective, scanned, id, g.scan_points, g.scan_prefix_fraction);
   }
   if (objective.Evaluate(scanned).epsilon_rad_s < before.epsilon_rad_s) {
     bool step_converged = false;
@@ -385,13 +427,18 @@ void Refine(const Objective& objective, const Continuation& plan, const FitOptio
 
 }  // namespace
 
-ParameterSet ScanParameter(const Objective& window, const ParameterSet& at, ParameterId id, int points) {
+ParameterSet ScanParameter(const Objective& window, const ParameterSet& at, ParameterId id, int points,
+                           double prefix_fraction) {
   const Parameter& p = window.parameters()[id];
+  const PrefixScreen screen(window, prefix_fraction);
   ParameterSet best = at;
   Evaluation best_e = window.Evaluate(at);
   for (int j = 0; j < points; ++j) {
     ParameterSet trial = at;
     trial[id].value = p.lower + (p.upper - p.lower) * (j + 0.5) / points;
+    if (screen.CannotBeat(trial, best_e.feasible ? best_e.epsilon_rad_s : std::numeric_limits<double>::infinity())) {
+      continue;
+    }
     const Evaluation e = window.Evaluate(trial);
     if (e.feasible && (!best_e.feasible || e.epsilon_rad_s < best_e.epsilon_rad_s)) {
       best = trial;
@@ -440,11 +487,23 @@ GlobalStageResult RunGlobalStage(const Objective& objective, const Eigen::Vector
   plan.t_release_ref_s = t1 ? *t1 : objective.t_end_s();
   plan.first_acting = first ? first->free_ids() : std::vector<ParameterId>{};
   plan.step_options = ContinuationStepOptions(options);
-  std::vector<ParameterSet> continued(carried.size());
-  std::vector<char> converged(carried.size(), 0);
-  ParallelFor(carried.size(), options.num_threads, [&](std::size_t i) {
-    bool ok = true;
-    continued[i] = ContinueAndRescan(objective, carried[i], plan, options, &ok);
+  // The tracks go window by window; one that falls far behind the best is dropped (the stop rule).
+  std::vector<Track> tracks(carried.size());
+  for (std::size_t i = 0; i < carried.size(); ++i) {
+    tracks[i].at = carried[i];
+    tracks[i].acting = plan.first_acting;
+  }
+  ContinueTracks(objective, plan.first_window_end_s, plan.t_release_ref_s, g.scan_points, options, plan.step_options,
+                 g.continuation_prune_ratio, &tracks);
+  std::vector<Track> arrived;
+  for (Track& t : tracks) {
+    if (t.active) arrived.push_back(std::move(t));
+  }
+  std::vector<ParameterSet> continued(arrived.size());
+  std::vector<char> converged(arrived.size(), 0);
+  ParallelFor(arrived.size(), options.num_threads, [&](std::size_t i) {
+    bool ok = arrived[i].converged;
+    continued[i] = RescanOnFullWindow(objective, arrived[i].at, plan, options, &ok);
     converged[i] = ok ? 1 : 0;
   });
   result.num_continued = static_cast<int>(continued.size());

@@ -152,6 +152,23 @@ TEST(Fit, GlobalStageToleranceOutsideItsRangeIsRefused) {
   EXPECT_NO_THROW(options.Validate());
 }
 
+TEST(Fit, ScanScreenAndStopRuleOutsideTheirRangesAreRefused) {
+  for (double bad : {-0.1, 1.0, std::nan("")}) {
+    FitOptions options;
+    options.global.scan_prefix_fraction = bad;
+    EXPECT_THROW(options.Validate(), InvalidArgument) << bad;
+  }
+  for (double bad : {-1.0, 0.5, 1.0, std::nan("")}) {
+    FitOptions options;
+    options.global.continuation_prune_ratio = bad;
+    EXPECT_THROW(options.Validate(), InvalidArgument) << bad;
+  }
+  FitOptions off;
+  off.global.scan_prefix_fraction = 0.0;      // no screen
+  off.global.continuation_prune_ratio = 0.0;  // no stop rule
+  EXPECT_NO_THROW(off.Validate());
+}
+
 TEST(FitSummary, JsonCarriesTheDocumentedKeys) {
   const auto trial = MakeAnalyticTrial(0.2, 0.8, -2.0, 0.6, RealisticDisturbances());
   const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));

@@ -42,6 +42,37 @@ TEST(GlobalStage, GivesTheSameResultWithOneThreadAndWithMany) {
   EXPECT_EQ(a.best_epsilon_rad_s, b.best_epsilon_rad_s);
 }
 
+// The scan screen only skips runs that cannot change a scan: the stage with and without it ends at the same point
+// (the stop rule off in both).
+TEST(GlobalStage, ScanScreenLeavesTheResultUnchanged) {
+  const auto trial = MakeAnalyticTrial(0.18, 1.2, 1.5, 0.9, testing::RealisticDisturbances());
+  const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
+  const Eigen::VectorXd start = objective.FreeValues(trial.RoughStart());
+  FitOptions screened, unscreened;
+  screened.num_threads = unscreened.num_threads = 1;
+  screened.global.continuation_prune_ratio = unscreened.global.continuation_prune_ratio = 0.0;
+  unscreened.global.scan_prefix_fraction = 0.0;
+  const GlobalStageResult a = RunGlobalStage(objective, start, screened);
+  const GlobalStageResult b = RunGlobalStage(objective, start, unscreened);
+  EXPECT_EQ(a.best_x, b.best_x);
+  EXPECT_EQ(a.best_epsilon_rad_s, b.best_epsilon_rad_s);
+}
+
+// The stop rule drops carried starts that fall far behind; the one that wins on the full window is not among
+// them on this trial, and fewer starts reach the full window or the same number do.
+TEST(GlobalStage, StopRuleKeepsTheBestStart) {
+  const auto trial = MakeAnalyticTrial(0.18, 1.2, 1.5, 0.9, testing::RealisticDisturbances());
+  const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
+  const Eigen::VectorXd start = objective.FreeValues(trial.RoughStart());
+  FitOptions pruned, kept;
+  kept.global.continuation_prune_ratio = 0.0;
+  pruned.global.refine = kept.global.refine = false;
+  const GlobalStageResult a = RunGlobalStage(objective, start, pruned);
+  const GlobalStageResult b = RunGlobalStage(objective, start, kept);
+  EXPECT_LE(a.num_continued, b.num_continued);
+  EXPECT_EQ(a.best_epsilon_rad_s, b.best_epsilon_rad_s);
+}
+
 TEST(GlobalStage, SamplingBoxNarrowsT0AndAlphaAroundTheEstimateWithinTheBounds) {
   const auto trial = MakeAnalyticTrial(0.2, 0.8, -2.0, 0.6);
   const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));

@@ -14,6 +14,8 @@
 //     window (λ before the first edge impact) are held fixed there; when one starts to act, it is first
 //     scanned over its bounds, because its first influence (the timing of the next lateral half-cycles) is
 //     again multimodal.
+//     The carried starts go window by window together; after each window a start whose (28) there exceeds
+//     `continuation_prune_ratio` times the best start's is dropped (the stop rule).
 //  3. On the full window, the impact parameters (everything but t0 and α) are scanned over their bounds once
 //     more, one at a time, followed by a last Nelder–Mead run; the best carried start by (28) is kept.
 //  4. Refinement of that start, for what one-at-a-time scans and short local searches miss: (a) a joint scan
@@ -59,13 +61,20 @@ struct GlobalStageResult {
 void GlobalSamplingBox(const Objective& objective, const Eigen::VectorXd& estimate, const GlobalStageOptions& options,
                        Eigen::VectorXd* lower, Eigen::VectorXd* upper);
 
-// The best of `points` equally spaced values of `id` over its bounds and its value at `at` (others held).
-ParameterSet ScanParameter(const Objective& window, const ParameterSet& at, ParameterId id, int points);
+// The best of `points` equally spaced values of `id` over its bounds and its value at `at` (others held). With
+// prefix_fraction > 0 each value is first bounded by a run over that part of the window (prefix_screen.hpp) and
+// runs over the whole window only when the bound does not rule it out: the same result, fewer full runs.
+ParameterSet ScanParameter(const Objective& window, const ParameterSet& at, ParameterId id, int points,
+                           double prefix_fraction = 0.0);
 
 // Time of the model's first impact at `at` (values of every parameter) in recording time; nullopt when the model
 // fails there or has no impact in the window.
 std::optional<double> FirstImpactTime(const Objective& objective, const ParameterSet& at);
 
+// Every scan over a parameter's bounds (steps 2–4) first bounds each point's (28) from below by a run over the first
+// `scan_prefix_fraction` of the window and runs the whole window only where the bound leaves the point a chance
+// (prefix_screen.hpp): the scans' results are those of the unscreened scans.
+//
 // Deterministic for a given seed whatever the number of threads (options.num_threads, 0 = all cores).
 GlobalStageResult RunGlobalStage(const Objective& objective, const Eigen::VectorXd& estimate,
                                  const FitOptions& options);

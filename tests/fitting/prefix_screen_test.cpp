@@ -1,0 +1,116 @@
+// The prefix screen of the scans: its bound never exceeds (28) on the whole window, it rules out only points
+// that cannot win, and a screened scan finds what the unscreened scan finds.
+#include "rockfit/fitting/prefix_screen.hpp"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <optional>
+#include <random>
+#include <vector>
+
+#include "rockfit/fitting/global_stage.hpp"
+#include "rockfit/fitting/simulator_model.hpp"
+#include "synth_trial.hpp"
+
+namespace rockfit::fitting {
+namespace {
+
+// A recorded-like trial of the real simulator, its window ending 0.8 s after the release.
+struct ScreenTrial {
+  testing::SynthTrial trial = testing::MakeSynthTrial(0.19, 1.6, -1.8, 0.5);
+  Objective objective{trial.signal, 1.8, std::make_shared<SimulatorModel>(trial.block), trial.truth};
+};
+
+// Random parameter values around the truth: t0 within ±10 ms, α within ±10 mrad, the impact parameters over
+// their empirical bounds.
+ParameterSet RandomPoint(const ParameterSet& truth, std::mt19937_64* rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  ParameterSet p = truth;
+  p[ParameterId::kT0].value += 0.02 * (unit(*rng) - 0.5);
+  p[ParameterId::kAlpha].value += 0.02 * (unit(*rng) - 0.5);
+  p[ParameterId::kLambda].value = -0.5 + 4.5 * unit(*rng);
+  p[ParameterId::kLambdaLat].value = -6.0 + 12.0 * unit(*rng);
+  p[ParameterId::kLambdaLon].value = -0.5 + 3.0 * unit(*rng);
+  return p;
+}
+
+TEST(PrefixScreen, BoundNeverExceedsTheErrorOnTheWholeWindow) {
+  const ScreenTrial t;
+  std::mt19937_64 rng(7);
+  for (double fraction : {0.3, 0.7}) {
+    const PrefixScreen screen(t.objective, fraction);
+    int feasible = 0;
+    for (int k = 0; k < 40; ++k) {
+      const ParameterSet p = RandomPoint(t.trial.truth, &rng);
+      const PrefixBound bound = screen.Bound(p);
+      const Evaluation full = t.objective.Evaluate(p);
+      if (!bound.feasible) {
+        EXPECT_FALSE(full.feasible) << "a failure within the prefix is a failure over the window";
+        continue;
+      }
+      if (!full.feasible) continue;
+      ++feasible;
+      EXPECT_LE(bound.epsilon_lower_rad_s, full.epsilon_rad_s * (1.0 + 1e-9)) << "fraction " << fraction;
+      EXPECT_GT(bound.epsilon_lower_rad_s, 0.0);
+    }
+    EXPECT_GT(feasible, 20);
+  }
+}
+
+TEST(PrefixScreen, NeverRulesOutThePointThatSetTheBest) {
+  const ScreenTrial t;
+  const PrefixScreen screen(t.objective, 0.7);
+  const Evaluation truth = t.objective.Evaluate(t.trial.truth);
+  ASSERT_TRUE(truth.feasible);
+  EXPECT_FALSE(screen.CannotBeat(t.trial.truth, truth.epsilon_rad_s));
+}
+
+TEST(PrefixScreen, OffOrWithoutAShorterPrefixGivesTheTrivialBoundWithoutARun) {
+  const ScreenTrial t;
+  const PrefixScreen off(t.objective, 0.0);
+  const std::int64_t runs = t.objective.counters().runs();
+  const PrefixBound bound = off.Bound(t.trial.truth);
+  EXPECT_TRUE(bound.feasible);
+  EXPECT_EQ(bound.epsilon_lower_rad_s, 0.0);
+  EXPECT_FALSE(off.CannotBeat(t.trial.truth, 0.0));
+  EXPECT_EQ(t.objective.counters().runs(), runs);
+  EXPECT_THROW(PrefixScreen(t.objective, 1.0), std::exception);
+  EXPECT_THROW(PrefixScreen(t.objective, -0.1), std::exception);
+}
+
+TEST(PrefixScreen, ScreenedScanFindsWhatTheFullScanFinds) {
+  const ScreenTrial t;
+  ParameterSet start = t.trial.truth;
+  start[ParameterId::kLambda].value = 0.4;
+  start[ParameterId::kLambdaLon].value = 1.1;
+  for (ParameterId id : {ParameterId::kLambda, ParameterId::kLambdaLat, ParameterId::kLambdaLon}) {
+    const ParameterSet full = ScanParameter(t.objective, start, id, 48);
+    const ParameterSet screened = ScanParameter(t.objective, start, id, 48, 0.7);
+    EXPECT_EQ(full.value(id), screened.value(id)) << Name(id);
+  }
+}
+
+TEST(PrefixScreen, ScreenedArgminIsTheArgminOfTheWholeWindowInAnyThreadCount) {
+  const ScreenTrial t;
+  std::mt19937_64 rng(3);
+  std::vector<ParameterSet> points;
+  for (int k = 0; k < 60; ++k) points.push_back(RandomPoint(t.trial.truth, &rng));
+  points.push_back(t.trial.truth);
+  std::optional<std::size_t> argmin;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Evaluation e = t.objective.Evaluate(points[i]);
+    if (e.feasible && (!argmin || e.epsilon_rad_s < t.objective.Evaluate(points[*argmin]).epsilon_rad_s)) argmin = i;
+  }
+  ASSERT_TRUE(argmin.has_value());
+  for (int threads : {1, 3}) {
+    double epsilon = 0.0;
+    const std::optional<std::size_t> screened = ScreenedArgmin(t.objective, points, 0.7, threads, &epsilon);
+    ASSERT_TRUE(screened.has_value());
+    EXPECT_EQ(*screened, *argmin) << threads << " threads";
+    EXPECT_EQ(epsilon, t.objective.Evaluate(points[*argmin]).epsilon_rad_s);
+  }
+}
+
+}  // namespace
+}  // namespace rockfit::fitting
