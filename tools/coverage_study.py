@@ -136,6 +136,11 @@ def ringing_shape(family, rng):
     return lambda dt: g * (1.0 + dt / t) ** -3 * math.cos(2 * math.pi * f * dt)
 
 
+def gyro_scale_draw(rng):
+    """The gyro-scale family's scale per axis: 1 ± 1–2 %, random sign and size (the first draws of the trial's rng)."""
+    return [1.0 + rng.uniform(0.01, 0.02) * rng.choice([-1.0, 1.0]) for _ in range(3)]
+
+
 def perturb_gyro(prefix, family, rng, impacts=None):
     """Rewrites <prefix>_CalInertialAndMag.csv with the sensor error of `family` (see the module's help)."""
     path = prefix + "_CalInertialAndMag.csv"
@@ -172,7 +177,7 @@ def perturb_gyro(prefix, family, rng, impacts=None):
         rows = [",".join(c) for c in cells]
     else:
         if family == "gyro-scale":
-            scale = [1.0 + rng.uniform(0.01, 0.02) * rng.choice([-1.0, 1.0]) for _ in range(3)]
+            scale = gyro_scale_draw(rng)
             mix = [[scale[0], 0, 0], [0, scale[1], 0], [0, 0, scale[2]]]
         elif family == "non-orthogonal":
             s = [math.sin(math.radians(0.5)) * rng.choice([-1.0, 1.0]) for _ in range(3)]
@@ -208,7 +213,12 @@ def widening_args(args):
         out += ["--model-error-widening", repr(args.model_error_widening)]
     if args.t0_floor_samples is not None:
         out += ["--t0-floor-samples", repr(args.t0_floor_samples)]
-    return out
+    return out + gyro_scale_args(args)
+
+
+def gyro_scale_args(args):
+    """`rockfit fit --estimate-gyro-scale MODE` when given (the fit and the truth's ε both of the scaled model)."""
+    return ["--estimate-gyro-scale", args.estimate_gyro_scale] if args.estimate_gyro_scale else []
 
 
 def study_trial(args, t, workdir):
@@ -248,9 +258,12 @@ def study_trial(args, t, workdir):
         code, out, err = run([args.rockfit, "fit", prefix, "--json", "--evaluate", "--t-end", repr(fit["t_end"]),
                               "--t0", repr(t["t0"]), "--alpha", repr(t["alpha"]), "--lambda", repr(t["lambda"]),
                               "--lambda-lat", repr(t["lambda_lat"]), "--lambda-lon", repr(t["lambda_lon"])]
-                             + block_args(t))
+                             + gyro_scale_args(args) + block_args(t))
         truth_eps = json.loads(out)["epsilon"] if code == 0 else None
-        rows.append({"trial": t, "method": method, "fit": fit, "epsilon_truth": truth_eps, "process_wall_s": wall})
+        row = {"trial": t, "method": method, "fit": fit, "epsilon_truth": truth_eps, "process_wall_s": wall}
+        if args.sensor_family == "gyro-scale":
+            row["gyro_scale_truth"] = gyro_scale_draw(random.Random(t["seed"]))
+        rows.append(row)
     remove_file_set(prefix)
     return rows
 
@@ -389,6 +402,8 @@ def main():
                         help="rockfit fit --model-error-widening C (default: rockfit's; 0: off)")
     parser.add_argument("--t0-floor-samples", type=float, default=None,
                         help="rockfit fit --t0-floor-samples Q (default: rockfit's; 0: off)")
+    parser.add_argument("--estimate-gyro-scale", default=None, choices=["off", "common", "per-axis"],
+                        help="rockfit fit --estimate-gyro-scale MODE (default: rockfit's, off)")
     parser.add_argument("--sensor-family", default=None, choices=SENSOR_FAMILIES)
     parser.add_argument("--out", required=True)
     parser.add_argument("--report-only", action="store_true")
