@@ -321,6 +321,31 @@ def coverage_failures(rows, min_coverage_95, min_epsilon_fraction, band_68=None)
     return failures
 
 
+def gyro_scale_lines(mine):
+    """The estimated gyro scale per axis (`--estimate-gyro-scale`): median, how often the 95 % interval holds the
+    truth (1, or the gyro-scale family's drawn scale) and the median width, over the fits that estimated it."""
+    est = [r for r in mine if (r["fit"].get("gyro_scale") or {}).get("available")]
+    if not est:
+        return []
+    lines = ["", f"gyro scale ({est[0]['fit']['gyro_scale']['mode']}), {len(est)} fits: axis, median estimate, "
+                 "95 % holds the truth, median 95 % width, median |error|"]
+    for a, axis in enumerate("xyz"):
+        cells = []
+        for r in est:
+            g = r["fit"]["gyro_scale"]
+            truth = r.get("gyro_scale_truth", [1.0, 1.0, 1.0])[a]
+            i = g["interval_95"][a]
+            cells.append((g["value"][a], truth, i))
+        closed = [c for c in cells if c[2] is not None]
+        held = sum(c[2][0] <= c[1] <= c[2][1] for c in closed)
+        widths = [c[2][1] - c[2][0] for c in closed]
+        lines.append(f"  s_{axis}: {statistics.median(c[0] for c in cells):.4f}, {held}/{len(closed)} "
+                     f"({100.0 * held / len(closed) if closed else 0:.0f} %), "
+                     f"{statistics.median(widths) if widths else float('nan'):.4f}, "
+                     f"{statistics.median(abs(c[0] - c[1]) for c in cells):.4f}")
+    return lines
+
+
 def report(rows, ringing_scale):
     lines = []
     methods = sorted({r["method"] for r in rows if "method" in r})
@@ -375,6 +400,7 @@ def report(rows, ringing_scale):
                 lines.append(f"  miss: trial {t['index']} ε = {r['fit']['epsilon']:.5g} rad/s, truth {r['epsilon_truth']:.5g} "
                              f"(ratio {q:.3f}); α/θc = {t['alpha'] / t['theta_c']:.3f}, λ_lat = {t['lambda_lat']:.3f}, "
                              f"λ = {t['lambda']:.3f}, b2 = {t['b2']:.3f}")
+        lines += gyro_scale_lines(mine)
         sims = [r["fit"]["simulations"] for r in mine]
         unc_sims = [r["fit"].get("uncertainty", {}).get("simulations", 0) for r in mine]
         walls = [r["fit"]["wall_s"] for r in mine]

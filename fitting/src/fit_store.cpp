@@ -85,7 +85,8 @@ void WriteModelErrorAttributes(const io::hdf5::Group& g, const ModelErrorStateme
 }
 
 // The gyro scale estimated in the fit (gyro_scale_estimate.hpp), only when one was: the dataset gyro_scale
-// (s_x, s_y, s_z) with attributes mode and, per axis, the 95 % interval (NaN where the axis was not estimated).
+// (s_x, s_y, s_z) with the attribute mode and, per axis, the 95 % interval (NaN where the axis was not estimated)
+// and whether the data determine it (0/1).
 void WriteGyroScale(const io::hdf5::Group& g, const GyroScaleEstimate& e) {
   if (e.mode == GyroScaleMode::kOff) return;
   const double nan = std::nan("");
@@ -98,6 +99,8 @@ void WriteGyroScale(const io::hdf5::Group& g, const GyroScaleEstimate& e) {
   }
   g.WriteDoubles("gyro_scale_interval_95_lower", lower, "1");
   g.WriteDoubles("gyro_scale_interval_95_upper", upper, "1");
+  g.WriteInts("gyro_scale_determined",
+              {e.determined[0] ? 1 : 0, e.determined[1] ? 1 : 0, e.determined[2] ? 1 : 0}, "1");
 }
 
 void WriteFitAttributes(const io::hdf5::Group& g, const std::string& settings, const FitSummary& s) {

@@ -124,7 +124,8 @@ std::string FitSummary::ToJson(const std::string& trial) const {
                       {"wall_s", uncertainty.wall_time_s}};
   j["lateral_motion"] = nlohmann::json::parse(LateralMotionJson(lateral_motion));
   j["model_error"] = nlohmann::json::parse(ModelErrorJson(model_error));
-  j["gyro_scale"] = nlohmann::json::parse(GyroScaleJson(gyro_scale));
+  // Only when estimated: the documents of fits without it keep their keys.
+  if (gyro_scale.mode != GyroScaleMode::kOff) j["gyro_scale"] = nlohmann::json::parse(GyroScaleJson(gyro_scale));
   j["epsilon"] = epsilon_rad_s;
   j["epsilon_initial"] = epsilon_initial_rad_s;
   j["feasible"] = feasible;

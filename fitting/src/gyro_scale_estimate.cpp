@@ -119,6 +119,7 @@ GyroScaleEstimate EstimateGyroScale(const Objective& objective, const ParameterS
     out.half_width_parameters[a] = kZ95 * std::sqrt(std::max(0.0, var_parameters[a]));
     const double half = std::hypot(out.half_width_noise[a], out.half_width_parameters[a]);
     out.interval_95[static_cast<std::size_t>(a)] = {s[a] - half, s[a] + half};
+    out.determined[static_cast<std::size_t>(a)] = 2.0 * half < kMaxGyroScaleError;
   }
   return out;
 }
@@ -133,7 +134,8 @@ std::string GyroScaleJson(const GyroScaleEstimate& e) {
   return nlohmann::json{{"mode", ToString(e.mode)},
                         {"available", e.available},
                         {"value", {number(e.value[0]), number(e.value[1]), number(e.value[2])}},
-                        {"interval_95", intervals}}
+                        {"interval_95", intervals},
+                        {"determined", {e.determined[0], e.determined[1], e.determined[2]}}}
       .dump();
 }
 
@@ -146,6 +148,7 @@ std::string GyroScaleText(const GyroScaleEstimate& e) {
     const Interval& i = e.interval_95[static_cast<std::size_t>(a)];
     text += fmt::format("{} s_{} = {:.5f}", a == 0 ? ":" : ",", kAxes[a], e.value[a]);
     text += std::isfinite(i[0]) ? fmt::format(" [{:.5f}, {:.5f}]", i[0], i[1]) : std::string(" (no motion about it)");
+    if (std::isfinite(i[0]) && !e.determined[static_cast<std::size_t>(a)]) text += " not determined";
   }
   return text + " (95 %)";
 }

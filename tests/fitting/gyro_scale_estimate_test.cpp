@@ -55,6 +55,7 @@ TEST(GyroScaleEstimate, AKnownScaleOfTwoPercentPerAxisIsRecoveredWithinItsInterv
   // The rocking axis carries most of the motion: its scale is fixed to a few tenths of a percent.
   constexpr double kRockingAxisResolution = 3e-3;
   EXPECT_NEAR(g.value.y(), scale.y(), kRockingAxisResolution) << fit.FullReport();
+  EXPECT_TRUE(g.determined[1]);
   for (ParameterId id : {ParameterId::kT0, ParameterId::kAlpha, ParameterId::kLambdaLon}) {
     EXPECT_TRUE(Holds(fit.uncertainty.interval_95[static_cast<std::size_t>(id)], trial.truth.value(id)))
         << Name(id) << "\n" << fit.FullReport();
@@ -63,6 +64,7 @@ TEST(GyroScaleEstimate, AKnownScaleOfTwoPercentPerAxisIsRecoveredWithinItsInterv
   EXPECT_EQ(j["gyro_scale"]["mode"], "per-axis");
   EXPECT_EQ(j["gyro_scale"]["value"].size(), 3u);
   EXPECT_EQ(j["gyro_scale"]["interval_95"].size(), 3u);
+  EXPECT_EQ(j["gyro_scale"]["determined"][1], true);
 }
 
 TEST(GyroScaleEstimate, WithoutAScaleErrorTheEstimateIsOneAndTheOtherParametersStayWithinTheirIntervals) {
@@ -83,7 +85,7 @@ TEST(GyroScaleEstimate, WithoutAScaleErrorTheEstimateIsOneAndTheOtherParametersS
     EXPECT_TRUE(Holds(on.uncertainty.interval_95[k], off.parameters.value(id))) << Name(id) << "\n" << off.FullReport();
   }
   EXPECT_EQ(off.gyro_scale.mode, GyroScaleMode::kOff);
-  EXPECT_EQ(nlohmann::json::parse(off.ToJson())["gyro_scale"], nullptr);
+  EXPECT_FALSE(nlohmann::json::parse(off.ToJson()).contains("gyro_scale"));
 }
 
 }  // namespace

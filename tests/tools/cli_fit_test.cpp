@@ -55,6 +55,28 @@ TEST(CliFit, JsonHasTheDocumentedKeysAndEpsilonNotAboveTheStart) {
   EXPECT_NEAR(j["t_end"].get<double>(), 3.378 - 0.012, 0.004);
 }
 
+TEST(CliFit, AnEstimatedGyroScaleIsReportedWithItsIntervalAndABadModeIsRefused) {
+  const CommandResult r = RunRockfit(QuickFit({"--json", "--estimate-gyro-scale", "common"}));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.contains("gyro_scale"));
+  EXPECT_EQ(j["gyro_scale"]["mode"], "common");
+  const double s = j["gyro_scale"]["value"][0].get<double>();
+  EXPECT_EQ(j["gyro_scale"]["value"][1].get<double>(), s);  // one scale for the three axes
+  // The sample trial was made without a scale error: 1 lies in the interval, which holds the estimate.
+  const nlohmann::json& i = j["gyro_scale"]["interval_95"][1];
+  EXPECT_LE(i[0].get<double>(), s);
+  EXPECT_GE(i[1].get<double>(), s);
+  EXPECT_LE(i[0].get<double>(), 1.0);
+  EXPECT_GE(i[1].get<double>(), 1.0);
+  const CommandResult text = RunRockfit(QuickFit({"--estimate-gyro-scale", "per-axis"}));
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("gyro scale  per-axis: s_x ="), std::string::npos) << text.out;
+  const CommandResult bad = RunRockfit(QuickFit({"--estimate-gyro-scale", "yes"}));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("--estimate-gyro-scale"), std::string::npos) << bad.err;
+}
+
 TEST(CliFit, TextShowsTheIntervalsAndHowTheyWereMade) {
   const CommandResult r = RunRockfit(QuickFit({}));
   ASSERT_EQ(r.exit_code, 0) << r.err;

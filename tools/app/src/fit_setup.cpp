@@ -228,6 +228,7 @@ std::string FitResultTable(const std::string& trial, const fitting::FitSummary& 
   out += fmt::format("ε (28)       {:.6g} rad/s (start {:.6g} rad/s), window ends at {:.4f} s\n", s.epsilon_rad_s,
                      s.epsilon_initial_rad_s, s.t_end_s);
   out += "model error  " + fitting::ModelErrorText(s.model_error) + "\n";
+  if (s.gyro_scale.mode != fitting::GyroScaleMode::kOff) out += "gyro scale  " + fitting::GyroScaleText(s.gyro_scale) + "\n";
   out += fmt::format("effort       {} simulations in {:.2f} s; {}\n", s.simulations, s.wall_time_s, s.termination);
   out += fmt::format("intervals    {} ({} of the simulations, {:.2f} s)\n", s.uncertainty.description,
                      s.uncertainty.evaluations, s.uncertainty.wall_time_s);

@@ -30,6 +30,10 @@ struct GyroScaleEstimate {
   Eigen::Vector3d value = Eigen::Vector3d::Ones();  // s_x, s_y, s_z [1] (three equal values for kCommon)
   // Per body axis; NaN ends where the axis carries no model motion (its scale stays 1) or nothing was estimated.
   std::array<Interval, 3> interval_95{};
+  // Whether the data fix the axis's scale: its 95 % interval is closed and narrower than half the admissible
+  // range [1 − kMaxGyroScaleError, 1 + kMaxGyroScaleError] (as IntervalOptions::undetermined_range_fraction
+  // judges the other parameters). The lateral axes of a nearly planar rocking are usually not determined.
+  std::array<bool, 3> determined{};
   Eigen::Vector3d half_width_noise = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   Eigen::Vector3d half_width_parameters = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
 };
@@ -40,7 +44,8 @@ struct GyroScaleEstimate {
 GyroScaleEstimate EstimateGyroScale(const Objective& objective, const ParameterSet& fitted, const UncertaintySummary& u,
                                     double widening_factor, const FitOptions& options);
 
-// {"mode": …, "value": [s_x, s_y, s_z], "interval_95": [[lo, hi] or null × 3]}; null when the mode is off.
+// {"mode": …, "available": …, "value": [s_x, s_y, s_z], "interval_95": [[lo, hi] or null × 3],
+// "determined": [bool × 3]}; null when the mode is off.
 std::string GyroScaleJson(const GyroScaleEstimate& e);
 // One line for the fit's table.
 std::string GyroScaleText(const GyroScaleEstimate& e);
