@@ -141,6 +141,40 @@ print('ok')
   EXPECT_EQ(check.exit_code, 0) << check.out;
 }
 
+TEST(CliFit, WritesAnEstimatedGyroScaleWithItsIntervalAndTheScaledModel) {
+  if (!HaveH5py()) GTEST_SKIP() << "/usr/bin/python3 with h5py is missing";
+  const ScratchDir dir("cli_fit_gyro_scale");
+  const std::string out = (dir / "fits.h5").string();
+  const CommandResult r = RunRockfit(QuickFit({"--estimate-gyro-scale", "common", "--json", "-o", out}));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  // The file holds what the JSON says, and w_B_simulated is the model as fitted: (28) of it is the fit's ε.
+  const std::string expected_scale = j["gyro_scale"]["value"][1].dump();  // round-trip digits
+  const CommandResult check = RunH5pyScript("expected_scale = " + expected_scale + R"(
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], 'r')
+g = f['fits/block2-A-1']
+s = g['gyro_scale'][()]
+mode = g['gyro_scale'].attrs['mode']
+assert (mode.decode() if isinstance(mode, bytes) else mode) == 'common', mode
+assert abs(s[1] - expected_scale) < 1e-15 and s[0] == s[1] == s[2], s
+lo, hi = g['gyro_scale_interval_95_lower'][()], g['gyro_scale_interval_95_upper'][()]
+assert all(lo <= s) and all(s <= hi), (lo, s, hi)
+assert list(g['gyro_scale_determined'][()]) in ([1, 1, 1], [0, 0, 0])
+settings = g.attrs['settings']
+assert (settings.decode() if isinstance(settings, bytes) else settings).endswith('; gyro_scale=common')
+t = g['time_s'][()]
+d = np.linalg.norm(g['w_B_measured'][()] - g['w_B_simulated'][()], axis=1)
+w = np.empty_like(t)
+w[1:-1] = 0.5 * (t[2:] - t[:-2]); w[0] = 0.5 * (t[1] - t[0]); w[-1] = 0.5 * (t[-1] - t[-2])
+eps = float(np.sum(w * d) / (t[-1] - t[0]))
+assert abs(eps - g.attrs['epsilon_rad_s']) < 1e-9 * g.attrs['epsilon_rad_s'], (eps, g.attrs['epsilon_rad_s'])
+print('ok')
+)",
+                                            out);
+  EXPECT_EQ(check.exit_code, 0) << check.out;
+}
+
 // The size of the PNG at `path` ({0, 0} when it is not a PNG).
 std::pair<unsigned, unsigned> PngSize(const std::filesystem::path& path) {
   const PngHeader header = ReadPngHeader(path);
