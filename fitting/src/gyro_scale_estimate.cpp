@@ -14,7 +14,7 @@ namespace {
 // The two-sided 95 % quantile of the normal distribution, as the other intervals use it.
 constexpr double kZ95 = 1.959963984540054;
 
-// The scale at `at`; nullopt-like false when the model fails there.
+// The scale at `at`; false when the model fails there.
 bool ScaleAt(const Objective& objective, const ParameterSet& at, Eigen::Vector3d* scale) {
   ErrorNodes nodes;
   ModelOutput output;
