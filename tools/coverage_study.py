@@ -136,6 +136,11 @@ def ringing_shape(family, rng):
     return lambda dt: g * (1.0 + dt / t) ** -3 * math.cos(2 * math.pi * f * dt)
 
 
+def gyro_scale_draw(rng):
+    """The gyro-scale family's scale per axis: 1 ± 1–2 %, random sign and size (the first draws of the trial's rng)."""
+    return [1.0 + rng.uniform(0.01, 0.02) * rng.choice([-1.0, 1.0]) for _ in range(3)]
+
+
 def perturb_gyro(prefix, family, rng, impacts=None):
     """Rewrites <prefix>_CalInertialAndMag.csv with the sensor error of `family` (see the module's help)."""
     path = prefix + "_CalInertialAndMag.csv"
@@ -172,7 +177,7 @@ def perturb_gyro(prefix, family, rng, impacts=None):
         rows = [",".join(c) for c in cells]
     else:
         if family == "gyro-scale":
-            scale = [1.0 + rng.uniform(0.01, 0.02) * rng.choice([-1.0, 1.0]) for _ in range(3)]
+            scale = gyro_scale_draw(rng)
             mix = [[scale[0], 0, 0], [0, scale[1], 0], [0, 0, scale[2]]]
         elif family == "non-orthogonal":
             s = [math.sin(math.radians(0.5)) * rng.choice([-1.0, 1.0]) for _ in range(3)]
@@ -208,7 +213,12 @@ def widening_args(args):
         out += ["--model-error-widening", repr(args.model_error_widening)]
     if args.t0_floor_samples is not None:
         out += ["--t0-floor-samples", repr(args.t0_floor_samples)]
-    return out
+    return out + gyro_scale_args(args)
+
+
+def gyro_scale_args(args):
+    """`rockfit fit --estimate-gyro-scale MODE` when given (the fit and the truth's ε both of the scaled model)."""
+    return ["--estimate-gyro-scale", args.estimate_gyro_scale] if args.estimate_gyro_scale else []
 
 
 def study_trial(args, t, workdir):
@@ -248,9 +258,12 @@ def study_trial(args, t, workdir):
         code, out, err = run([args.rockfit, "fit", prefix, "--json", "--evaluate", "--t-end", repr(fit["t_end"]),
                               "--t0", repr(t["t0"]), "--alpha", repr(t["alpha"]), "--lambda", repr(t["lambda"]),
                               "--lambda-lat", repr(t["lambda_lat"]), "--lambda-lon", repr(t["lambda_lon"])]
-                             + block_args(t))
+                             + gyro_scale_args(args) + block_args(t))
         truth_eps = json.loads(out)["epsilon"] if code == 0 else None
-        rows.append({"trial": t, "method": method, "fit": fit, "epsilon_truth": truth_eps, "process_wall_s": wall})
+        row = {"trial": t, "method": method, "fit": fit, "epsilon_truth": truth_eps, "process_wall_s": wall}
+        if args.sensor_family == "gyro-scale":
+            row["gyro_scale_truth"] = gyro_scale_draw(random.Random(t["seed"]))
+        rows.append(row)
     remove_file_set(prefix)
     return rows
 
@@ -308,6 +321,31 @@ def coverage_failures(rows, min_coverage_95, min_epsilon_fraction, band_68=None)
     return failures
 
 
+def gyro_scale_lines(mine):
+    """The estimated gyro scale per axis (`--estimate-gyro-scale`): median, how often the 95 % interval holds the
+    truth (1, or the gyro-scale family's drawn scale) and the median width, over the fits that estimated it."""
+    est = [r for r in mine if (r["fit"].get("gyro_scale") or {}).get("available")]
+    if not est:
+        return []
+    lines = ["", f"gyro scale ({est[0]['fit']['gyro_scale']['mode']}), {len(est)} fits: axis, median estimate, "
+                 "95 % holds the truth, median 95 % width, median |error|"]
+    for a, axis in enumerate("xyz"):
+        cells = []
+        for r in est:
+            g = r["fit"]["gyro_scale"]
+            truth = r.get("gyro_scale_truth", [1.0, 1.0, 1.0])[a]
+            i = g["interval_95"][a]
+            cells.append((g["value"][a], truth, i))
+        closed = [c for c in cells if c[2] is not None]
+        held = sum(c[2][0] <= c[1] <= c[2][1] for c in closed)
+        widths = [c[2][1] - c[2][0] for c in closed]
+        lines.append(f"  s_{axis}: {statistics.median(c[0] for c in cells):.4f}, {held}/{len(closed)} "
+                     f"({100.0 * held / len(closed) if closed else 0:.0f} %), "
+                     f"{statistics.median(widths) if widths else float('nan'):.4f}, "
+                     f"{statistics.median(abs(c[0] - c[1]) for c in cells):.4f}")
+    return lines
+
+
 def report(rows, ringing_scale):
     lines = []
     methods = sorted({r["method"] for r in rows if "method" in r})
@@ -362,6 +400,7 @@ def report(rows, ringing_scale):
                 lines.append(f"  miss: trial {t['index']} ε = {r['fit']['epsilon']:.5g} rad/s, truth {r['epsilon_truth']:.5g} "
                              f"(ratio {q:.3f}); α/θc = {t['alpha'] / t['theta_c']:.3f}, λ_lat = {t['lambda_lat']:.3f}, "
                              f"λ = {t['lambda']:.3f}, b2 = {t['b2']:.3f}")
+        lines += gyro_scale_lines(mine)
         sims = [r["fit"]["simulations"] for r in mine]
         unc_sims = [r["fit"].get("uncertainty", {}).get("simulations", 0) for r in mine]
         walls = [r["fit"]["wall_s"] for r in mine]
@@ -389,6 +428,8 @@ def main():
                         help="rockfit fit --model-error-widening C (default: rockfit's; 0: off)")
     parser.add_argument("--t0-floor-samples", type=float, default=None,
                         help="rockfit fit --t0-floor-samples Q (default: rockfit's; 0: off)")
+    parser.add_argument("--estimate-gyro-scale", default=None, choices=["off", "common", "per-axis"],
+                        help="rockfit fit --estimate-gyro-scale MODE (default: rockfit's, off)")
     parser.add_argument("--sensor-family", default=None, choices=SENSOR_FAMILIES)
     parser.add_argument("--out", required=True)
     parser.add_argument("--report-only", action="store_true")

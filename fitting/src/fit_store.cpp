@@ -84,6 +84,25 @@ void WriteModelErrorAttributes(const io::hdf5::Group& g, const ModelErrorStateme
   g.SetInt("clipped_samples", static_cast<std::int64_t>(m.clipped_samples));
 }
 
+// The gyro scale estimated in the fit (gyro_scale_estimate.hpp), only when one was: the dataset gyro_scale
+// (s_x, s_y, s_z) with the attribute mode and, per axis, the 95 % interval (NaN where the axis was not estimated)
+// and whether the data determine it (0/1).
+void WriteGyroScale(const io::hdf5::Group& g, const GyroScaleEstimate& e) {
+  if (e.mode == GyroScaleMode::kOff) return;
+  const double nan = std::nan("");
+  g.WriteDoubles("gyro_scale", {e.value[0], e.value[1], e.value[2]}, "1");
+  g.SetString("mode", ToString(e.mode), "gyro_scale");
+  std::vector<double> lower, upper;
+  for (const Interval& i : e.interval_95) {
+    lower.push_back(e.available ? i[0] : nan);
+    upper.push_back(e.available ? i[1] : nan);
+  }
+  g.WriteDoubles("gyro_scale_interval_95_lower", lower, "1");
+  g.WriteDoubles("gyro_scale_interval_95_upper", upper, "1");
+  g.WriteInts("gyro_scale_determined",
+              {e.determined[0] ? 1 : 0, e.determined[1] ? 1 : 0, e.determined[2] ? 1 : 0}, "1");
+}
+
 void WriteFitAttributes(const io::hdf5::Group& g, const std::string& settings, const FitSummary& s) {
   g.SetDouble("epsilon_rad_s", s.epsilon_rad_s);
   g.SetDouble("epsilon_initial_rad_s", s.epsilon_initial_rad_s);
@@ -99,6 +118,7 @@ void WriteFitAttributes(const io::hdf5::Group& g, const std::string& settings, c
   g.SetDouble("noise_inflation_68", s.uncertainty.bulk_inflation);
   g.SetInt("feasible", s.feasible ? 1 : 0);
   WriteModelErrorAttributes(g, s.model_error);
+  WriteGyroScale(g, s.gyro_scale);
   g.SetString("settings", settings);
   g.SetString("settings_hash", SettingsHash(settings));
   g.SetString("model", s.model_description);
@@ -110,9 +130,12 @@ void WriteFitAttributes(const io::hdf5::Group& g, const std::string& settings, c
 
 // The simulated ω at the measured times of the window (the nodes of (28)) and the model's impact log, in
 // recording time.
-void WriteFittedTrajectory(const io::hdf5::Group& g, const Objective& objective, const FitSummary& s) {
+void WriteFittedTrajectory(const io::hdf5::Group& g, const Objective& given, const FitSummary& s) {
   ErrorNodes nodes;
   ModelOutput output;
+  // The model as fitted: scaled by the gyro scale when the fit estimated one.
+  const Objective objective =
+      given.options().gyro_scale == s.gyro_scale.mode ? given : given.WithGyroScale(s.gyro_scale.mode);
   objective.EvaluateDetailed(s.parameters, &nodes, &output);
   g.WriteDoubles("time_s", nodes.t_s, "s");
   g.WriteVectors("w_B_measured", nodes.w_m_B, "rad/s");

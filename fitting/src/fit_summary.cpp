@@ -74,6 +74,7 @@ std::string FitSummary::FullReport() const {
   out << fmt::format("ε (28)      {:.6g} rad/s (at the start {:.6g} rad/s), window ends at t_end = {:.4f} s\n",
                      epsilon_rad_s, epsilon_initial_rad_s, t_end_s);
   out << "model error " << ModelErrorText(model_error) << "\n";
+  if (gyro_scale.mode != GyroScaleMode::kOff) out << "gyro scale  " << GyroScaleText(gyro_scale) << "\n";
   out << fmt::format("effort      {} simulations in {:.3f} s ({:.0f} per second), method {}\n", simulations,
                      wall_time_s, simulations_per_second, ToString(method));
   for (const StageReport& s : stages) {
@@ -123,6 +124,8 @@ std::string FitSummary::ToJson(const std::string& trial) const {
                       {"wall_s", uncertainty.wall_time_s}};
   j["lateral_motion"] = nlohmann::json::parse(LateralMotionJson(lateral_motion));
   j["model_error"] = nlohmann::json::parse(ModelErrorJson(model_error));
+  // Only when estimated: the documents of fits without it keep their keys.
+  if (gyro_scale.mode != GyroScaleMode::kOff) j["gyro_scale"] = nlohmann::json::parse(GyroScaleJson(gyro_scale));
   j["epsilon"] = epsilon_rad_s;
   j["epsilon_initial"] = epsilon_initial_rad_s;
   j["feasible"] = feasible;

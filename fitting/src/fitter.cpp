@@ -12,6 +12,7 @@
 
 #include "rockfit/core/errors.hpp"
 #include "rockfit/fitting/global_stage.hpp"
+#include "rockfit/fitting/gyro_scale_estimate.hpp"
 #include "rockfit/fitting/identifiability.hpp"
 #include "rockfit/fitting/local_optimizer.hpp"
 #include "rockfit/fitting/lateral_motion_check.hpp"
@@ -343,6 +344,17 @@ void WidenForModelError(const Objective& objective, const FitOptions& options, F
   u.statements = DescribeUncertainty(u, summary->parameters);
 }
 
+void AddGyroScaleEstimate(const Objective& objective, const FitOptions& options, FitSummary* summary) {
+  // The scale projected out of the fit and its interval, with the widening factor of the other 95 % intervals.
+  if (options.gyro_scale == GyroScaleMode::kOff || !summary->feasible) {
+    summary->gyro_scale.mode = options.gyro_scale;
+    return;
+  }
+  const ModelErrorStatement& m = summary->model_error;
+  const double factor = m.available ? ModelErrorWideningFactor(m.ratio, options.intervals.model_error_widening) : 1.0;
+  summary->gyro_scale = EstimateGyroScale(objective, summary->parameters, summary->uncertainty, factor, options);
+}
+
 void AddNotDeterminedWarnings(const Objective& objective, FitSummary* summary) {
   for (ParameterId id : objective.free_ids()) {
     const auto& d = summary->uncertainty.determined[static_cast<std::size_t>(id)];
@@ -395,8 +407,11 @@ void AddPoorFitAndConvergenceWarnings(const Objective& objective, FitSummary* su
 
 }  // namespace
 
-FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const FitOptions& options) {
+FitSummary Fit(const Objective& given, const ParameterSet& start_in, const FitOptions& options) {
   options.Validate();
+  // Every stage evaluates the objective with the gyro scale of the options projected out (or none).
+  const Objective objective =
+      given.options().gyro_scale == options.gyro_scale ? given : given.WithGyroScale(options.gyro_scale);
   if (objective.num_free() == 0) {
     throw InvalidArgument("every parameter is fixed: free at least one (e.g. --free alpha) or use --evaluate");
   }
@@ -419,6 +434,7 @@ FitSummary Fit(const Objective& objective, const ParameterSet& start_in, const F
   ApplyLateralMotionCheck(objective, options, &summary);
   AddModelErrorStatement(objective, options, &summary);
   WidenForModelError(objective, options, &summary);
+  AddGyroScaleEstimate(objective, options, &summary);
   AddNotDeterminedWarnings(objective, &summary);
   AddFailureWarning(objective, failures_before, &summary);
   AddPoorFitAndConvergenceWarnings(objective, &summary);

@@ -70,6 +70,12 @@ Objective Objective::WithWindowEnd(double t_end_s) const {
   return copy;
 }
 
+Objective Objective::WithGyroScale(GyroScaleMode mode) const {
+  Objective copy = *this;
+  copy.options_.gyro_scale = mode;
+  return copy;
+}
+
 Objective Objective::WithModel(std::shared_ptr<const TrajectoryModel> model) const {
   if (!model) throw InvalidArgument("the fitting problem needs a trajectory model");
   Objective copy = *this;
@@ -139,7 +145,13 @@ Evaluation Objective::EvaluateDetailed(const ParameterSet& values, ErrorNodes* n
   if (output->w_B.size() != nodes->size()) {
     return infeasible(ModelFailure::kWrongSampleCount);
   }
-  const double epsilon = TrajectoryError(*nodes, output->w_B);
+  if (options_.gyro_scale != GyroScaleMode::kOff) {
+    // Variable projection (gyro_scale.hpp): the best S for these parameters, and (28) of S·ω_s.
+    result.gyro_scale = ProjectedGyroScale(*nodes, output->w_B, options_.gyro_scale);
+    for (Eigen::Vector3d& w : output->w_B) w = result.gyro_scale.cwiseProduct(w);
+    output->dw_B_dparams.clear();
+  }
+  const double epsilon = TrajectoryError(*nodes, output->w_B);  // (28)
   if (!std::isfinite(epsilon)) return infeasible(ModelFailure::kNonFiniteOutput);
   result.feasible = true;
   result.epsilon_rad_s = epsilon;

@@ -52,6 +52,17 @@ def test_fit_with_fix_and_bounds_equals_the_program(rockfit, sample_recording):
     assert result.parameters["lambda_lat"].fixed and result.values["lambda_lat"] == -2.032
 
 
+def test_fit_with_a_gyro_scale_equals_the_program(rockfit, sample_recording):
+    result = rockfit.fit(sample_recording, estimate_gyro_scale="common", method="nelder-mead", max_evaluations=60,
+                         global_stage=False)
+    cli = run_cli("fit", MANIFEST, "--trial", SAMPLE_TRIAL, "--estimate-gyro-scale", "common", "--method",
+                  "nelder-mead", "--max-evaluations", "60", "--no-global")
+    assert_equal_to_cli(result, cli)
+    assert cli["gyro_scale"]["mode"] == "common"
+    with pytest.raises(ValueError):
+        rockfit.fit(sample_recording, estimate_gyro_scale="yes")
+
+
 def test_fit_recovers_the_truth_of_the_synthetic_trial(default_fit):
     truth = json.loads((SAMPLES / "recordings" / f"{SAMPLE_TRIAL}_truth.json").read_text())
     assert truth["command"].find("--alpha 0.197") > 0  # made with the paper's Fig. 14 values, t0 = 2.33 s

@@ -55,6 +55,28 @@ TEST(CliFit, JsonHasTheDocumentedKeysAndEpsilonNotAboveTheStart) {
   EXPECT_NEAR(j["t_end"].get<double>(), 3.378 - 0.012, 0.004);
 }
 
+TEST(CliFit, AnEstimatedGyroScaleIsReportedWithItsIntervalAndABadModeIsRefused) {
+  const CommandResult r = RunRockfit(QuickFit({"--json", "--estimate-gyro-scale", "common"}));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.contains("gyro_scale"));
+  EXPECT_EQ(j["gyro_scale"]["mode"], "common");
+  const double s = j["gyro_scale"]["value"][0].get<double>();
+  EXPECT_EQ(j["gyro_scale"]["value"][1].get<double>(), s);  // one scale for the three axes
+  // The sample trial was made without a scale error: 1 lies in the interval, which holds the estimate.
+  const nlohmann::json& i = j["gyro_scale"]["interval_95"][1];
+  EXPECT_LE(i[0].get<double>(), s);
+  EXPECT_GE(i[1].get<double>(), s);
+  EXPECT_LE(i[0].get<double>(), 1.0);
+  EXPECT_GE(i[1].get<double>(), 1.0);
+  const CommandResult text = RunRockfit(QuickFit({"--estimate-gyro-scale", "per-axis"}));
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("gyro scale  per-axis: s_x ="), std::string::npos) << text.out;
+  const CommandResult bad = RunRockfit(QuickFit({"--estimate-gyro-scale", "yes"}));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("--estimate-gyro-scale"), std::string::npos) << bad.err;
+}
+
 TEST(CliFit, TextShowsTheIntervalsAndHowTheyWereMade) {
   const CommandResult r = RunRockfit(QuickFit({}));
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -113,6 +135,40 @@ assert list(g['parameters/fixed'][()]) == [1, 1, 0, 0, 0, 1]
 assert g['w_B_simulated'].shape == g['w_B_measured'].shape and g['w_B_measured'].shape[1] == 3
 assert g.attrs['epsilon_rad_s'] <= g.attrs['epsilon_initial_rad_s']
 assert len(g['impacts/t_s']) > 0
+print('ok')
+)",
+                                            out);
+  EXPECT_EQ(check.exit_code, 0) << check.out;
+}
+
+TEST(CliFit, WritesAnEstimatedGyroScaleWithItsIntervalAndTheScaledModel) {
+  if (!HaveH5py()) GTEST_SKIP() << "/usr/bin/python3 with h5py is missing";
+  const ScratchDir dir("cli_fit_gyro_scale");
+  const std::string out = (dir / "fits.h5").string();
+  const CommandResult r = RunRockfit(QuickFit({"--estimate-gyro-scale", "common", "--json", "-o", out}));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  // The file holds what the JSON says, and w_B_simulated is the model as fitted: (28) of it is the fit's ε.
+  const std::string expected_scale = j["gyro_scale"]["value"][1].dump();  // round-trip digits
+  const CommandResult check = RunH5pyScript("expected_scale = " + expected_scale + R"(
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], 'r')
+g = f['fits/block2-A-1']
+s = g['gyro_scale'][()]
+mode = g['gyro_scale'].attrs['mode']
+assert (mode.decode() if isinstance(mode, bytes) else mode) == 'common', mode
+assert abs(s[1] - expected_scale) < 1e-15 and s[0] == s[1] == s[2], s
+lo, hi = g['gyro_scale_interval_95_lower'][()], g['gyro_scale_interval_95_upper'][()]
+assert all(lo <= s) and all(s <= hi), (lo, s, hi)
+assert list(g['gyro_scale_determined'][()]) in ([1, 1, 1], [0, 0, 0])
+settings = g.attrs['settings']
+assert (settings.decode() if isinstance(settings, bytes) else settings).endswith('; gyro_scale=common')
+t = g['time_s'][()]
+d = np.linalg.norm(g['w_B_measured'][()] - g['w_B_simulated'][()], axis=1)
+w = np.empty_like(t)
+w[1:-1] = 0.5 * (t[2:] - t[:-2]); w[0] = 0.5 * (t[1] - t[0]); w[-1] = 0.5 * (t[-1] - t[-2])
+eps = float(np.sum(w * d) / (t[-1] - t[0]))
+assert abs(eps - g.attrs['epsilon_rad_s']) < 1e-9 * g.attrs['epsilon_rad_s'], (eps, g.attrs['epsilon_rad_s'])
 print('ok')
 )",
                                             out);

@@ -43,6 +43,11 @@ void AddFitOptions(CLI::App& app, FitArgs& args) {
   app.add_option("--t0-floor-samples", args.t0_floor_samples,
                  "Floor of t0's 95 % half-widths in sample periods, added in quadrature (0: off)")
       ->capture_default_str();
+  app.add_option("--estimate-gyro-scale", args.estimate_gyro_scale,
+                 "Estimate a gyro scale factor in the fit (variable projection): off, common (one for the three axes) "
+                 "or per-axis; the model is then compared scaled, and the scale is reported with its 95 % interval")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"off", "common", "per-axis"}));
 }
 
 void AddMetricsOptions(CLI::App& app, MetricsArgs& args) {

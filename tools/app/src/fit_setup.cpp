@@ -105,6 +105,7 @@ PreparedFit PrepareFit(const io::Recording& recording, const core::Block& block,
   options.intervals.method = fitting::ParseIntervalMethod(args.intervals);
   options.intervals.model_error_widening = args.model_error_widening;
   options.intervals.t0_floor_samples = args.t0_floor_samples;
+  options.gyro_scale = fitting::ParseGyroScaleMode(args.estimate_gyro_scale);
   options.Validate();
 
   fitting::ParameterSet set = MakeParameterSet(args);
@@ -124,6 +125,9 @@ PreparedFit PrepareFit(const io::Recording& recording, const core::Block& block,
     if (problem.start.FreeIds().empty()) throw InvalidArgument("--fix leaves no parameter free to fit");
     problem.objective = problem.objective.WithParameters(problem.start);
   }
+  // The objective projects the gyro scale out as the fit does, so that what is evaluated after the fit (the
+  // stored trajectory, plots) is the model as fitted.
+  problem.objective = problem.objective.WithGyroScale(options.gyro_scale);
   std::string settings = FitSettingsText(block, args);
   return PreparedFit{std::move(problem.objective), std::move(problem.start), options, std::move(problem.guess),
                      settings, std::move(problem.notes)};
@@ -156,6 +160,9 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   }
   settings += fmt::format("; model_error_widening={:.17g}; t0_floor_samples={:.17g}", args.model_error_widening,
                           args.t0_floor_samples);
+  // Only when estimated, so that the settings (and hashes) of fits without it stay those of v8.
+  const fitting::GyroScaleMode gyro_scale = fitting::ParseGyroScaleMode(args.estimate_gyro_scale);
+  if (gyro_scale != fitting::GyroScaleMode::kOff) settings += fmt::format("; gyro_scale={}", fitting::ToString(gyro_scale));
   return settings;
 }
 
@@ -183,7 +190,7 @@ nlohmann::json FitResultJson(const std::string& trial, const fitting::FitSummary
   // The fit's own JSON (FitSummary::ToJson), narrowed to the keys `fit --json` documents (fitting/README.md,
   // "rockfit fit"): one JSON writer for the library, the command line and Python.
   static const char* const kKeys[] = {"trial", "parameters", "correlation", "uncertainty_method", "uncertainty",
-                                      "lateral_motion", "model_error", "epsilon", "epsilon_initial", "t_end", "simulations",
+                                      "lateral_motion", "model_error", "gyro_scale", "epsilon", "epsilon_initial", "t_end", "simulations",
                                       "wall_s", "termination", "warnings"};
   static const char* const kParameterKeys[] = {"value",       "lower",       "upper",      "fixed",
                                                "std_error",   "interval_68", "interval_95", "determined"};
@@ -221,6 +228,7 @@ std::string FitResultTable(const std::string& trial, const fitting::FitSummary& 
   out += fmt::format("ε (28)       {:.6g} rad/s (start {:.6g} rad/s), window ends at {:.4f} s\n", s.epsilon_rad_s,
                      s.epsilon_initial_rad_s, s.t_end_s);
   out += "model error  " + fitting::ModelErrorText(s.model_error) + "\n";
+  if (s.gyro_scale.mode != fitting::GyroScaleMode::kOff) out += "gyro scale  " + fitting::GyroScaleText(s.gyro_scale) + "\n";
   out += fmt::format("effort       {} simulations in {:.2f} s; {}\n", s.simulations, s.wall_time_s, s.termination);
   out += fmt::format("intervals    {} ({} of the simulations, {:.2f} s)\n", s.uncertainty.description,
                      s.uncertainty.evaluations, s.uncertainty.wall_time_s);

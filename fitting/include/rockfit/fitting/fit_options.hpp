@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "rockfit/fitting/gyro_scale.hpp"
 #include "rockfit/fitting/lateral_motion_check.hpp"
 #include "rockfit/fitting/lateral_rescan.hpp"
 #include "rockfit/fitting/model_error.hpp"
@@ -202,6 +203,10 @@ struct FitOptions {
   LateralRescanOptions lateral_rescan;
   // How much of ε the noise at rest explains, and a warning when model error dominates (model_error.hpp).
   ModelErrorOptions model_error;
+  // A gyro scale factor estimated in the fit by variable projection (gyro_scale.hpp, gyro_scale_estimate.hpp):
+  // off by default (fitting/README.md, "A gyro scale in the fit", says why). Fit() evaluates the objective with
+  // this mode whatever the objective's own.
+  GyroScaleMode gyro_scale = GyroScaleMode::kOff;
   // Worker threads for the global stage; 0 = all cores (TBB default). Batches set 1 per trial.
   int num_threads = 0;
   // A value closer than this fraction of its range to a bound is reported "at bound".

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "rockfit/fitting/fit_options.hpp"
+#include "rockfit/fitting/gyro_scale_estimate.hpp"
 #include "rockfit/fitting/local_optimizer.hpp"
 #include "rockfit/fitting/parameters.hpp"
 #include "rockfit/fitting/lateral_motion_check.hpp"
@@ -68,6 +69,9 @@ struct FitSummary {
   LateralMotionCheck lateral_motion;
   // How much of ε the sensor noise at rest explains and how much is model error (model_error.hpp).
   ModelErrorStatement model_error;
+  // The gyro scale projected out of the fit, with its 95 % interval (gyro_scale_estimate.hpp); mode kOff when
+  // FitOptions::gyro_scale is off.
+  GyroScaleEstimate gyro_scale;
 
   double epsilon_initial_rad_s = 0.0;  // (28) at `start`
   double epsilon_rad_s = 0.0;          // (28) at `parameters`

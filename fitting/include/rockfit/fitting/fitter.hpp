@@ -14,7 +14,8 @@ namespace rockfit::fitting {
 
 // Fits the free parameters of `objective`, starting at the free values of `start` (clamped into the bounds).
 // Throws InvalidArgument for bad options or when no parameter is free; numerical trouble is reported in the
-// summary (termination, warnings), never thrown.
+// summary (termination, warnings), never thrown. The objective is evaluated with options.gyro_scale projected
+// out (Objective::WithGyroScale), whatever its own setting; the scale is in the summary's gyro_scale.
 FitSummary Fit(const Objective& objective, const ParameterSet& start, const FitOptions& options);
 
 }  // namespace rockfit::fitting

@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 
+#include "rockfit/fitting/gyro_scale.hpp"
 #include "rockfit/fitting/parameters.hpp"
 #include "rockfit/fitting/trajectory_error.hpp"
 #include "rockfit/fitting/trajectory_model.hpp"
@@ -39,6 +40,8 @@ struct ObjectiveOptions {
   // ε assigned to an infeasible point [rad/s]: far above any real ε (the measured |ω| of a rocking block
   // stays below ~20 rad/s), finite so that optimizers keep working.
   double failure_penalty_rad_s = 1e3;
+  // The gyro scale projected out of every evaluation (gyro_scale.hpp): (28) is then of the scaled model S·ω_s.
+  GyroScaleMode gyro_scale = GyroScaleMode::kOff;
   void Validate() const;  // throws InvalidArgument
 };
 
@@ -48,6 +51,8 @@ struct Evaluation {
   bool feasible = false;
   ModelFailure failure = ModelFailure::kNone;                  // why not feasible
   core::ImpactStatus impact_status = core::ImpactStatus::kOk;  // the failing impact's status, if any
+  // The projected gyro scale S (diagonal) of this evaluation; (1, 1, 1) when the objective estimates none.
+  Eigen::Vector3d gyro_scale = Eigen::Vector3d::Ones();
   std::string failure_category() const { return FailureCategory(failure, impact_status); }  // "" when feasible
 };
 
@@ -63,6 +68,8 @@ class Objective {
   Objective WithWindowEnd(double t_end_s) const;
   // The same problem (and shared counters) with another trajectory model, e.g. one at a looser tolerance.
   Objective WithModel(std::shared_ptr<const TrajectoryModel> model) const;
+  // The same problem (and shared counters) with the gyro scale projected out as `mode` says (gyro_scale.hpp).
+  Objective WithGyroScale(GyroScaleMode mode) const;
 
   const MeasuredSignal& signal() const { return *signal_; }
   double t_end_s() const { return t_end_s_; }
@@ -88,6 +95,8 @@ class Objective {
   // The nodes of (28) and the model output at them (for residual-based back ends, plots, diagnostics).
   // Returns the evaluation; `nodes` and `output` are filled as far as the evaluation got.
   // With `sensitivities`, the model is asked for the exact derivatives of ω_s too (ModelOutput::dw_B_dparams).
+  // With a gyro scale, output->w_B is the scaled model S·ω_s, and the exact derivatives are dropped (they would
+  // miss the scale's own dependence on the parameters; the residuals are then differenced).
   Evaluation EvaluateDetailed(const ParameterSet& values, ErrorNodes* nodes, ModelOutput* output,
                               bool sensitivities = false) const;
 

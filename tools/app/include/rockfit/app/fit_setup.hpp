@@ -38,10 +38,12 @@ struct FitArgs {
   std::string intervals = "thorough";  // none | fast | thorough (fitting::IntervalMethod)
   double model_error_widening = fitting::kDefaultModelErrorWidening;  // fitting::IntervalOptions (0: off)
   double t0_floor_samples = fitting::kDefaultT0FloorSamples;          // fitting::IntervalOptions (0: off)
+  std::string estimate_gyro_scale = "off";  // off | common | per-axis (fitting::GyroScaleMode)
 };
 
 // --method, --bounds, --free, --fix, --lower, --upper, --t-end, --max-evaluations, --no-global, --keep-bias,
-// --threads, --intervals, --model-error-widening, --t0-floor-samples (declared by tools/src/cli_common.cpp).
+// --threads, --intervals, --model-error-widening, --t0-floor-samples, --estimate-gyro-scale (declared by
+// tools/src/cli_common.cpp).
 
 struct PreparedFit {
   fitting::Objective objective;
@@ -81,8 +83,8 @@ fitting::CampaignTrial MakeCampaignTrial(const io::Manifest& manifest, const io:
                                          std::function<void(const io::Recording&)> on_loaded = {});
 
 // The documented JSON of one fit: trial, parameters (value, lower, upper, fixed, std_error, interval_68,
-// interval_95, determined), correlation, uncertainty_method, uncertainty, lateral_motion, model_error, epsilon,
-// epsilon_initial, t_end, simulations, wall_s, termination, warnings.
+// interval_95, determined), correlation, uncertainty_method, uncertainty, lateral_motion, model_error, gyro_scale
+// (only when estimated), epsilon, epsilon_initial, t_end, simulations, wall_s, termination, warnings.
 nlohmann::json FitResultJson(const std::string& trial, const fitting::FitSummary& summary);
 
 // A table for terminals.
