@@ -2,6 +2,7 @@
 """How far the attitude integrated from the gyro moves the OPMF and AVRF (io/README.md, "Attitude from the gyro").
 
    tools/gyro_attitude_study.py [--rockfit PROGRAM] [--manifest MANIFEST] [--variants DIR TRIAL]
+                                [--held-out DIR N] [--anchors TRIAL...]
 
 For every trial of the sample campaign (data-samples/manifest.toml) it runs `rockfit metrics` twice: with the
 attitude files (`file`) and with `--orientation none`, where the attitude is integrated from the gyro and levelled
@@ -14,7 +15,13 @@ prints the same comparison for each: which artefact of the device moves which re
 
 --held-out DIR N makes N further synthetic trials with `rockfit synth` in DIR, their parameters and device
 artefacts drawn (fixed seed) from the ranges of the sample campaign (tools/make_samples.sh), and prints the same
-comparison: trials the sample campaign's numbers were not seen on.
+comparison: trials the sample campaign's numbers were not seen on. --held-out-seed S draws another set (default
+29; the synth seeds are 100·S + k).
+
+--anchors TRIAL... prints, for each anchor of φ_y of each TRIAL (a manifest trial id, or the prefix of a synth
+recording with its _truth.json), its time minus the nearest true impact's, read with the attitude files and
+without (through the Python module built in build/python), and the drift-corrected φ_y at the AVRF's peaks
+both ways: where the gyro-only path misplaces the impacts, and what that does to the peaks.
 
 Run once and report; the CI checks the small form (tests/tools/cli_csv_campaign_test.cpp).
 """
@@ -108,9 +115,9 @@ def variants(rockfit, manifest, out_dir, trial_id):
         print(row(label, file_m, gyro_m, truth["summary"]["opmf"]))
 
 
-def held_out(rockfit, out_dir, count):
+def held_out(rockfit, out_dir, count, seed):
     import random
-    draw = random.Random(29)
+    draw = random.Random(seed)
     os.makedirs(out_dir, exist_ok=True)
     print(HEADER)
     print(HEADER2)
@@ -124,7 +131,7 @@ def held_out(rockfit, out_dir, count):
                          "--lambda-lat", "%.2f" % draw.uniform(-4.5, 4.5),
                          "--lambda-lon", "%.2f" % draw.uniform(0.2, 1.3), "--t0", "%.2f" % draw.uniform(1.2, 2.0),
                          "--duration", "5.5", "--rate", "256", "--quaternion-rate", "256", "--no-rotation-matrix",
-                         "--seed", str(2900 + k), "--gyro-noise-dps", "0.1", "--gyro-bias-dps=" + bias,
+                         "--seed", str(100 * seed + k), "--gyro-noise-dps", "0.1", "--gyro-bias-dps=" + bias,
                          "--ringing-gain", "%.2f" % draw.uniform(0.18, 0.32),
                          "--ringing-frequency-hz", "%.1f" % draw.uniform(34, 45),
                          "--ringing-decay-time-s", "%.3f" % draw.uniform(0.022, 0.04),
@@ -148,15 +155,69 @@ def held_out(rockfit, out_dir, count):
           (worst_opmf, beyond_opmf, 100.0 * worst_avrf, beyond_avrf))
 
 
+def anchors(manifest, trials):
+    sys.path.insert(0, os.path.join(HERE, "build", "python"))
+    import numpy
+    import rockfit
+    for trial in trials:
+        if os.path.exists(trial + "_truth.json"):
+            path, trial_id, truth_path = trial, None, trial + "_truth.json"
+        else:
+            path, trial_id = manifest, trial
+            truth_path = os.path.join(os.path.dirname(manifest), "recordings", trial + "_truth.json")
+        with open(truth_path, encoding="utf-8") as f:
+            truth = json.load(f)
+        impacts = truth["impacts"]
+        columns = truth["impact_columns"]
+        true_t = numpy.array([i[columns.index("t_s")] for i in impacts])
+        w_minus_y = numpy.array([i[columns.index("w_minus_B_y_rad_s")] for i in impacts])
+        w_plus_y = numpy.array([i[columns.index("w_plus_B_y_rad_s")] for i in impacts])
+        block = rockfit.Block(*[truth["block"][k] for k in ("b1_m", "b2_m", "h_m")], mass=truth["block"]["mass_kg"]) \
+            if trial_id is None else None
+        readings = {}
+        for label, orientation in (("file", "auto"), ("gyro", "none")):
+            recording = rockfit.load_recording(path, trial_id, orientation=orientation)
+            readings[label] = rockfit.metrics(recording, block)
+        print("%s: OPMF file %.4f gyro %.4f true %.4f; AVRF file %.4f gyro %.4f (%+.2f %%)" % (
+            trial, readings["file"].opmf, readings["gyro"].opmf, truth["summary"]["opmf"], readings["file"].avrf,
+            readings["gyro"].avrf, 100.0 * (readings["gyro"].avrf / readings["file"].avrf - 1.0)))
+        print("  %9s %8s %8s %10s %10s %10s %10s" % ("t true", "w- y", "w+ y", "file-true", "gyro-true",
+                                                    "w-(gyro-t)", "anchor g-f"))
+        file_by_t = {round(a.t, 2): a for a in readings["file"].impacts}
+        dt = 1.0 / readings["file"].rate_hz
+        worst = {"file": 0.0, "gyro": 0.0}
+        for a in readings["gyro"].impacts:
+            k = int(numpy.argmin(numpy.abs(true_t - a.t)))
+            f = min(readings["file"].impacts, key=lambda b: abs(b.t - a.t))
+            if abs(f.t - a.t) > dt:
+                f = None
+            gyro_dt = a.t - true_t[k]
+            file_dt = f.t - true_t[k] if f is not None else float("nan")
+            worst["gyro"] = max(worst["gyro"], abs(w_minus_y[k] * gyro_dt))
+            if f is not None:
+                worst["file"] = max(worst["file"], abs(w_minus_y[k] * file_dt))
+            print("  %9.5f %8.4f %8.4f %+8.3fms %+8.3fms %+8.2e %+8.2e" % (
+                true_t[k], w_minus_y[k], w_plus_y[k], 1e3 * file_dt, 1e3 * gyro_dt, w_minus_y[k] * gyro_dt,
+                (a.value - f.value) if f is not None else float("nan")))
+        print("  largest |ω⁻_y·(anchor time − true time)|: file %.2e rad, gyro %.2e rad" % (worst["file"], worst["gyro"]))
+        print("  AVRF peaks (corrected |φ_y|): file", " ".join("%.5f" % v for v in readings["file"].avrf_peak_angles))
+        print("                                gyro", " ".join("%.5f" % v for v in readings["gyro"].avrf_peak_angles))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rockfit", default=os.path.join(HERE, "build", "tools", "rockfit"))
     parser.add_argument("--manifest", default=os.path.join(HERE, "data-samples", "manifest.toml"))
     parser.add_argument("--variants", nargs=2, metavar=("DIR", "TRIAL"))
     parser.add_argument("--held-out", nargs=2, metavar=("DIR", "N"))
+    parser.add_argument("--held-out-seed", type=int, default=29,
+                        help="seed of the held-out draw (29: the trials io/README.md reports first)")
+    parser.add_argument("--anchors", nargs="+", metavar="TRIAL")
     args = parser.parse_args()
-    if args.held_out:
-        held_out(args.rockfit, args.held_out[0], int(args.held_out[1]))
+    if args.anchors:
+        anchors(args.manifest, args.anchors)
+    elif args.held_out:
+        held_out(args.rockfit, args.held_out[0], int(args.held_out[1]), args.held_out_seed)
     elif args.variants:
         variants(args.rockfit, args.manifest, *args.variants)
     else:

@@ -55,6 +55,8 @@ void DriftCorrectionOptions::Validate() const {
   if (!std::isfinite(min_rate_jump_rad_s) || min_rate_jump_rad_s < 0.0) {
     throw InvalidArgument("min_rate_jump_rad_s must be a finite number ≥ 0 [rad/s]");
   }
+  zero_crossing.Validate();
+  if (gyro_impact_passes < 0) throw InvalidArgument("gyro_impact_passes must be ≥ 0");
   if (!std::isfinite(same_impact_s) || same_impact_s < 0.0 || same_impact_s >= impacts.min_separation_s) {
     throw InvalidArgument("same_impact_s must be ≥ 0 and shorter than the impacts' min_separation_s [s]");
   }
@@ -130,6 +132,51 @@ std::vector<Anchor> KeepZeroInstants(const Recording& recording, const AngleAndR
   return kept;
 }
 
+// The impact times at which the next integration of a gyro-only attitude splits its sample intervals: each anchor
+// of φ_y, and each anchor of φ_x marked by its own |ω_x| peak, moved to where its angle minus the error Ê read
+// from all of its axis' anchors crosses zero (impact_zero_crossing.hpp); an anchor without such a crossing in its
+// interval keeps its time. One time per sample interval (φ_y's first), increasing.
+std::vector<double> ImpactTimesAtZero(const Recording& integrated, const DriftCorrection& correction,
+                                      const ZeroCrossingOptions& options) {
+  const std::vector<double>& t = integrated.t_s;
+  std::vector<std::pair<std::size_t, double>> located;  // (interval, time)
+  const auto locate = [&](const std::vector<Anchor>& anchors, int component, bool only_own_peaks) {
+    const AngleAndRate signal = ExtractAngle(integrated, component);
+    struct Candidate {
+      std::size_t interval;
+      double t_s;
+      bool moved;  // located here (φ_x's anchors at φ_y's impacts only read the error)
+      std::optional<BeforeImpact> before;
+    };
+    std::vector<Candidate> candidates;
+    std::vector<DriftPoint> readings;
+    for (const Anchor& a : anchors) {
+      const auto after = std::upper_bound(t.begin(), t.end(), a.t_s);
+      if (after == t.begin() || after == t.end()) continue;
+      const auto m = static_cast<std::size_t>(after - t.begin()) - 1;
+      Candidate c{m, a.t_s, !only_own_peaks || a.source == AnchorSource::kOmegaX,
+                  AngleBeforeImpact(t, signal.angle_rad, signal.rate_rad_s, m, options)};
+      if (c.before) readings.push_back(c.before->MiddleReading(options.reading_scatter_rad));
+      candidates.push_back(c);
+    }
+    for (const Candidate& c : candidates) {
+      if (!c.moved) continue;
+      std::optional<double> tau;
+      if (c.before) tau = ZeroCrossingTime(*c.before, SmoothDriftAt(readings, c.before->t0_s, options.drift_half_window_s));
+      located.emplace_back(c.interval, tau.value_or(c.t_s));
+    }
+  };
+  locate(correction.impacts_y, 1, false);
+  locate(correction.anchors_x, 2, true);
+  std::stable_sort(located.begin(), located.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<double> times;
+  for (std::size_t i = 0; i < located.size(); ++i) {
+    if (i > 0 && located[i].first == located[i - 1].first) continue;
+    times.push_back(located[i].second);
+  }
+  return times;
+}
+
 void RequireUsable(const Recording& recording) {
   if (!recording.has_euler()) {
     throw BadInput("recording '" + recording.source +
@@ -147,21 +194,8 @@ void RequireUsable(const Recording& recording) {
   }
 }
 
-}  // namespace
-
-DriftCorrection CorrectDrift(const Recording& recording, const DriftCorrectionOptions& options) {
-  options.Validate();
-  if (!recording.has_euler() && recording.size() > 0) {
-    // No attitude in the files: integrate it from the gyro (gyro_attitude.hpp).
-    const Recording integrated = WithAttitude(recording);
-    DriftCorrection result = CorrectDrift(integrated, options);
-    result.attitude = integrated.orientation_source;
-    std::vector<std::string> notes{"the recording has no attitude; it was " + integrated.orientation_source};
-    notes.insert(notes.end(), integrated.warnings.begin() + static_cast<std::ptrdiff_t>(recording.warnings.size()),
-                 integrated.warnings.end());
-    result.warnings.insert(result.warnings.begin(), notes.begin(), notes.end());
-    return result;
-  }
+// The correction of a recording's own Euler angles (file or integrated).
+DriftCorrection CorrectAngles(const Recording& recording, const DriftCorrectionOptions& options) {
   RequireUsable(recording);
   DriftCorrection result;
   result.attitude = "file";
@@ -238,6 +272,33 @@ DriftCorrection CorrectDrift(const Recording& recording, const DriftCorrectionOp
     result.euler_corrected_zyx[i][2] -= DriftAt(result.anchors_x, t);
   }
   return result;
+}
+
+}  // namespace
+
+DriftCorrection CorrectDrift(const Recording& recording, const DriftCorrectionOptions& options) {
+  options.Validate();
+  if (!recording.has_euler() && recording.size() > 0) {
+    // No attitude in the files: integrate it from the gyro (gyro_attitude.hpp).
+    GyroAttitudeOptions attitude_options;
+    Recording integrated = WithAttitude(recording, attitude_options);
+    DriftCorrection result = CorrectAngles(integrated, options);
+    // The anchors of the angle integrated by the mean rule sit near their intervals' middles; each pass moves them
+    // to where the levelled angle comes back to zero and integrates again with the rate jumps placed there.
+    for (int pass = 0; pass < options.gyro_impact_passes; ++pass) {
+      attitude_options.impact_times_s = ImpactTimesAtZero(integrated, result, options.zero_crossing);
+      if (attitude_options.impact_times_s.empty()) break;
+      integrated = WithAttitude(recording, attitude_options);
+      result = CorrectAngles(integrated, options);
+    }
+    result.attitude = integrated.orientation_source;
+    std::vector<std::string> notes{"the recording has no attitude; it was " + integrated.orientation_source};
+    notes.insert(notes.end(), integrated.warnings.begin() + static_cast<std::ptrdiff_t>(recording.warnings.size()),
+                 integrated.warnings.end());
+    result.warnings.insert(result.warnings.begin(), notes.begin(), notes.end());
+    return result;
+  }
+  return CorrectAngles(recording, options);
 }
 
 }  // namespace rockfit::io

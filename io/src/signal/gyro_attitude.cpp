@@ -12,7 +12,16 @@
 
 namespace rockfit::io {
 
-void GyroAttitudeOptions::Validate() const { rest.Validate(); }
+void GyroAttitudeOptions::Validate() const {
+  rest.Validate();
+  for (std::size_t i = 0; i < impact_times_s.size(); ++i) {
+    if (!std::isfinite(impact_times_s[i]) || (i > 0 && !(impact_times_s[i] > impact_times_s[i - 1]))) {
+      throw InvalidArgument(fmt::format("GyroAttitudeOptions::impact_times_s[{}] = {}: the impact times must be "
+                                        "finite and increasing",
+                                        i, impact_times_s[i]));
+    }
+  }
+}
 
 const char* ToString(AttitudeStart start) {
   switch (start) {
@@ -34,6 +43,11 @@ Eigen::Quaterniond BodyRateStep(const Eigen::Vector3d& w_B, double dt_s) {
   constexpr double kSmallHalfAngle_rad = 1e-8;
   const double sinc = theta < kSmallHalfAngle_rad ? 1.0 - theta * theta / 6.0 : std::sin(theta) / theta;
   return Eigen::Quaterniond(std::cos(theta), sinc * half_angle.x(), sinc * half_angle.y(), sinc * half_angle.z());
+}
+
+Eigen::Quaterniond ImpactIntervalStep(const Eigen::Vector3d& w_before_B, const Eigen::Vector3d& w_after_B,
+                                      double t0_s, double impact_s, double t1_s) {
+  return BodyRateStep(w_before_B, impact_s - t0_s) * BodyRateStep(w_after_B, t1_s - impact_s);
 }
 
 Eigen::Vector3d LevelledEulerZyx(const Eigen::Vector3d& f_B) {
@@ -110,9 +124,20 @@ GyroAttitude IntegrateGyroAttitude(const Recording& recording, const GyroAttitud
   Eigen::Quaterniond q_WB = QuaternionFromEulerZyx(result.start_euler_zyx);
   result.euler_zyx.resize(n);
   result.euler_zyx[0] = EulerZyxFromQuaternion(q_WB);
+  const std::vector<double>& t = recording.t_s;
+  const auto w = [&](std::size_t k) -> Eigen::Vector3d { return recording.w_B[k] - result.gyro_bias_rad_s; };
+  auto next_impact = options.impact_times_s.begin();
   for (std::size_t k = 0; k + 1 < n; ++k) {
-    const Eigen::Vector3d w_mean = 0.5 * (recording.w_B[k] + recording.w_B[k + 1]) - result.gyro_bias_rad_s;
-    q_WB = q_WB * BodyRateStep(w_mean, recording.t_s[k + 1] - recording.t_s[k]);
+    while (next_impact != options.impact_times_s.end() && *next_impact < t[k]) ++next_impact;
+    std::size_t inside = 0;  // impact times in [t_k, t_k+1]
+    const double split_at_s = next_impact != options.impact_times_s.end() ? *next_impact : 0.0;
+    while (next_impact != options.impact_times_s.end() && *next_impact <= t[k + 1]) ++next_impact, ++inside;
+    if (inside == 1) {
+      q_WB = q_WB * ImpactIntervalStep(w(k), w(k + 1), t[k], split_at_s, t[k + 1]);
+    } else {
+      // No impact, or several (a cascade of impacts as the block settles: the rate between them is not sampled).
+      q_WB = q_WB * BodyRateStep(0.5 * (w(k) + w(k + 1)), t[k + 1] - t[k]);
+    }
     q_WB.normalize();  // keeps |q| = 1 against round-off over 10^5 steps
     result.euler_zyx[k + 1] = EulerZyxFromQuaternion(q_WB);
   }

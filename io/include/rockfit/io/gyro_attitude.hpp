@@ -5,7 +5,14 @@
 //   q_WB(t_{k+1}) = q_WB(t_k) ⊗ Exp(½·w̄_k·Δt_k),   w̄_k = ½ (w_B,k + w_B,k+1) − b,
 // which is exact when the rate is constant over each sample interval (w̄_k is the interval's rate; for a smooth
 // rate the error is O(Δt²) per second of recording). b is the gyro bias measured at rest before the release.
-// The start is levelled by the accelerometer during that rest: the specific force at rest is
+// At an impact the rate jumps inside its sample interval, and w̄_k puts the jump in the interval's middle: the
+// angle is off by (ω⁻ − ω⁺)·(t_mid − τ), up to |Δω|·Δt/2. Given the impact times τ (options.impact_times_s), the
+// interval holding one is integrated in two pieces split there, each side's sample held to τ (ImpactIntervalStep):
+// exact for a rate constant on each side, error ½·|ω̇|·Δt² at most for a smooth one. Fitting the integrated angle
+// cannot give them (it is the gyro's own trapezoid sum and places every impact near its interval's middle);
+// CorrectDrift finds them where the levelled angle comes back to zero (impact_zero_crossing.hpp) and passes them
+// here (io/README.md, "Attitude from the gyro", measured).
+// The start is levelled by the accelerometer during the rest before the release: the specific force at rest is
 // g·R_WBᵀ·e_z = g·(−sin φy, sin φx cos φy, cos φx cos φy), so φx = atan2(f_y, f_z), φy = atan2(−f_x, √(f_y²+f_z²));
 // φz starts at 0 (the yaw is free: nothing in the metrics depends on it). Without an accelerometer (or without
 // a rest before the release) the attitude is levelled at the first impact instead, where the block lands on its
@@ -32,7 +39,12 @@ inline constexpr double kMaxIntegrableRate_rad_s = 1e4;
 
 struct GyroAttitudeOptions {
   MountingEstimateOptions rest;  // how the rest before the release is found (mounting_estimate.hpp)
-  // Throws InvalidArgument naming the bad option.
+  // Impact times [s], increasing: the sample interval holding each is integrated in two pieces split there
+  // (ImpactIntervalStep). Empty: every interval by the mean of its two samples. A time outside the recording is
+  // ignored; an interval holding several (a cascade as the block settles, the rate between them not sampled) is
+  // integrated by its mean.
+  std::vector<double> impact_times_s;
+  // Throws InvalidArgument naming the bad option (a time that is not finite or does not increase).
   void Validate() const;
 };
 
@@ -55,6 +67,13 @@ struct GyroAttitude {
 
 // The rotation over one sample interval of constant body rate w_B [rad/s] lasting dt_s [s]: Exp(½·w·dt), exact.
 Eigen::Quaterniond BodyRateStep(const Eigen::Vector3d& w_B, double dt_s);
+
+// The rotation over the sample interval [t0_s, t1_s] in which the rate jumps at impact_s (t0_s ≤ impact_s ≤ t1_s):
+// w_before_B (the sample at t0_s) held over [t0_s, impact_s], then w_after_B (the sample at t1_s) over
+// [impact_s, t1_s]. Exact for a rate that is constant on each side; for a smooth rate on each side the error is
+// at most ½·max|ω̇|·Δt² (each side's rate is its sample's, held at most Δt).
+Eigen::Quaterniond ImpactIntervalStep(const Eigen::Vector3d& w_before_B, const Eigen::Vector3d& w_after_B,
+                                      double t0_s, double impact_s, double t1_s);
 
 // ZYX Euler angles (φz, φy, φx) of the attitude whose specific force at rest is f_B (any length > 0), yaw 0.
 Eigen::Vector3d LevelledEulerZyx(const Eigen::Vector3d& f_B);
