@@ -825,7 +825,7 @@ HybridRun::Next HybridRun::Continue(const Contact& contact, double t, const Eige
     vertex_start_.vertex = contact.first;
     vertex_start_.y = VertexDynamics::MakeState(q_WB, w_B);
     // Guards of vertices that were on the ground just before start at zero (−1: all of them).
-    const VertexMode next_mode(block_, contact.first, gravity_);
+    const VertexMode& next_mode = modes_.Vertex(contact.first);
     for (int g = 0; g < VertexMode::kNumGuards; ++g) {
       bool on_ground = false;
       if (VertexMode::IsTouchdown(g)) {

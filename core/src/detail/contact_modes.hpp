@@ -57,7 +57,9 @@ class VertexMode {
 
   Eigen::Quaterniond Attitude(const State& y) const { return VertexDynamics::Attitude(y); }
   // Euler angles (φz, φy, φx) of the sample attitude q_WB (canonical, from Attitude(y)).
-  Eigen::Vector3d EulerZyx(const Eigen::Quaterniond& q_WB, const State& /*y*/) const { return EulerZyxFromQuaternion(q_WB); }
+  Eigen::Vector3d EulerZyx(const Eigen::Quaterniond& q_WB, const State& /*y*/) const {
+    return EulerZyxFromUnitQuaternion(q_WB);
+  }
   Eigen::Vector3d AngularVelocity_B(const State& y) const { return VertexDynamics::AngularVelocity(y); }
   double Energy(const State& y) const { return dynamics_.Energy(y); }
   double KineticEnergy(const State& y) const { return dynamics_.KineticEnergy(y); }

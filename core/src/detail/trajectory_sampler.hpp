@@ -22,16 +22,16 @@ class TrajectorySampler {
   bool pending() const { return pending_; }
   double next_time() const { return next_time_; }
 
-  // Appends the sample at next_time() and moves on. `attitude()` returns q_WB and `euler(q_WB)` its Euler
-  // angles (φz, φy, φx) (a mode may know them without conversion); they are only called when the options ask
-  // for attitudes.
+  // Appends the sample at next_time() and moves on. `attitude()` returns q_WB, of unit norm to round-off (it is
+  // not normalised again), and `euler(q_WB)` its Euler angles (φz, φy, φx) (a mode may know them without
+  // conversion); they are only called when the options ask for attitudes.
   template <class AttitudeFn, class EulerFn>
   void Emit(const Mode& mode, const Eigen::Vector3d& w_B, const AttitudeFn& attitude, const EulerFn& euler) {
     out_->t_s.push_back(next_time_);
     out_->w_B.push_back(w_B);
     out_->mode.push_back(mode);
     if (with_attitude_) {
-      const Eigen::Quaterniond q_WB = CanonicalQuaternion(attitude());
+      const Eigen::Quaterniond q_WB = CanonicalUnitQuaternion(attitude());
       out_->q_WB.push_back(q_WB);
       out_->euler_zyx.push_back(euler(q_WB));
     }
@@ -39,7 +39,7 @@ class TrajectorySampler {
   }
   template <class AttitudeFn>
   void Emit(const Mode& mode, const Eigen::Vector3d& w_B, const AttitudeFn& attitude) {
-    Emit(mode, w_B, attitude, [](const Eigen::Quaterniond& q_WB) { return EulerZyxFromQuaternion(q_WB); });
+    Emit(mode, w_B, attitude, [](const Eigen::Quaterniond& q_WB) { return EulerZyxFromUnitQuaternion(q_WB); });
   }
   // Every pending sample before t_until_s (also at it when `inclusive`) in one state held constant (at rest, or
   // the end state of a run): the canonical attitude and its Euler angles are converted once, not per sample.
