@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "detail/euler_zyx_sequence.hpp"
 #include "rockfit/core/attitude.hpp"
 #include "rockfit/core/simulator.hpp"
 
@@ -37,9 +38,11 @@ class TrajectorySampler {
     }
     Advance();
   }
+  // The same with the Euler angles from the quaternion, by increments from the previous sample where it is the
+  // one just before (EulerZyxSequence).
   template <class AttitudeFn>
   void Emit(const Mode& mode, const Eigen::Vector3d& w_B, const AttitudeFn& attitude) {
-    Emit(mode, w_B, attitude, [](const Eigen::Quaterniond& q_WB) { return EulerZyxFromUnitQuaternion(q_WB); });
+    Emit(mode, w_B, attitude, [this](const Eigen::Quaterniond& q_WB) { return euler_sequence_.Next(q_WB, index_); });
   }
   // Every pending sample before t_until_s (also at it when `inclusive`) in one state held constant (at rest, or
   // the end state of a run): the canonical attitude and its Euler angles are converted once, not per sample.
@@ -84,6 +87,7 @@ class TrajectorySampler {
   bool with_attitude_;
   std::size_t index_ = 0;
   double next_time_ = 0.0;
+  EulerZyxSequence euler_sequence_;
   bool pending_ = false;
 };
 
