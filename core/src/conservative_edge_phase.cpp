@@ -26,13 +26,15 @@ std::optional<ConservativeEdgePhase> ConservativeEdgePhase::Make(double K_1_s2, 
   if (psi0_rad == 0.0 && psi_dot0_rad_s <= 0.0) return std::nullopt;
   ConservativeEdgePhase phase;
   phase.theta_c_ = theta_c_rad;
-  phase.sin_half_theta_c_ = std::sin(0.5 * theta_c_rad);
-  phase.cos_half_theta_c_ = std::cos(0.5 * theta_c_rad);
   phase.K_ = K_1_s2;
   phase.omega_ = std::sqrt(0.5 * K_1_s2);
   // Energy at the start: x0² − k² = ψ̇0² / (2K).
   const double phi0 = theta_c_rad - psi0_rad;
   const double x0 = std::sin(0.5 * phi0);
+  const double c0 = std::cos(0.5 * phi0);
+  // A swing from the ground (after a landing, the usual case) starts at φ0 = θ_c.
+  phase.sin_half_theta_c_ = psi0_rad == 0.0 ? x0 : std::sin(0.5 * theta_c_rad);
+  phase.cos_half_theta_c_ = psi0_rad == 0.0 ? c0 : std::cos(0.5 * theta_c_rad);
   const double rate_term = psi_dot0_rad_s * psi_dot0_rad_s / (2.0 * K_1_s2);
   const double k2 = x0 * x0 - rate_term;
   if (!(k2 > kMinApexK2)) return std::nullopt;
@@ -41,11 +43,12 @@ std::optional<ConservativeEdgePhase> ConservativeEdgePhase::Make(double K_1_s2, 
   phase.k_prime_ = std::sqrt(phase.m_);
   EnsureGslErrorHandlerOff();
   // Time between the apex and the start.
-  const double tau0 = psi_dot0_rad_s == 0.0 ? 0.0 : phase.TimeFromApex(x0, std::cos(0.5 * phi0), rate_term);
+  const double tau0 = psi_dot0_rad_s == 0.0 ? 0.0 : phase.TimeFromApex(x0, c0, rate_term);
   phase.apex_time_s_ = psi_dot0_rad_s > 0.0 ? tau0 : -tau0;
   // Time from the apex to flat (φ = θ_c): x_c² − k² = (x_c² − x0²) + ψ̇0²/(2K), with
   // x_c² − x0² = sin((θ_c − φ0)/2) sin((θ_c + φ0)/2) = sin(ψ0/2) sin(θ_c − ψ0/2).
-  const double flat_term = std::sin(0.5 * psi0_rad) * std::sin(theta_c_rad - 0.5 * psi0_rad) + rate_term;
+  const double flat_term =
+      psi0_rad == 0.0 ? rate_term : std::sin(0.5 * psi0_rad) * std::sin(theta_c_rad - 0.5 * psi0_rad) + rate_term;
   const double tau_flat = psi0_rad == 0.0 ? tau0
                                           : phase.TimeFromApex(phase.sin_half_theta_c_, phase.cos_half_theta_c_, flat_term);
   phase.time_to_flat_s_ = phase.apex_time_s_ + tau_flat;
@@ -58,7 +61,7 @@ std::optional<ConservativeEdgePhase> ConservativeEdgePhase::Make(double K_1_s2, 
   const double x0_k_prime = x0 * phase.k_prime_;
   const double sn_magnitude = std::sqrt(rate_term) / x0_k_prime;
   phase.start_.sn = psi_dot0_rad_s > 0.0 ? -sn_magnitude : sn_magnitude;
-  phase.start_.cn = phase.k_ * std::cos(0.5 * phi0) / x0_k_prime;
+  phase.start_.cn = phase.k_ * c0 / x0_k_prime;
   phase.start_.dn = phase.k_ / x0;
   // Maclaurin coefficients (DLMF 22.10.1–22.10.3, extended to u⁹ and u⁸), in u² from the u² term on.
   const double m = phase.m_;
