@@ -84,7 +84,9 @@ double ConservativeEdgePhase::TimeFromApex(double x, double c, double x2_minus_k
 
 JacobiTriple ConservativeEdgePhase::JacobiSeries(double u) const {
   const double s = u * u;
-  const auto poly = [s](const std::array<double, 4>& c) { return 1.0 + s * (c[0] + s * (c[1] + s * (c[2] + s * c[3]))); };
+  const auto poly = [s](const std::array<double, 4>& c) {
+    return 1.0 + s * (c[0] + s * (c[1] + s * (c[2] + s * c[3])));
+  };
   return {u * poly(sn_series_), poly(cn_series_), poly(dn_series_)};
 }
 

@@ -752,7 +752,8 @@ HybridRun::Next HybridRun::AfterFacetImpact(const EdgeMode& mode, double t, cons
       // (ScaledFacetOutcome). Under a table the map is evaluated afresh, so that the response runs, whose chatter
       // amplifies round-off, stay bit for bit those of the full map.
       const int sense = rate > 0.0 ? 1 : 0;
-      const int edge_slot = 2 * (Block::WrapVertex(pivot_b) - 1) + (Block::WrapVertex(mode.first()) == Block::WrapVertex(pivot_b - 1) ? 0 : 1);
+      const bool other_before = Block::WrapVertex(mode.first()) == Block::WrapVertex(pivot_b - 1);
+      const int edge_slot = 2 * (Block::WrapVertex(pivot_b) - 1) + (other_before ? 0 : 1);
       std::optional<ImpactOutcome>& unit = facet_unit_outcomes_[2 * edge_slot + sense];
       if (!unit) unit = FacetImpact(block_, *operators, (sense == 1 ? 1.0 : -1.0) * mode.dynamics().axis_B(), facet);
       map = ScaledFacetOutcome(*unit, std::abs(rate));

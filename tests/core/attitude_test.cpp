@@ -57,7 +57,8 @@ TEST(Attitude, EulerZyxOfAUnitQuaternionIsThatOfItsRotationMatrix) {
         Eigen::Quaterniond(component(rng), component(rng), component(rng), component(rng)).normalized();
     const Eigen::Vector3d from_matrix = EulerZyxFromRotation(q.toRotationMatrix());
     EXPECT_EQ(EulerZyxFromUnitQuaternion(q), from_matrix) << i;
-    EXPECT_NEAR((EulerZyxFromQuaternion(Eigen::Quaterniond(3.0 * q.coeffs())) - from_matrix).norm(), 0.0, kAngleTol) << i;
+    const Eigen::Quaterniond scaled(3.0 * q.coeffs());
+    EXPECT_NEAR((EulerZyxFromQuaternion(scaled) - from_matrix).norm(), 0.0, kAngleTol) << i;
   }
   for (double pitch : {M_PI / 2, -M_PI / 2}) {
     const Eigen::Quaterniond q = QuaternionFromEulerZyx(Eigen::Vector3d(0.3, pitch, 0.1));
