@@ -69,20 +69,14 @@ class ConservativeEdgePhase {
             (now.cn * step.cn - now.sn * step.sn * now.dn * step.dn) * inv,
             (now.dn * step.dn - m_ * now.sn * step.sn * now.cn * step.cn) * inv};
   }
-  // The rate dt later from the triple now and the step, without normalising the triple: sn/dn is the ratio of the
-  // addition theorem's numerators (their common denominator cancels).
-  double RateAfter(const JacobiTriple& now, const JacobiTriple& step) const {
-    const double sn_num = now.sn * step.cn * step.dn + step.sn * now.cn * now.dn;
-    const double dn_num = now.dn * step.dn - m_ * now.sn * step.sn * now.cn * step.cn;
-    return rate_scale_ * sn_num / dn_num;
-  }
   // sn, cn, dn at the start of the swing, from its state alone (exact to round-off, no elliptic function call).
   const JacobiTriple& start_jacobi() const { return start_; }
   // sn, cn, dn of u with parameter m = k'² by their Maclaurin series, for |u| ≤ kSeriesMaxArg.
   JacobiTriple JacobiSeries(double u) const;
   // Below this |u| the Maclaurin series of sn, cn, dn through u⁹ (sn) and u⁸ (cn, dn) is exact to round-off for
   // every m ∈ [0, 1]: their coefficients grow with m, and at m = 1 (tanh, sech) the first term left out is
-  // ≤ 0.014 u¹⁰ relative, below 2⁻⁵³ for u ≤ 0.035. At 256 Hz that covers ω ≤ 8.9 1/s (blocks with R ≥ 0.19 m).
+  // ≤ 0.014 u¹⁰ relative, below 2⁻⁵³ for u ≤ 0.035. At 256 Hz that covers ω ≤ 8.9 1/s (rectangular blocks with
+  // R ≥ 0.09 m); larger arguments go to GSL.
   static constexpr double kSeriesMaxArg = 0.035;
   EdgeDynamics::State FromJacobi(const JacobiTriple& j) const { return {TiltFromJacobi(j), RateFromJacobi(j)}; }
   double TiltFromJacobi(const JacobiTriple& j) const { return theta_c_ - 2.0 * std::asin(k_ / j.dn); }
