@@ -91,7 +91,7 @@ void EdgeMode::SetYaw(const Eigen::Quaterniond& q_yaw) {
 
 Eigen::Vector3d EdgeMode::EulerZyx(const Eigen::Quaterniond& q_WB, const State& y) const {
   // At a yaw of ±π the general conversion's convention (φz = +π) is kept.
-  if (tilt_euler_index_ < 0 || std::abs(yaw_rad_) >= kPi_rad) return EulerZyxFromQuaternion(q_WB);
+  if (tilt_euler_index_ < 0 || std::abs(yaw_rad_) >= kPi_rad) return EulerZyxFromUnitQuaternion(q_WB);
   Eigen::Vector3d euler(yaw_rad_, 0.0, 0.0);
   euler[tilt_euler_index_] = tilt_euler_sign_ * y[0];
   return euler;

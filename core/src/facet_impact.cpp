@@ -251,4 +251,25 @@ ImpactOutcome FacetImpact(const Block& block, const FacetNoSpinOperators& operat
   });
 }
 
+ImpactOutcome ScaledFacetOutcome(const ImpactOutcome& unit, double r) {
+  if (!(std::isfinite(r) && r > 0.0)) {
+    throw InvalidArgument("facet impact: the scale of ω⁻ must be finite and positive, got " + std::to_string(r));
+  }
+  ImpactOutcome out;
+  out.status = unit.status;
+  out.w_minus_W = r * unit.w_minus_W;
+  out.w_plus_W = r * unit.w_plus_W;
+  out.w_plus_B = r * unit.w_plus_B;
+  out.tau = r * unit.tau;
+  out.contact_before = unit.contact_before;
+  out.contact_after = unit.contact_after;
+  const double r2 = r * r;
+  out.energy_before_J = r2 * unit.energy_before_J;
+  out.energy_after_J = r2 * unit.energy_after_J;
+  out.delta_energy_J = r2 * unit.delta_energy_J;
+  out.within_geometric_bounds = unit.within_geometric_bounds;
+  out.energy_nonincreasing = unit.energy_nonincreasing;
+  return out;
+}
+
 }  // namespace rockfit::core

@@ -319,6 +319,9 @@ class HybridRun {
   double end_lift_t_s_ = -std::numeric_limits<double>::infinity();  // the last Edge → Vertex switch
   RecentTimes recent_impacts_;  // of edge and facet impacts, under ground motion
   std::array<std::optional<FacetNoSpinOperators>, 4> facet_operators_;  // by pivot vertex b − 1, made when first needed
+  // Free rocking, no-spin rule: the facet outcome of a unit rate about each ordered pre-impact edge (pivot b and the
+  // other vertex before or after it) in each sense, made when first needed.
+  std::array<std::optional<ImpactOutcome>, 16> facet_unit_outcomes_;
 };
 
 EdgeStart HybridRun::MakeEdgeStart(const Contact& edge, const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B,
@@ -743,7 +746,20 @@ HybridRun::Next HybridRun::AfterFacetImpact(const EdgeMode& mode, double t, cons
     // The no-spin map is linear in ω⁻: its candidates' operators are computed once per pivot edge and run.
     std::optional<FacetNoSpinOperators>& operators = facet_operators_[Block::WrapVertex(pivot_b) - 1];
     if (!operators) operators = MakeFacetNoSpinOperators(block_, pivot_b, facet);
-    map = FacetImpact(block_, *operators, w_minus_B, facet);
+    const double rate = y[1];  // ω⁻ = ψ̇ · a_B: a multiple of the edge axis
+    if (ground_ == nullptr && std::isfinite(rate) && rate != 0.0) {
+      // Free rocking: the outcome for the unit rate in this sense, once per edge and sense, scaled by |ψ̇|
+      // (ScaledFacetOutcome). Under a table the map is evaluated afresh, so that the response runs, whose chatter
+      // amplifies round-off, stay bit for bit those of the full map.
+      const int sense = rate > 0.0 ? 1 : 0;
+      const bool other_before = Block::WrapVertex(mode.first()) == Block::WrapVertex(pivot_b - 1);
+      const int edge_slot = 2 * (Block::WrapVertex(pivot_b) - 1) + (other_before ? 0 : 1);
+      std::optional<ImpactOutcome>& unit = facet_unit_outcomes_[2 * edge_slot + sense];
+      if (!unit) unit = FacetImpact(block_, *operators, (sense == 1 ? 1.0 : -1.0) * mode.dynamics().axis_B(), facet);
+      map = ScaledFacetOutcome(*unit, std::abs(rate));
+    } else {
+      map = FacetImpact(block_, *operators, w_minus_B, facet);
+    }
   } else {
     map = FacetImpact(block_, pivot_b, w_minus_B, facet);
   }
@@ -810,7 +826,7 @@ HybridRun::Next HybridRun::Continue(const Contact& contact, double t, const Eige
     vertex_start_.vertex = contact.first;
     vertex_start_.y = VertexDynamics::MakeState(q_WB, w_B);
     // Guards of vertices that were on the ground just before start at zero (−1: all of them).
-    const VertexMode next_mode(block_, contact.first, gravity_);
+    const VertexMode& next_mode = modes_.Vertex(contact.first);
     for (int g = 0; g < VertexMode::kNumGuards; ++g) {
       bool on_ground = false;
       if (VertexMode::IsTouchdown(g)) {

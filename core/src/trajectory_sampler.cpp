@@ -47,16 +47,4 @@ TrajectorySampler::TrajectorySampler(const SimulationOptions& options, double t_
   }
 }
 
-void TrajectorySampler::Advance() {
-  ++index_;
-  if (times_ != nullptr) {
-    pending_ = index_ < times_->size() && (*times_)[index_] <= t_last_s_;
-    if (pending_) next_time_ = (*times_)[index_];
-  } else {
-    // t_k = k / rate, computed from k (no accumulated round-off).
-    next_time_ = static_cast<double>(index_) / rate_hz_;
-    pending_ = next_time_ <= t_last_s_;
-  }
-}
-
 }  // namespace rockfit::core::detail

@@ -24,10 +24,6 @@ VertexDynamics::State VertexDynamics::MakeState(const Eigen::Quaterniond& q_WB, 
   return y;
 }
 
-Eigen::Quaterniond VertexDynamics::Attitude(const State& y) {
-  return Eigen::Quaterniond(y[0], y[1], y[2], y[3]).normalized();
-}
-
 double VertexDynamics::ComHeight(const State& y) const { return UpInBody(y).dot(p_PC_B_); }
 
 double VertexDynamics::PointHeight(const State& y, const Eigen::Vector3d& p_BX_B) const {

@@ -21,6 +21,8 @@ void Run(benchmark::State& state, const ModelParameters& params, bool sample_att
   options.sample_attitude = sample_attitude;
   std::size_t impacts = 0;
   std::size_t samples = 0;
+  long evaluations = 0;
+  long steps = 0;
   double t_end = 0.0;
   const Block block = rockfit::testing::Fig14Block();  // built once, outside the timed loop
   for (auto _ : state) {
@@ -29,10 +31,14 @@ void Run(benchmark::State& state, const ModelParameters& params, bool sample_att
     if (tr.end_reason != rockfit::core::EndReason::kPhase4) state.SkipWithError("the run did not reach phase 4");
     impacts = tr.impacts.size();
     samples = tr.t_s.size();
+    evaluations = tr.num_evaluations;
+    steps = tr.num_steps;
     t_end = tr.t_end_s;
   }
   state.SetItemsProcessed(state.iterations());  // simulations
   state.counters["impacts"] = static_cast<double>(impacts);
+  state.counters["rhs_evaluations"] = static_cast<double>(evaluations);
+  state.counters["steps"] = static_cast<double>(steps);
   state.counters["samples"] = static_cast<double>(samples);
   state.counters["t_end_s"] = t_end;
 }

@@ -47,6 +47,32 @@ TEST(Attitude, GimbalLockGivesFiniteAnglesOfTheSameRotation) {
   }
 }
 
+// The unit-quaternion conversion reads the same entries of R as the full matrix, formed the same way: the same
+// angles bit for bit, also at the gimbal lock.
+TEST(Attitude, EulerZyxOfAUnitQuaternionIsThatOfItsRotationMatrix) {
+  std::mt19937 rng(20261127);
+  std::normal_distribution<double> component(0.0, 1.0);
+  for (int i = 0; i < 500; ++i) {
+    const Eigen::Quaterniond q =
+        Eigen::Quaterniond(component(rng), component(rng), component(rng), component(rng)).normalized();
+    const Eigen::Vector3d from_matrix = EulerZyxFromRotation(q.toRotationMatrix());
+    EXPECT_EQ(EulerZyxFromUnitQuaternion(q), from_matrix) << i;
+    const Eigen::Quaterniond scaled(3.0 * q.coeffs());
+    EXPECT_NEAR((EulerZyxFromQuaternion(scaled) - from_matrix).norm(), 0.0, kAngleTol) << i;
+  }
+  for (double pitch : {M_PI / 2, -M_PI / 2}) {
+    const Eigen::Quaterniond q = QuaternionFromEulerZyx(Eigen::Vector3d(0.3, pitch, 0.1));
+    EXPECT_EQ(EulerZyxFromUnitQuaternion(q), EulerZyxFromRotation(q.toRotationMatrix()));
+  }
+}
+
+TEST(Attitude, CanonicalUnitQuaternionFlipsTheSignOnly) {
+  const Eigen::Quaterniond q = Eigen::Quaterniond(-0.5, 0.5, -0.5, 0.5);
+  EXPECT_EQ(CanonicalUnitQuaternion(q).coeffs(), (-q.coeffs()).eval());
+  const Eigen::Quaterniond p(0.5, 0.5, -0.5, 0.5);
+  EXPECT_EQ(CanonicalUnitQuaternion(p).coeffs(), p.coeffs());
+}
+
 TEST(Attitude, CanonicalQuaternionHasNonNegativeScalarAndTheSameRotation) {
   const Eigen::Quaterniond q(-0.5, 0.5, -0.5, 0.5);
   const Eigen::Quaterniond c = CanonicalQuaternion(q);

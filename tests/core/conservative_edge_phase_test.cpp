@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 
+#include <gsl/gsl_sf_elljac.h>
 #include <gtest/gtest.h>
 
 #include "rockfit/core/edge_dynamics.hpp"
@@ -125,6 +126,51 @@ TEST(ConservativeEdgePhase, EvenSamplesByTheAdditionTheoremMatchExactEvaluations
     EXPECT_NEAR(stepped[1], exact[1], kRateTol_rad_s) << n;
   }
   EXPECT_GT(n, 2 * SwingSamples::kExactEvery);
+}
+
+// The Maclaurin series against GSL's Jacobi functions (descending Landen transformation) over |u| ≤ its bound, for
+// swings from small to near-separatrix amplitudes (m from cos²(θ_c/2) to nearly 1: every m a swing can have).
+TEST(ConservativeEdgePhase, JacobiSeriesAgreesWithTheLibraryToRoundOffBelowItsBound) {
+  // A few units of round-off of values of order one.
+  constexpr double kSeriesTol = 4e-16;
+  const EdgeDynamics edge = Fig14Edge();
+  const PlanarRocker rocker = PlanarRockerAboutEdge(testing::Fig14Block(), 1, 2);
+  const double overturn_rate = LandingRate(rocker, edge.critical_angle_rad());
+  for (const double fraction : {1e-3, 0.3, 0.9, 0.999}) {
+    const auto swing = Swing(edge, 0.0, fraction * overturn_rate);
+    ASSERT_TRUE(swing.has_value()) << fraction;
+    const double m = swing->parameter_m();
+    for (int i = -20; i <= 20; ++i) {
+      const double u = ConservativeEdgePhase::kSeriesMaxArg * i / 20.0;
+      const JacobiTriple series = swing->JacobiSeries(u);
+      JacobiTriple library;
+      gsl_sf_elljac_e(u, m, &library.sn, &library.cn, &library.dn);
+      EXPECT_NEAR(series.sn, library.sn, kSeriesTol) << fraction << " " << u;
+      EXPECT_NEAR(series.cn, library.cn, kSeriesTol) << fraction << " " << u;
+      EXPECT_NEAR(series.dn, library.dn, kSeriesTol) << fraction << " " << u;
+    }
+  }
+}
+
+// The start's triple comes from the state alone; it is the library's at u = −ω·(apex time) and gives back the state.
+TEST(ConservativeEdgePhase, StartTripleFromTheStateIsTheLibrarysAtTheStart) {
+  constexpr double kTripleTol = 1e-15;  // round-off of a few square roots and divisions of values of order one
+  const EdgeDynamics edge = Fig14Edge();
+  for (const double psi0 : {0.0, 0.02, 0.15}) {
+    for (const double rate : {-0.4, 0.0, 0.4}) {
+      const auto swing = Swing(edge, psi0, rate);
+      if (!swing) continue;
+      const JacobiTriple& start = swing->start_jacobi();
+      JacobiTriple library;
+      gsl_sf_elljac_e(-swing->omega_1_s() * swing->apex_time_s(), swing->parameter_m(), &library.sn, &library.cn,
+                      &library.dn);
+      EXPECT_NEAR(start.sn, library.sn, kTripleTol) << psi0 << " " << rate;
+      EXPECT_NEAR(start.cn, library.cn, kTripleTol) << psi0 << " " << rate;
+      EXPECT_NEAR(start.dn, library.dn, kTripleTol) << psi0 << " " << rate;
+      EXPECT_NEAR(swing->TiltFromJacobi(start), psi0, kTiltTol_rad) << psi0 << " " << rate;
+      EXPECT_NEAR(swing->RateFromJacobi(start), rate, kRateTol_rad_s) << psi0 << " " << rate;
+    }
+  }
 }
 
 TEST(ConservativeEdgePhase, UnevenSamplesAreEvaluatedExactly) {

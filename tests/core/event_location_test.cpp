@@ -2,9 +2,11 @@
 // on the surface.
 #include "rockfit/core/event_location.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -227,6 +229,37 @@ TEST(HermiteDipTime, IsEmptyForAGuardThatTurnsTwiceAboveZeroAndExactForACubic) {
   EXPECT_NEAR(g(*dip).rate, 0.0, 1e-12);
   EXPECT_GT(*dip, 0.4);
   EXPECT_LT(*dip, 0.6);
+}
+
+// The cheap bound that skips the search never hides a dip: over random end values and rates, a cubic whose sampled
+// minimum lies clearly below the negligible depth always has its dip reported, and a reported dip is below zero.
+TEST(HermiteDipTime, FindsEveryDipOfRandomCubicsThatTheSampledCubicShows) {
+  std::mt19937 rng(1127);
+  std::uniform_real_distribution<double> value(-0.1, 1.0);
+  std::uniform_real_distribution<double> rate(-8.0, 8.0);
+  std::uniform_real_distribution<double> step(0.01, 2.0);
+  int dips = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const GuardValue g0{value(rng), rate(rng)};
+    const GuardValue g1{value(rng), rate(rng)};
+    const double h = step(rng);
+    // The Hermite cubic on s ∈ [0, 1], written independently of HermiteDipTime (basis functions).
+    const auto cubic = [&](double s) {
+      const double s2 = s * s, s3 = s2 * s;
+      return (2 * s3 - 3 * s2 + 1) * g0.value + (s3 - 2 * s2 + s) * h * g0.rate + (-2 * s3 + 3 * s2) * g1.value +
+             (s3 - s2) * h * g1.rate;
+    };
+    double sampled_min = std::numeric_limits<double>::infinity();
+    for (int i = 1; i < 1000; ++i) sampled_min = std::min(sampled_min, cubic(i / 1000.0));
+    const double change = std::max({std::abs(g0.value), std::abs(g1.value), h * std::abs(g0.rate), h * std::abs(g1.rate)});
+    const std::optional<double> dip = HermiteDipTime(0.0, g0, h, g1);
+    if (sampled_min < -1e-3 * change && sampled_min < std::min(g0.value, g1.value)) {
+      ASSERT_TRUE(dip.has_value()) << trial;
+      ++dips;
+    }
+    if (dip) EXPECT_LT(cubic(*dip / h), 0.0) << trial;
+  }
+  EXPECT_GT(dips, 1000);
 }
 
 TEST(FindFirstDescent, GuardOnTheSurfaceMovingDownIsAnEventAtTheStart) {

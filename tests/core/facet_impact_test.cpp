@@ -385,6 +385,46 @@ TEST(FacetImpact, PrecomputedNoSpinOperatorsGiveTheSameOutcome) {
   EXPECT_THROW(MakeFacetNoSpinOperators(block, 2, fixed), InvalidArgument);
 }
 
+// The outcome of a direction scaled by r is the full map's for r times that direction: the same decision, ω⁺ and
+// τ times r, energies times r² (random λ's, directions, pivots and scales over eight decades).
+TEST(FacetImpact, ScaledNoSpinOutcomeOfADirectionIsTheOutcomeOfTheScaledRate) {
+  const Block block = Fig11Block();
+  std::mt19937 rng(131);
+  std::uniform_real_distribution<double> lambda(-3.0, 3.0);
+  std::uniform_real_distribution<double> component(-1.0, 1.0);
+  std::uniform_real_distribution<double> log10_scale(-4.0, 4.0);
+  int decided = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    FacetImpactParameters params;
+    params.lambda_lat = trial % 3 == 0 ? 0.0 : lambda(rng);  // a third planar (edge contact after)
+    params.lambda_lon = lambda(rng);
+    const int b = 1 + trial % 4;
+    const Eigen::Vector3d e =
+        trial % 2 == 0 ? FallingOmega(block, b, 1.0) : Eigen::Vector3d(component(rng), component(rng), component(rng));
+    const double r = std::pow(10.0, log10_scale(rng));
+    const ImpactOutcome unit = FacetImpact(block, b, e, params);
+    const ImpactOutcome scaled = ScaledFacetOutcome(unit, r);
+    const ImpactOutcome direct = FacetImpact(block, b, r * e, params);
+    ASSERT_EQ(direct.status, scaled.status) << trial;
+    EXPECT_EQ(direct.contact_before, scaled.contact_before) << trial;
+    EXPECT_NEAR(direct.energy_before_J, scaled.energy_before_J, 1e-12 * direct.energy_before_J) << trial;
+    if (direct.status != ImpactStatus::kOk) continue;
+    ++decided;
+    EXPECT_EQ(direct.contact_after, scaled.contact_after) << trial;
+    const double w_scale = r * e.norm();
+    EXPECT_NEAR((direct.w_plus_B - scaled.w_plus_B).norm(), 0.0, kVectorRelTol * w_scale) << trial;
+    EXPECT_NEAR((direct.w_plus_W - scaled.w_plus_W).norm(), 0.0, kVectorRelTol * w_scale) << trial;
+    EXPECT_NEAR(direct.tau, scaled.tau, kVectorRelTol * w_scale * block.mass()) << trial;
+    EXPECT_NEAR(direct.delta_energy_J, scaled.delta_energy_J, 1e-12 * direct.energy_before_J) << trial;
+    EXPECT_EQ(direct.energy_nonincreasing, scaled.energy_nonincreasing) << trial;
+  }
+  EXPECT_GT(decided, 40);
+  const ImpactOutcome unit = FacetImpact(block, 2, FallingOmega(block, 2, 1.0), {});
+  EXPECT_THROW(ScaledFacetOutcome(unit, 0.0), InvalidArgument);
+  EXPECT_THROW(ScaledFacetOutcome(unit, -1.0), InvalidArgument);
+  EXPECT_THROW(ScaledFacetOutcome(unit, std::numeric_limits<double>::quiet_NaN()), InvalidArgument);
+}
+
 TEST(FacetImpact, GeometricBound27) {
   EXPECT_TRUE(WithinFacetBounds(1.0, -1.0));
   EXPECT_FALSE(WithinFacetBounds(1.01, 0.0));

@@ -33,6 +33,8 @@ class VertexMode {
  public:
   static constexpr int kStateSize = VertexDynamics::kStateSize;
   static constexpr int kNumGuards = 4;
+  // The sample's Euler angles come from its quaternion (the sampler's EulerZyxSequence), not from the state.
+  static constexpr bool kEulerFromQuaternion = true;
   // A vertex height can fall below zero and rise again within one step: steps stay below max_step_s.
   static constexpr bool kGuardsNeedStepBound = true;
   using State = VertexDynamics::State;
@@ -57,7 +59,9 @@ class VertexMode {
 
   Eigen::Quaterniond Attitude(const State& y) const { return VertexDynamics::Attitude(y); }
   // Euler angles (φz, φy, φx) of the sample attitude q_WB (canonical, from Attitude(y)).
-  Eigen::Vector3d EulerZyx(const Eigen::Quaterniond& q_WB, const State& /*y*/) const { return EulerZyxFromQuaternion(q_WB); }
+  Eigen::Vector3d EulerZyx(const Eigen::Quaterniond& q_WB, const State& /*y*/) const {
+    return EulerZyxFromUnitQuaternion(q_WB);
+  }
   Eigen::Vector3d AngularVelocity_B(const State& y) const { return VertexDynamics::AngularVelocity(y); }
   double Energy(const State& y) const { return dynamics_.Energy(y); }
   double KineticEnergy(const State& y) const { return dynamics_.KineticEnergy(y); }
@@ -81,6 +85,7 @@ class EdgeMode {
  public:
   static constexpr int kStateSize = EdgeDynamics::kStateSize;
   static constexpr int kNumGuards = 2;
+  static constexpr bool kEulerFromQuaternion = false;  // EulerZyx reads them off the yaw and the tilt
   // Neither guard can cross zero and come back: below θ_c the tilt is concave in time (ψ̈ = −(mgR/J_e)
   // sin(θ_c − ψ) < 0, also for ψ < 0), so once it falls through zero it keeps falling, and beyond θ_c it is convex,
   // so once the COM passes over the edge it keeps going. A guard positive at both ends of a step is positive

@@ -39,6 +39,7 @@ class GroundVertexMode {
  public:
   static constexpr int kStateSize = VertexMode::kStateSize;
   static constexpr int kNumGuards = VertexMode::kNumGuards;
+  static constexpr bool kEulerFromQuaternion = VertexMode::kEulerFromQuaternion;
   static constexpr bool kGuardsNeedStepBound = true;
   using State = VertexMode::State;
 
@@ -98,6 +99,7 @@ class GroundEdgeMode {
   static constexpr double kLoadRateStep_s = 1e-6;
   static constexpr int kStateSize = EdgeMode::kStateSize;
   static constexpr int kNumGuards = EdgeMode::kNumGuards + 2;
+  static constexpr bool kEulerFromQuaternion = EdgeMode::kEulerFromQuaternion;
   // The table's acceleration makes the tilt's curvature change sign: steps stay bounded.
   static constexpr bool kGuardsNeedStepBound = true;
   using State = EdgeMode::State;

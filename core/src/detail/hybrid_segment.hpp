@@ -104,8 +104,12 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
     return outcome;
   };
   const auto emit = [&](const State& y) {
-    sampler.Emit(mode_label, mode.AngularVelocity_B(y), [&] { return mode.Attitude(y); },
-                 [&](const Eigen::Quaterniond& q_WB) { return mode.EulerZyx(q_WB, y); });
+    if constexpr (ModeT::kEulerFromQuaternion) {
+      sampler.Emit(mode_label, mode.AngularVelocity_B(y), [&] { return mode.Attitude(y); });
+    } else {
+      sampler.Emit(mode_label, mode.AngularVelocity_B(y), [&] { return mode.Attitude(y); },
+                   [&](const Eigen::Quaterniond& q_WB) { return mode.EulerZyx(q_WB, y); });
+    }
   };
 
   // Guards at the start; a guard already past zero (or on zero and moving down) fires at once.

@@ -143,6 +143,14 @@ inline std::optional<double> HermiteDipTime(double t0, const GuardValue& g0, dou
   const double change =
       std::max({std::abs(g0.value), std::abs(g1.value), h * std::abs(g0.rate), h * std::abs(g1.rate)});
   double lowest = -kNegligibleDipFraction * change;
+  // A cheap bound first (most steps of most guards): with Δ = g1 − g0, e0 = h ġ0 − Δ and e1 = h ġ1 − Δ the cubic
+  // is p(s) = (1 − s) g0 + s g1 + s (1 − s) ((1 − s) e0 − s e1), and s (1 − s) ≤ 1/4, so p ≥ min(g0, g1) −
+  // max(|e0|, |e1|)/4 on [0, 1]. Where that is not negative there is no dip, as the search below would find.
+  const double delta = g1.value - g0.value;
+  if (std::min(g0.value, g1.value) - 0.25 * std::max(std::abs(h * g0.rate - delta), std::abs(h * g1.rate - delta)) >=
+      0.0) {
+    return std::nullopt;
+  }
   const auto consider = [&](double s) {  // a root of p'(s) = 3a s² + 2b s + c
     if (!(s > 0.0 && s < 1.0) || !(3.0 * a * s + b > 0.0)) return;  // inside, and a minimum (p'' > 0)
     const double p = ((a * s + b) * s + c) * s + d;

@@ -58,6 +58,14 @@ FacetNoSpinOperators MakeFacetNoSpinOperators(const Block& block, int pivot_b, c
 ImpactOutcome FacetImpact(const Block& block, const FacetNoSpinOperators& operators, const Eigen::Vector3d& w_minus_B,
                           const FacetImpactParameters& params);
 
+// Under the no-spin rule every quantity the outcome is decided by — the candidates' ω⁺ and τ, the velocities of
+// (22)–(23) and the tolerances they are compared with (proportional to |ω⁻| + |ω⁺|) — is linear in ω⁻. So the
+// outcome for ω⁻ = r·e, r > 0, is that for the direction e with ω⁺ and τ times r and the energies times r²: a
+// rotation about a base edge lands with ω⁻ along the edge axis, and one outcome per edge and sense of rotation
+// serves every facet impact of a run. Returns `unit` (the outcome for e) scaled so, to round-off the outcome of
+// FacetImpact for r·e; its candidates are left out. Throws InvalidArgument unless r is finite and positive.
+ImpactOutcome ScaledFacetOutcome(const ImpactOutcome& unit, double r);
+
 bool WithinFacetBounds(double lambda_lat, double lambda_lon);  // (27): |λ_lat| ≤ 1, |λ_lon| ≤ 1
 
 }  // namespace rockfit::core

@@ -7,6 +7,8 @@
 // P stays on the ground plane z = 0 of W; heights below are measured from it.
 #pragma once
 
+#include <cmath>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -33,7 +35,9 @@ class VertexDynamics {
   VertexDynamics(const Block& block, const Eigen::Vector3d& p_BP_B, double gravity_m_s2);
 
   static State MakeState(const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B);
-  static Eigen::Quaterniond Attitude(const State& y);  // normalised q_WB
+  // Normalised q_WB. (Eigen's normalisation divides each component by the norm; one reciprocal times each would be
+  // cheaper but differs by round-off, which the chatter of response runs amplifies into different impacts.)
+  static Eigen::Quaterniond Attitude(const State& y) { return Eigen::Quaterniond(y[0], y[1], y[2], y[3]).normalized(); }
   static Eigen::Vector3d AngularVelocity(const State& y) { return y.tail<3>(); }
   // R_WBᵀ e_z: the world vertical in B, from a possibly non-unit quaternion (the third row of R(q) for
   // q = (w, x, y, z), scaled by 2/|q|² so that a non-unit q still gives a rotation).
