@@ -246,7 +246,7 @@ bool WeightedResiduals(const Objective& objective, const ParameterSet& at, std::
   if (on_node_grid != nullptr) on_node_grid->assign(nodes.size(), Eigen::Vector3d::Zero());
   for (std::size_t k = 0; k < nodes.size(); ++k) {
     if (nodes.weight_s[k] == 0.0) continue;
-    residuals->push_back(std::sqrt(nodes.weight_s[k]) * (nodes.w_m_B[k] - output.w_B[k]));
+    residuals->push_back(std::sqrt(nodes.weight_s[k]) * NodeMisfit(nodes, k, output.w_B[k]));
     if (on_node_grid != nullptr) (*on_node_grid)[k] = residuals->back();
   }
   return true;

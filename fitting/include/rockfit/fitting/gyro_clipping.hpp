@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "rockfit/fitting/trajectory_error.hpp"
@@ -25,6 +26,9 @@ struct GyroClippingOptions {
   double level_tolerance = 1e-4;
   // The rail is accepted when at least this many samples reach it: one sample is every recording's largest value.
   std::size_t min_samples = 2;
+  // How (28) treats a clipped sample: true, as a censored observation (NodeMisfit: its axes at the rail give a
+  // one-sided misfit, its other axes the plain one); false, left out (no weight).
+  bool censored = true;
   void Validate() const;  // throws InvalidArgument
 };
 
@@ -33,6 +37,7 @@ struct GyroClipping {
   double level_rad_s = 0.0;   // the largest |ω| component of the recording (the rail when detected)
   std::size_t samples = 0;    // samples with a component at the rail; 0 unless detected
   std::vector<bool> clipped;  // one per sample when detected, else empty
+  std::vector<std::uint8_t> axes;  // one per sample when detected, else empty: bit a set when axis a is at the rail
 };
 
 // Never throws for the signal (an empty one has no rail); InvalidArgument for bad options.
