@@ -1,7 +1,9 @@
 // Samples where the recorded gyro sits at its full scale (clipped): there the recording says only "at least this
-// fast", so they carry no information about the model's ω. The fit leaves them out of the error (28), of the
-// noise floor at rest and of the data estimate of phase 1 (MeasuredSignal::excluded), and says how many it left
-// out (ModelErrorStatement::clipped_samples; fitting/README.md, "Clipped gyro samples").
+// fast" on the axis at the rail. The fit enters them into the error (28) as censored observations (a one-sided
+// misfit on that axis, MeasuredSignal::censored_axes and NodeMisfit) or, with `censored` off, leaves them out of
+// it; either way it leaves them out of the noise floor at rest and of the data estimate of phase 1
+// (MeasuredSignal::excluded), and says how many clipped (ModelErrorStatement::clipped_samples; fitting/README.md,
+// "Clipped gyro samples").
 //
 // Detected from the data alone: one full scale serves all three gyro axes (x-IMU register 8), so the rail is the
 // largest |ω| component of the whole recording, and a gyro that clipped reports that value again and again. A

@@ -8,7 +8,8 @@
 // it replaces would have, so ε does not jump when t0 crosses a sample time.
 //
 // Samples marked excluded (the gyro clipped at its full scale, gyro_clipping.hpp) get no weight — nor does an
-// end node interpolated from one — and ε is the mean over the time that the remaining weights cover.
+// end node interpolated from one — and ε is the mean over the time that the remaining weights cover; unless
+// they are marked censored too, then they keep their weight and enter with the censored misfit of NodeMisfit.
 #pragma once
 
 #include <cstddef>
