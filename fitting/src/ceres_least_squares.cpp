@@ -76,6 +76,10 @@ class ResidualEvaluator {
   std::size_t num_nodes_at(const double* x) {
     return Lookup(x) ? last_num_nodes_ : 0;
   }
+  // The nodes with weight at x (the others are clipped samples, whose slots hold 0); 0 when the model fails.
+  std::size_t num_weighted_nodes_at(const double* x) {
+    return Lookup(x) ? last_entry_->num_weighted_nodes : 0;
+  }
 
   // Residuals (3 per slot) at x, or nullptr when the model fails there. The pointer stays valid until the
   // next call.
@@ -95,6 +99,7 @@ class ResidualEvaluator {
     bool ok = false;
     bool jacobian_ok = false;
     std::size_t num_nodes = 0;
+    std::size_t num_weighted_nodes = 0;
     std::uint64_t last_used = 0;
   };
 
@@ -127,6 +132,7 @@ class ResidualEvaluator {
     const Evaluation e = objective_.EvaluateDetailed(objective_.WithFree(xv), &nodes_, &output_, exact_jacobian_);
     entry->ok = e.feasible && nodes_.size() >= 2 && nodes_.first_sample >= first_slot_sample_;
     entry->num_nodes = entry->ok ? nodes_.size() : 0;
+    entry->num_weighted_nodes = entry->ok ? nodes_.size() - nodes_.num_excluded : 0;
     last_num_nodes_ = entry->num_nodes;
     if (!entry->ok) return nullptr;
     ResidualScale scale;
@@ -352,10 +358,16 @@ StandardErrors ComputeStandardErrors(const Objective& objective, const Eigen::Ve
   // Residuals of neighbouring samples are correlated (gyro ringing after impacts, model error that varies
   // slowly), so they carry less information than independent ones. With the lag-1 autocorrelation ρ of the
   // residual series (each component in time order), an AR(1) process has an effective sample size
-  // N·(1 − ρ)/(1 + ρ); the variances grow by the inverse factor (never shrink).
+  // N·(1 − ρ)/(1 + ρ); the variances grow by the inverse factor (never shrink). Slots that are no node (before
+  // t0) or a node without weight (a clipped sample) hold 0: they add nothing to either sum of ρ, so no pair
+  // across them is counted as adjacent.
   const double inflation = Lag1InflationFactor(r, evaluator.num_slots(), 3);
-  const std::size_t nodes = evaluator.num_nodes_at(x.data());
+  // The degrees of freedom count the residuals: the nodes with weight only.
+  const std::size_t nodes = evaluator.num_weighted_nodes_at(x.data());
   const double dof = 3.0 * static_cast<double>(nodes) - static_cast<double>(n);
+  result.weighted_nodes = nodes;
+  result.dof = dof;
+  result.lag1_factor = inflation;
   if (dof <= 0.0) {
     result.message = "fewer residuals than free parameters";
     return result;

@@ -28,9 +28,13 @@ GyroClipping DetectGyroClipping(const MeasuredSignal& signal, const GyroClipping
   if (!(out.level_rad_s > 0.0) || !std::isfinite(out.level_rad_s)) return out;
   const double rail = (1.0 - options.level_tolerance) * out.level_rad_s;
   std::vector<bool> at_rail(signal.size(), false);
+  std::vector<std::uint8_t> axes(signal.size(), 0);
   std::size_t count = 0;
   for (std::size_t k = 0; k < signal.size(); ++k) {
-    if (signal.w_B[k].cwiseAbs().maxCoeff() >= rail) {
+    for (int a = 0; a < 3; ++a) {
+      if (std::abs(signal.w_B[k][a]) >= rail) axes[k] = static_cast<std::uint8_t>(axes[k] | (1u << a));
+    }
+    if (axes[k] != 0) {
       at_rail[k] = true;
       ++count;
     }
@@ -39,6 +43,7 @@ GyroClipping DetectGyroClipping(const MeasuredSignal& signal, const GyroClipping
   out.detected = true;
   out.samples = count;
   out.clipped = std::move(at_rail);
+  out.axes = std::move(axes);
   return out;
 }
 

@@ -100,6 +100,31 @@ std::vector<io::Peak> RatePeaks(const MeasuredSignal& signal, int axis, const io
   return io::FindPeaks(magnitude, peak);
 }
 
+// A peak of |ω_y| on a clipped gyro is a flat top at the rail (gyro_clipping.hpp), and FindPeaks puts it at the
+// top's middle. The impact lies inside the top or right after its last sample: the block turns fastest just
+// before an impact, and after it |ω_y| falls by the restitution, which may leave it above the rail for a while.
+struct ClippedTop {
+  std::size_t first = 0, last = 0;  // the samples of the top (first == last == the peak when it is not clipped)
+  bool clipped = false;
+};
+
+ClippedTop ClippedTopAround(const MeasuredSignal& signal, std::size_t k) {
+  ClippedTop top{k, k, signal.is_excluded(k)};
+  if (!top.clipped) return top;
+  const double rail = std::abs(signal.w_B[k][1]);
+  auto at_rail = [&](std::size_t i) { return signal.is_excluded(i) && std::abs(signal.w_B[i][1]) == rail; };
+  while (top.first > 0 && at_rail(top.first - 1)) --top.first;
+  while (top.last + 1 < signal.size() && at_rail(top.last + 1)) ++top.last;
+  return top;
+}
+
+// |ω_y| falls by at least `fraction` of its value from sample k to the next.
+bool DropsAfter(const MeasuredSignal& signal, std::size_t k, double fraction) {
+  if (k + 1 >= signal.size()) return false;
+  const double w = std::abs(signal.w_B[k][1]);
+  return w - std::abs(signal.w_B[k + 1][1]) >= fraction * w;
+}
+
 double Clamp(const Parameter& p, double v) { return std::min(std::max(v, p.lower), p.upper); }
 
 void SetValue(ParameterSet* set, ParameterId id, double v) {
@@ -140,14 +165,18 @@ std::vector<double> DetectBaseImpactTimes(const MeasuredSignal& signal, const In
   for (const io::Peak& p : peaks) {
     if (times.empty()) {
       if (p.value >= options.first_impact_fraction * largest) {
-        times.push_back(signal.t_s[p.index]);
+        // On a clipped top, the impact is at its last sample when |ω_y| drops right after it (else inside it).
+        const ClippedTop top = ClippedTopAround(signal, p.index);
+        const std::size_t k_impact = top.clipped && DropsAfter(signal, top.last, options.min_jump_fraction) ? top.last
+                                                                                                              : p.index;
+        times.push_back(signal.t_s[k_impact]);
         first_value = p.value;
         first_sign = signal.w_B[p.index][1] >= 0.0 ? 1.0 : -1.0;
         // The attitude since the first impact (the base flat there: R = I), integrated with the exponential map
         // of the mean ω over each sample interval; the tilt about y is the elevation of the body x axis. In 3D
         // rocking with roll and spin, ∫ω_y dt drifts from it (by 0.03 rad over 0.37 s with 19° of roll).
         Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-        for (std::size_t k = p.index + 1; k < signal.size(); ++k) {
+        for (std::size_t k = k_impact + 1; k < signal.size(); ++k) {
           const Eigen::Vector3d turn = 0.5 * (signal.t_s[k] - signal.t_s[k - 1]) * (signal.w_B[k] + signal.w_B[k - 1]);
           const double angle = turn.norm();
           if (angle > 0.0) R = R * Eigen::AngleAxisd(angle, turn / angle).toRotationMatrix();
@@ -163,17 +192,36 @@ std::vector<double> DetectBaseImpactTimes(const MeasuredSignal& signal, const In
       // small against its largest value in between; edge impacts between the far vertices V3, V4 happen at a
       // large tilt.
       const double w = signal.w_B[p.index][1];
-      const double drop = std::abs(w) - std::abs(signal.w_B[p.index + 1][1]);
-      const std::size_t k = p.index;
-      const bool flat = std::abs(tilt_y[k]) <= options.flat_tilt_fraction * max_tilt_y[k];
-      // The base passes through flat about y at the peak itself: the release side touches down there, whatever
-      // the jump (an edge impact V3→V2 with λ < 1 changes ω_y by only a few per cent, and the sample after the
-      // impact can be higher than the one before). "At the peak": within the tilt swept in kLandingSamples
-      // samples, as the peak sample is the last before the impact or the first after it.
-      const double one_sample_tilt = std::max(std::abs(tilt_y[k] - tilt_y[k - 1]), std::abs(tilt_y[k + 1] - tilt_y[k]));
-      const bool lands_here = std::abs(tilt_y[k]) <= kLandingSamples * one_sample_tilt;
-      if (w * first_sign < 0.0 && ((drop >= options.min_jump_fraction * std::abs(w) && flat) || lands_here)) {
-        times.push_back(signal.t_s[p.index]);
+      if (w * first_sign >= 0.0) continue;
+      const ClippedTop top = ClippedTopAround(signal, p.index);
+      auto impact_at = [&](std::size_t k, bool need_drop) {
+        if (k == 0 || k + 1 >= signal.size()) return false;
+        const double drop = std::abs(signal.w_B[k][1]) - std::abs(signal.w_B[k + 1][1]);
+        const bool flat = std::abs(tilt_y[k]) <= options.flat_tilt_fraction * max_tilt_y[k];
+        // The base passes through flat about y at the peak itself: the release side touches down there, whatever
+        // the jump (an edge impact V3→V2 with λ < 1 changes ω_y by only a few per cent, and the sample after the
+        // impact can be higher than the one before). "At the peak": within the tilt swept in kLandingSamples
+        // samples, as the peak sample is the last before the impact or the first after it.
+        const double one_sample_tilt =
+            std::max(std::abs(tilt_y[k] - tilt_y[k - 1]), std::abs(tilt_y[k + 1] - tilt_y[k]));
+        const bool lands_here = std::abs(tilt_y[k]) <= kLandingSamples * one_sample_tilt;
+        return (flat && (!need_drop || drop >= options.min_jump_fraction * std::abs(w))) || lands_here;
+      };
+      if (!top.clipped) {
+        if (impact_at(p.index, true)) times.push_back(signal.t_s[p.index]);
+        continue;
+      }
+      // A clipped top hides the drop: the impact is at its end when |ω_y| drops right after it, else inside it,
+      // where the base passes flat (at its middle, as FindPeaks places the peak, when the tilt says nowhere).
+      if (impact_at(top.last, true)) {
+        times.push_back(signal.t_s[top.last]);
+        continue;
+      }
+      for (std::size_t k = top.first; k <= top.last; ++k) {
+        if (impact_at(k, false)) {
+          times.push_back(signal.t_s[p.index]);
+          break;
+        }
       }
     }
   }

@@ -55,7 +55,7 @@ ResidualJacobianSummary NodeResiduals(const Objective& objective, const ErrorNod
   // The window's length without its clipped samples, as the soft-L1 scaling of (28) uses it.
   const double window_s = nodes.weighted_duration_s();
   for (std::size_t i = 0; i < n; ++i) {
-    (*residuals)[i].f = scale.Scale(nodes.weight_s[i], window_s) * (nodes.w_m_B[i] - output.w_B[i]);
+    (*residuals)[i].f = scale.Scale(nodes.weight_s[i], window_s) * NodeMisfit(nodes, i, output.w_B[i]);
     (*residuals)[i].df_dx.setZero(3, num_free);
   }
   if (output.dw_B_dparams.size() != n) {
@@ -63,7 +63,7 @@ ResidualJacobianSummary NodeResiduals(const Objective& objective, const ErrorNod
     return summary;
   }
   // With clipped samples the window's length depends on t0 through them too; the t0 column below does not say so.
-  if (nodes.num_excluded > 0) {
+  if (nodes.num_excluded > 0 || nodes.num_censored > 0) {
     summary.reason = "clipped samples in the window";
     return summary;
   }

@@ -18,6 +18,10 @@ void MeasuredSignal::Validate() const {
   if (!excluded.empty() && excluded.size() != t_s.size()) {
     throw InvalidArgument(fmt::format("measured signal: {} times but {} exclusion marks", t_s.size(), excluded.size()));
   }
+  if (!censored_axes.empty() && censored_axes.size() != t_s.size()) {
+    throw InvalidArgument(
+        fmt::format("measured signal: {} times but {} censoring marks", t_s.size(), censored_axes.size()));
+  }
   if (t_s.size() < 2) {
     throw InvalidArgument(fmt::format("measured signal: need at least two samples, got {}", t_s.size()));
   }
@@ -76,6 +80,16 @@ bool BuildErrorNodes(const MeasuredSignal& signal, double t0_s, double t_end_s, 
   // Excluded samples: their nodes, and an end node interpolated from one, carry no weight.
   nodes->excluded_weight_s = 0.0;
   nodes->num_excluded = 0;
+  nodes->censored_axes.assign(n, 0);
+  nodes->num_censored = 0;
+  // A sample with a censored axis keeps its weight and is marked instead (the end nodes, interpolated, never are).
+  auto censored = [&](std::size_t k) { return signal.censored_at(k) != 0; };
+  if (!signal.censored_axes.empty()) {
+    for (std::size_t i = 0; i < interior; ++i) {
+      nodes->censored_axes[i + 1] = signal.censored_at(first + i);
+      if (nodes->censored_axes[i + 1] != 0) ++nodes->num_censored;
+    }
+  }
   if (!signal.excluded.empty()) {
     auto exclude = [&](std::size_t i) {
       nodes->excluded_weight_s += nodes->weight_s[i];
@@ -87,7 +101,7 @@ bool BuildErrorNodes(const MeasuredSignal& signal, double t0_s, double t_end_s, 
     const std::size_t last_sample = signal.size() - 1;
     if (signal.is_excluded(first) || (first > 0 && signal.is_excluded(first - 1))) exclude(0);
     for (std::size_t i = 0; i < interior; ++i) {
-      if (signal.is_excluded(first + i)) exclude(i + 1);
+      if (signal.is_excluded(first + i) && !censored(first + i)) exclude(i + 1);
     }
     const std::size_t after = std::min(first + interior, last_sample);
     if (signal.is_excluded(after) || (first + interior > 0 && signal.is_excluded(first + interior - 1))) exclude(n - 1);
@@ -95,10 +109,22 @@ bool BuildErrorNodes(const MeasuredSignal& signal, double t0_s, double t_end_s, 
   return true;
 }
 
+Eigen::Vector3d NodeMisfit(const ErrorNodes& nodes, std::size_t i, const Eigen::Vector3d& w_s_B) {
+  Eigen::Vector3d d = nodes.w_m_B[i] - w_s_B;
+  const std::uint8_t axes = nodes.censored_axes.empty() ? 0 : nodes.censored_axes[i];
+  if (axes == 0) return d;
+  for (int a = 0; a < 3; ++a) {
+    if ((axes & (1u << a)) == 0) continue;
+    const double sense = nodes.w_m_B[i][a] >= 0.0 ? 1.0 : -1.0;
+    if (sense * d[a] <= 0.0) d[a] = 0.0;  // the model at or beyond the rail: consistent with "at least this fast"
+  }
+  return d;
+}
+
 double TrajectoryError(const ErrorNodes& nodes, const std::vector<Eigen::Vector3d>& w_s_B) {
   double integral = 0.0;  // ∫ ‖ω_m − ω_s‖ dt [rad]
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    integral += nodes.weight_s[i] * (nodes.w_m_B[i] - w_s_B[i]).norm();
+    integral += nodes.weight_s[i] * NodeMisfit(nodes, i, w_s_B[i]).norm();
   }
   const double covered_s = nodes.weighted_duration_s();
   if (nodes.num_excluded == nodes.size() || !(covered_s > 0.0)) return std::numeric_limits<double>::infinity();

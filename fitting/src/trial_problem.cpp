@@ -32,8 +32,11 @@ TrialProblem PrepareTrialProblem(const MeasuredSignal& recorded, const core::Blo
   GyroClipping clipping = DetectGyroClipping(signal, options.clipping);
   if (clipping.detected) {
     signal.excluded = clipping.clipped;
-    notes.push_back(fmt::format("{} sample(s) at the gyro's full scale ±{:.4g} rad/s (clipped) are left out of (28)",
-                                clipping.samples, clipping.level_rad_s));
+    if (options.clipping.censored) signal.censored_axes = clipping.axes;
+    notes.push_back(fmt::format("{} sample(s) at the gyro's full scale ±{:.4g} rad/s (clipped) {}", clipping.samples,
+                                clipping.level_rad_s,
+                                options.clipping.censored ? "enter (28) as censored: \"at least this fast\""
+                                                          : "are left out of (28)"));
   }
   InitialGuess guess = EstimateInitialGuess(signal, block, parameters, options.guess);
 

@@ -233,7 +233,7 @@ bool FromString(std::string_view text, Determination* value) {
 }
 
 bool WeightedResiduals(const Objective& objective, const ParameterSet& at, std::vector<Eigen::Vector3d>* residuals,
-                       double* epsilon_rad_s) {
+                       double* epsilon_rad_s, std::vector<Eigen::Vector3d>* on_node_grid) {
   ErrorNodes nodes;
   ModelOutput output;
   const Evaluation e = objective.EvaluateDetailed(at, &nodes, &output);
@@ -243,9 +243,11 @@ bool WeightedResiduals(const Objective& objective, const ParameterSet& at, std::
   // noise level per residual and the degrees of freedom would overstate the data.
   residuals->clear();
   residuals->reserve(nodes.size());
+  if (on_node_grid != nullptr) on_node_grid->assign(nodes.size(), Eigen::Vector3d::Zero());
   for (std::size_t k = 0; k < nodes.size(); ++k) {
     if (nodes.weight_s[k] == 0.0) continue;
-    residuals->push_back(std::sqrt(nodes.weight_s[k]) * (nodes.w_m_B[k] - output.w_B[k]));
+    residuals->push_back(std::sqrt(nodes.weight_s[k]) * NodeMisfit(nodes, k, output.w_B[k]));
+    if (on_node_grid != nullptr) (*on_node_grid)[k] = residuals->back();
   }
   return true;
 }
@@ -441,8 +443,11 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
   std::int64_t evaluations = 0;
 
   // The effective noise level from the residuals at the fit.
-  std::vector<Eigen::Vector3d> r;
-  if (profiled.empty() || !WeightedResiduals(ls, base, &r)) {
+  // r: the residuals (what the sums and the degrees of freedom count); r_grid: the same on the node grid, 0 at a
+  // node without weight (a clipped sample), for the correlation in time — no pair across a left-out sample is
+  // taken for neighbours, and the zeros add nothing to the lag sums.
+  std::vector<Eigen::Vector3d> r, r_grid;
+  if (profiled.empty() || !WeightedResiduals(ls, base, &r, nullptr, &r_grid)) {
     u.description = "not available: the model fails at the fit";
     return u;
   }
@@ -457,7 +462,7 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
   const int max_lag = std::max(1, static_cast<int>(std::lround(options.noise_correlation_window_s / dt_s)));
   // κ_j per parameter: the sandwich where the Jacobian is there, else the long-run factor of the residuals.
   PerParameter kappa;
-  kappa.fill(LongRunVarianceFactor(r, max_lag));
+  kappa.fill(LongRunVarianceFactor(r_grid, max_lag));
   u.noise_inflation.fill(kNaN);
   if (lin.available()) {
     const Eigen::VectorXd k = SandwichInflation(lin, max_lag);
@@ -465,7 +470,7 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
   }
   for (double& k : kappa) k *= options.model_error_allowance;
   // The bulk level of the 68 % intervals (never above the 95 % level's, so that the intervals nest).
-  const double bulk = Lag1InflationFactor(r.front().data(), r.size(), 3);
+  const double bulk = Lag1InflationFactor(r_grid.front().data(), r_grid.size(), 3);
   PerParameter kappa_68 = kappa;
   if (options.bulk_noise_for_68) {
     for (double& k : kappa_68) k = std::min(k, bulk);

@@ -1,4 +1,5 @@
 // The Ceres back end and the covariance standard errors.
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -6,6 +7,7 @@
 
 #include "analytic_trial.hpp"
 #include "rockfit/fitting/local_optimizer.hpp"
+#include "rockfit/fitting/trajectory_error.hpp"
 #include "rockfit/fitting/trial_problem.hpp"
 #include "synth_trial.hpp"
 
@@ -92,6 +94,74 @@ TEST(Ceres, StandardErrorsBoundTheScatterOfEstimatesUnderWhiteNoise) {
   EXPECT_LT(ratio_alpha, kHighestRatio);
   EXPECT_GT(ratio_lon, kLowestRatio);
   EXPECT_LT(ratio_lon, kHighestRatio);
+}
+
+// Residual √w·(ω_m − ω_s) of every node at `at`, computed here from the nodes and the model run (not by the
+// standard errors under test), with whether the node has weight.
+struct NodeSeries {
+  std::vector<Eigen::Vector3d> r;
+  std::vector<bool> weighted;
+};
+NodeSeries SeriesAt(const Objective& objective, const ParameterSet& at) {
+  ErrorNodes nodes;
+  ModelOutput out;
+  EXPECT_TRUE(objective.EvaluateDetailed(at, &nodes, &out).feasible);
+  NodeSeries s;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    s.weighted.push_back(nodes.weight_s[i] > 0.0);
+    s.r.push_back(std::sqrt(nodes.weight_s[i]) * (nodes.w_m_B[i] - out.w_B[i]));
+  }
+  return s;
+}
+
+TEST(Ceres, LeftOutSamplesCountNeitherInTheDegreesOfFreedomNorInTheLagOnePairs) {
+  // Clipped samples (weight 0) are no residuals: the standard errors' degrees of freedom are 3 per node with
+  // weight less the free parameters, and the lag-1 correlation pairs only nodes that are both weighted and
+  // adjacent (no pair across a gap). Both computed here from the nodes; t0 held so that the residual slots of
+  // the back end are exactly the nodes. The values recorded at the left-out samples then cannot matter.
+  testing::SyntheticSignalOptions noise;
+  noise.noise_rad_s = 0.03;
+  noise.seed = 4;
+  testing::AnalyticTrial trial = MakeAnalyticTrial(0.2, 0.8, -2.0, 0.6, noise);
+  MeasuredSignal& signal = trial.data.signal;
+  signal.excluded.assign(signal.size(), false);
+  std::size_t left_out = 0;
+  for (std::size_t k : {150u, 151u, 152u, 153u, 220u, 300u, 301u}) {
+    ASSERT_LT(signal.t_s[k], trial.t_end_s);
+    ASSERT_GT(signal.t_s[k], 0.5);
+    signal.excluded[k] = true;
+    ++left_out;
+  }
+  const ParameterSet p = Free(trial, {ParameterId::kAlpha, ParameterId::kLambdaLat, ParameterId::kLambdaLon});
+  const Objective objective = trial.MakeObjective(p);
+  const Eigen::VectorXd x = objective.FreeValues(trial.truth);
+  const StandardErrors se = ComputeStandardErrors(objective, x, CeresOptions{});
+  ASSERT_TRUE(se.available) << se.message;
+
+  const NodeSeries series = SeriesAt(objective, objective.WithFree(x));
+  const auto weighted = static_cast<std::size_t>(std::count(series.weighted.begin(), series.weighted.end(), true));
+  EXPECT_EQ(weighted, series.r.size() - left_out);
+  EXPECT_EQ(se.weighted_nodes, weighted);
+  EXPECT_EQ(se.dof, 3.0 * static_cast<double>(weighted) - 3.0);
+  double lag0 = 0.0, lag1 = 0.0;
+  for (std::size_t i = 0; i < series.r.size(); ++i) {
+    if (!series.weighted[i]) continue;
+    lag0 += series.r[i].squaredNorm();
+    if (i > 0 && series.weighted[i - 1]) lag1 += series.r[i].dot(series.r[i - 1]);
+  }
+  const double rho = std::clamp(lag1 / lag0, 0.0, 0.99);
+  constexpr double kRoundOff = 1e-12;  // relative: the same sums in another order
+  EXPECT_NEAR(se.lag1_factor, (1.0 + rho) / (1.0 - rho), kRoundOff * se.lag1_factor);
+
+  // Anything recorded at the left-out samples: the same standard errors, to the last digit.
+  testing::AnalyticTrial other = trial;
+  for (std::size_t k = 0; k < signal.size(); ++k) {
+    if (signal.excluded[k]) other.data.signal.w_B[k] = Eigen::Vector3d(7.0, -3.0, 11.0);
+  }
+  const StandardErrors se_other = ComputeStandardErrors(other.MakeObjective(p), x, CeresOptions{});
+  ASSERT_TRUE(se_other.available) << se_other.message;
+  EXPECT_EQ(se_other.std_error, se.std_error);
+  EXPECT_EQ(se_other.dof, se.dof);
 }
 
 TEST(Ceres, StandardErrorsAreUnavailableForAParameterWithoutInfluence) {

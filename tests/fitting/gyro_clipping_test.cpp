@@ -12,6 +12,7 @@
 #include "analytic_trial.hpp"
 #include "build_type.hpp"
 #include "rockfit/fitting/fitter.hpp"
+#include "rockfit/fitting/initial_guess.hpp"
 #include "synth_trial.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/fitting/model_error.hpp"
@@ -128,6 +129,26 @@ TEST(GyroClipping, ARecordingClippedAtThreeQuartersOfItsPeakIsFittedToItsTruth) 
   for (ParameterId id : {ParameterId::kT0, ParameterId::kAlpha}) {
     const Interval& i = fit.uncertainty.interval_95[static_cast<std::size_t>(id)];
     EXPECT_TRUE(!(i[0] > trial.truth.value(id)) && !(i[1] < trial.truth.value(id))) << fit.FullReport();
+  }
+}
+
+TEST(GyroClipping, TheWindowOfAClippedRecordingEndsAtTheSameBaseImpact) {
+  // The window ends at the second base impact, found as a peak of |ω_y| followed by a drop. Clipped, the peak is a
+  // flat top at the rail and the impact lies at its end or inside it (after the impact |ω_y| can stay above the
+  // rail): the detector must still take it for the impact, not pass on to a later one (a whole rocking
+  // half-cycle, 0.3 s or more, later). Compared with the same recording unclipped.
+  constexpr double kSameImpactToleranceS = 8.0 / 256.0;  // the impact placed inside a top of up to 16 samples
+  for (std::uint64_t seed : {2u, 3u, 4u}) {
+    for (double fraction : {0.6, 0.75, 0.9}) {
+      testing::SynthTrial trial = testing::MakeSynthTrial(0.2, 0.8, -2.0, 0.6, seed);
+      const double unclipped = DetectWindowEnd(trial.signal, {});
+      ClipAt(fraction, &trial.signal);
+      const GyroClipping c = DetectGyroClipping(trial.signal);
+      ASSERT_TRUE(c.detected);
+      trial.signal.excluded = c.clipped;
+      EXPECT_NEAR(DetectWindowEnd(trial.signal, {}), unclipped, kSameImpactToleranceS)
+          << "seed " << seed << ", rail at " << fraction << " of the peak";
+    }
   }
 }
 

@@ -112,6 +112,62 @@ TEST(TrajectoryError, ExcludedSamplesLeaveNoTraceAndTheMeanIsOverTheTimeLeft) {
   EXPECT_EQ(nodes.num_excluded, 9u);  // the two end nodes and interior samples 1, 40–43, 100, 255
 }
 
+TEST(TrajectoryError, ACensoredAxisGivesTheOneSidedMisfitOfItsDefinition) {
+  // A gyro at its rail R records ±R while the truth is at least that fast in that sense. Per censored axis: 0 when
+  // the model is at or beyond the rail in the recorded sense, ω_m − ω_s (the shortfall) otherwise; the other axes
+  // of the sample are plain. Cases written out by hand for R = 2 rad/s on x (+) and y (−).
+  constexpr double kRail = 2.0;
+  ErrorNodes nodes;
+  nodes.w_m_B = {Eigen::Vector3d(kRail, -kRail, 0.5)};
+  nodes.censored_axes = {0b011};
+  struct Case {
+    Eigen::Vector3d w_s;
+    Eigen::Vector3d misfit;
+  };
+  const Case cases[] = {
+      {{2.5, -2.5, 0.4}, {0.0, 0.0, 0.1}},    // beyond the rail on both censored axes: only z's plain misfit
+      {{2.0, -2.0, 0.5}, {0.0, 0.0, 0.0}},    // exactly at the rail
+      {{1.5, -1.0, 0.5}, {0.5, -1.0, 0.0}},   // short of the rail: the shortfall, in the recorded sense
+      {{-1.0, 3.0, 0.0}, {3.0, -5.0, 0.5}},   // the wrong sense altogether
+      {{3.0, -1.5, -0.5}, {0.0, -0.5, 1.0}},  // beyond on x, short on y
+  };
+  for (const Case& c : cases) {
+    EXPECT_LT((NodeMisfit(nodes, 0, c.w_s) - c.misfit).norm(), kSumTolerance) << c.w_s.transpose();
+  }
+  nodes.censored_axes = {0};  // a plain sample: the plain difference
+  EXPECT_LT((NodeMisfit(nodes, 0, Eigen::Vector3d(2.5, -2.5, 0.4)) - Eigen::Vector3d(-0.5, 0.5, 0.1)).norm(),
+            kSumTolerance);
+}
+
+TEST(TrajectoryError, CensoredSamplesKeepTheirWeightAndEnterWithTheirMisfit) {
+  // ω_m = c everywhere, model 0, samples 40–43 censored on x: c_x > 0 and the model (0) falls short of it, so the
+  // misfit there is still c and ε = ‖c‖ over the whole window; with the model beyond the rail on x instead, those
+  // samples contribute ‖(0, c_y, c_z)‖ and ε is the weighted mean of the two.
+  const Eigen::Vector3d c(0.3, -0.4, 1.2);  // ‖c‖ = 1.3
+  MeasuredSignal s = UniformSignal(256.0, 300, [&](double) { return c; });
+  s.censored_axes.assign(s.size(), 0);
+  s.excluded.assign(s.size(), false);
+  for (std::size_t k : {40u, 41u, 42u, 43u}) {
+    s.censored_axes[k] = 0b001;
+    s.excluded[k] = true;  // as the trial problem marks a clipped sample for the phase-1 estimate and the noise floor
+  }
+  ErrorNodes nodes;
+  ASSERT_TRUE(BuildErrorNodes(s, 0.0123, 1.0, &nodes));
+  EXPECT_EQ(nodes.num_excluded, 0u);
+  EXPECT_EQ(nodes.num_censored, 4u);
+  EXPECT_NEAR(TrajectoryError(nodes, Zeros(nodes.size())), 1.3, kSumTolerance);
+  std::vector<Eigen::Vector3d> w_s = Zeros(nodes.size());
+  double censored_weight = 0.0;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (nodes.censored_axes[i] == 0) continue;
+    w_s[i] = Eigen::Vector3d(1.0, 0.0, 0.0);  // beyond the rail c_x = 0.3
+    censored_weight += nodes.weight_s[i];
+  }
+  const double expected =
+      (1.3 * (nodes.duration_s() - censored_weight) + std::hypot(0.4, 1.2) * censored_weight) / nodes.duration_s();
+  EXPECT_NEAR(TrajectoryError(nodes, w_s), expected, kSumTolerance);
+}
+
 TEST(TrajectoryError, WithoutExcludedSamplesTheDivisorIsTheWindowExactly) {
   const MeasuredSignal s = UniformSignal(256.0, 300, [&](double t) { return Eigen::Vector3d(t, 0, 0); });
   ErrorNodes nodes;

@@ -1,7 +1,9 @@
 // Samples where the recorded gyro sits at its full scale (clipped): there the recording says only "at least this
-// fast", so they carry no information about the model's ω. The fit leaves them out of the error (28), of the
-// noise floor at rest and of the data estimate of phase 1 (MeasuredSignal::excluded), and says how many it left
-// out (ModelErrorStatement::clipped_samples; fitting/README.md, "Clipped gyro samples").
+// fast" on the axis at the rail. The fit enters them into the error (28) as censored observations (a one-sided
+// misfit on that axis, MeasuredSignal::censored_axes and NodeMisfit) or, with `censored` off, leaves them out of
+// it; either way it leaves them out of the noise floor at rest and of the data estimate of phase 1
+// (MeasuredSignal::excluded), and says how many clipped (ModelErrorStatement::clipped_samples; fitting/README.md,
+// "Clipped gyro samples").
 //
 // Detected from the data alone: one full scale serves all three gyro axes (x-IMU register 8), so the rail is the
 // largest |ω| component of the whole recording, and a gyro that clipped reports that value again and again. A
@@ -11,6 +13,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "rockfit/fitting/trajectory_error.hpp"
@@ -25,6 +28,9 @@ struct GyroClippingOptions {
   double level_tolerance = 1e-4;
   // The rail is accepted when at least this many samples reach it: one sample is every recording's largest value.
   std::size_t min_samples = 2;
+  // How (28) treats a clipped sample: true, as a censored observation (NodeMisfit: its axes at the rail give a
+  // one-sided misfit, its other axes the plain one); false, left out (no weight).
+  bool censored = true;
   void Validate() const;  // throws InvalidArgument
 };
 
@@ -33,6 +39,7 @@ struct GyroClipping {
   double level_rad_s = 0.0;   // the largest |ω| component of the recording (the rail when detected)
   std::size_t samples = 0;    // samples with a component at the rail; 0 unless detected
   std::vector<bool> clipped;  // one per sample when detected, else empty
+  std::vector<std::uint8_t> axes;  // one per sample when detected, else empty: bit a set when axis a is at the rail
 };
 
 // Never throws for the signal (an empty one has no rail); InvalidArgument for bad options.

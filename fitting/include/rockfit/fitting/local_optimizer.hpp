@@ -64,6 +64,11 @@ struct StandardErrors {
   // the t_end node; 0 before t0) and their Jacobian (limited differences), for the correlated-noise sandwich.
   Eigen::VectorXd residuals;
   Eigen::MatrixXd jacobian;
+  // What the noise level s² = lag1_factor·Σr²/dof counted: the residuals of the nodes with weight (clipped samples
+  // have none and are no residuals: not in dof, not in the lag-1 pairs), 3 per node, less the free parameters.
+  std::size_t weighted_nodes = 0;
+  double dof = 0.0;
+  double lag1_factor = 1.0;
   bool available = false;
   std::string message;
 };

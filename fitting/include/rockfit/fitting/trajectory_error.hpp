@@ -8,10 +8,12 @@
 // it replaces would have, so ε does not jump when t0 crosses a sample time.
 //
 // Samples marked excluded (the gyro clipped at its full scale, gyro_clipping.hpp) get no weight — nor does an
-// end node interpolated from one — and ε is the mean over the time that the remaining weights cover.
+// end node interpolated from one — and ε is the mean over the time that the remaining weights cover; unless
+// they are marked censored too, then they keep their weight and enter with the censored misfit of NodeMisfit.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/Core>
@@ -25,8 +27,14 @@ struct MeasuredSignal {
   // Empty, or one per sample: true leaves the sample out of (28) and of the noise floor at rest (a clipped gyro,
   // gyro_clipping.hpp).
   std::vector<bool> excluded;
+  // Empty, or one per sample: bit a set when axis a sat at the gyro's rail (clipped), so the recorded value says
+  // only "at least this fast, in this sense". A sample with a censored axis enters (28) with the censored
+  // misfit of NodeMisfit instead of being left out (the phase-1 estimate and the noise floor still pass over it
+  // when it is also excluded).
+  std::vector<std::uint8_t> censored_axes;
 
   bool is_excluded(std::size_t k) const { return !excluded.empty() && excluded[k]; }
+  std::uint8_t censored_at(std::size_t k) const { return censored_axes.empty() ? 0 : censored_axes[k]; }
   // Throws InvalidArgument when sizes differ (also of `excluded` when not empty), fewer than two samples, a value is not finite, or time does not
   // strictly increase (naming the first offending sample).
   void Validate() const;
@@ -43,6 +51,8 @@ struct ErrorNodes {
   std::vector<double> weight_s;             // trapezoid weights; with excluded_weight_s they sum to t_end − t0
   double excluded_weight_s = 0.0;           // the trapezoid weight of the excluded nodes (set to 0 in weight_s)
   std::size_t num_excluded = 0;             // nodes whose weight was excluded
+  std::vector<std::uint8_t> censored_axes;  // per node: the censored axes of its sample (0: a plain measurement)
+  std::size_t num_censored = 0;             // nodes with a censored axis
   std::size_t first_sample = 0;             // signal index of node 1 when node 1 is a sample
   std::size_t num_interior = 0;             // nodes 1..num_interior are the samples strictly inside (t0, t_end)
 
@@ -55,6 +65,12 @@ struct ErrorNodes {
 // Fills `nodes` (reusing its storage) for the window [t0, t_end]. Returns false when the window is empty or
 // not inside the recording: t0 < t_front, t_end > t_back or t0 ≥ t_end.
 bool BuildErrorNodes(const MeasuredSignal& signal, double t0_s, double t_end_s, ErrorNodes* nodes);
+
+// The misfit ω_m − ω_s of node i, censored on the axes where the gyro sat at its rail: there the recording says
+// only s·ω ≥ s·ω_m (s the sign of ω_m), so the component is 0 when the model is at or beyond the rail in the same
+// sense and ω_m − ω_s (the model falls short) otherwise — the one-sided residual of a censored observation
+// (fitting/README.md, "Clipped gyro samples").
+Eigen::Vector3d NodeMisfit(const ErrorNodes& nodes, std::size_t i, const Eigen::Vector3d& w_s_B);
 
 // (28) for the nodes and the model's ω_s at nodes.t_after_release_s (same length); +∞ when every node is excluded.
 double TrajectoryError(const ErrorNodes& nodes, const std::vector<Eigen::Vector3d>& w_s_B);

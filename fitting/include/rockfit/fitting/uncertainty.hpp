@@ -80,9 +80,10 @@ struct UncertaintySummary {
 };
 
 // The residual series r_k = √w_k·(ω_m − ω_s) at `at` in time order (3 per node), over the nodes with weight
-// (excluded samples have none); false when the model fails there.
+// (excluded samples have none); false when the model fails there. `on_node_grid`, when given: the same residuals
+// at their nodes' places, 0 at a node without weight, for statistics of the correlation in time.
 bool WeightedResiduals(const Objective& objective, const ParameterSet& at, std::vector<Eigen::Vector3d>* residuals,
-                       double* epsilon_rad_s = nullptr);
+                       double* epsilon_rad_s = nullptr, std::vector<Eigen::Vector3d>* on_node_grid = nullptr);
 
 // κ = long-run variance / variance of the series (each component, pooled), Bartlett weights up to max_lag;
 // at least 1 (negative correlation at short lags never shrinks the noise level).
