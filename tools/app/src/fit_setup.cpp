@@ -143,7 +143,7 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   // v6: the lateral rescan.
   // v7: the model-error statement is stored with each fit (the fitted values are those of v6).
   // v8: the 95 % intervals widened for model error by default (the fitted values are those of v7).
-  std::string settings = fmt::format("rockfit-fit v8; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
+  std::string settings = fmt::format("rockfit-fit v9; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
                                      "global={}; keep_bias={}; block=({:.17g},{:.17g},{:.17g},{:.17g})",
                                      fitting::ToString(fitting::ParseFitMethod(args.method)),
                                      fitting::ToString(fitting::ParseIntervalMethod(args.intervals)), args.bounds,
