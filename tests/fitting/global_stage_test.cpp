@@ -13,6 +13,14 @@ using testing::MakeAnalyticTrial;
 // Noise-free data: the global stage must land in the basin of the truth; a local search finishes the job.
 constexpr double kLambdaLatBasin = 0.3;
 
+// A disturbed trial (noise, ringing, drift), its objective over the empirical bounds and a rough start: the
+// stage runs compared with each other below.
+struct DisturbedStage {
+  testing::AnalyticTrial trial = MakeAnalyticTrial(0.18, 1.2, 1.5, 0.9, testing::RealisticDisturbances());
+  Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
+  Eigen::VectorXd start = objective.FreeValues(trial.RoughStart());
+};
+
 TEST(GlobalStage, FindsTheSignOfLambdaLatFromAStartWithTheWrongSign) {
   const auto trial = MakeAnalyticTrial(0.2, 0.8, -2.0, 0.6);
   const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
@@ -30,9 +38,9 @@ TEST(GlobalStage, FindsTheSignOfLambdaLatFromAStartWithTheWrongSign) {
 }
 
 TEST(GlobalStage, GivesTheSameResultWithOneThreadAndWithMany) {
-  const auto trial = MakeAnalyticTrial(0.18, 1.2, 1.5, 0.9, testing::RealisticDisturbances());
-  const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
-  const Eigen::VectorXd start = objective.FreeValues(trial.RoughStart());
+  const DisturbedStage stage;
+  const Objective& objective = stage.objective;
+  const Eigen::VectorXd& start = stage.start;
   FitOptions one, many;
   one.num_threads = 1;
   many.num_threads = 4;
@@ -45,9 +53,9 @@ TEST(GlobalStage, GivesTheSameResultWithOneThreadAndWithMany) {
 // The scan screen only skips runs that cannot change a scan: the stage with and without it ends at the same point
 // (the stop rule off in both).
 TEST(GlobalStage, ScanScreenLeavesTheResultUnchanged) {
-  const auto trial = MakeAnalyticTrial(0.18, 1.2, 1.5, 0.9, testing::RealisticDisturbances());
-  const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
-  const Eigen::VectorXd start = objective.FreeValues(trial.RoughStart());
+  const DisturbedStage stage;
+  const Objective& objective = stage.objective;
+  const Eigen::VectorXd& start = stage.start;
   FitOptions screened, unscreened;
   screened.num_threads = unscreened.num_threads = 1;
   screened.global.continuation_prune_ratio = unscreened.global.continuation_prune_ratio = 0.0;
@@ -61,9 +69,9 @@ TEST(GlobalStage, ScanScreenLeavesTheResultUnchanged) {
 // The stop rule drops carried starts that fall far behind; the one that wins on the full window is not among
 // them on this trial, and fewer starts reach the full window or the same number do.
 TEST(GlobalStage, StopRuleKeepsTheBestStart) {
-  const auto trial = MakeAnalyticTrial(0.18, 1.2, 1.5, 0.9, testing::RealisticDisturbances());
-  const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
-  const Eigen::VectorXd start = objective.FreeValues(trial.RoughStart());
+  const DisturbedStage stage;
+  const Objective& objective = stage.objective;
+  const Eigen::VectorXd& start = stage.start;
   FitOptions pruned, kept;
   kept.global.continuation_prune_ratio = 0.0;
   pruned.global.refine = kept.global.refine = false;
