@@ -40,8 +40,12 @@ Eigen::Vector3d ProjectedGyroScale(const ErrorNodes& nodes, const std::vector<Ei
   Eigen::Vector3d cross = Eigen::Vector3d::Zero();   // Σ w ω_m,a ω_s,a
   Eigen::Vector3d energy = Eigen::Vector3d::Zero();  // Σ w ω_s,a²
   for (std::size_t k = 0; k < nodes.size(); ++k) {
-    cross += nodes.weight_s[k] * nodes.w_m_B[k].cwiseProduct(w_s_B[k]);
-    energy += nodes.weight_s[k] * w_s_B[k].cwiseAbs2();
+    const unsigned censored = nodes.censored_axes.empty() ? 0u : nodes.censored_axes[k];
+    for (int a = 0; a < 3; ++a) {
+      if ((censored & (1u << a)) != 0) continue;  // a clipped reading is a bound on ω, not a measure of S·ω
+      cross[a] += nodes.weight_s[k] * nodes.w_m_B[k][a] * w_s_B[k][a];
+      energy[a] += nodes.weight_s[k] * w_s_B[k][a] * w_s_B[k][a];
+    }
   }
   const double total = energy.sum();
   if (!(total > 0.0)) return scale;

@@ -91,6 +91,28 @@ TEST(GyroScale, ScalesBeyondTheLargestScaleErrorAreClampedToTheBound) {
   EXPECT_NEAR(s[2], 1.0, 1e-12);
 }
 
+// A reading at the gyro's rail bounds ω and does not measure S·ω: with the peaks of ω_y clipped (censored) the
+// scale comes from the other readings alone and is the scale of the noiseless recording, where the clipped
+// values would pull it down.
+TEST(GyroScale, ReadingsCensoredAtTheRailDoNotEnterTheScale) {
+  const Eigen::Vector3d scale(1.02, 0.98, 1.015);
+  Problem p = MakeProblem(scale, 0.0);
+  constexpr double kRail_rad_s = 0.8;
+  p.nodes.censored_axes.assign(p.nodes.size(), 0);
+  std::size_t clipped = 0;
+  for (std::size_t k = 0; k < p.nodes.size(); ++k) {
+    if (std::abs(p.nodes.w_m_B[k].y()) < kRail_rad_s) continue;
+    p.nodes.w_m_B[k].y() = std::copysign(kRail_rad_s, p.nodes.w_m_B[k].y());
+    p.nodes.censored_axes[k] = 1u << 1;
+    ++clipped;
+  }
+  ASSERT_GT(clipped, 10u);
+  const Eigen::Vector3d per_axis = ProjectedGyroScale(p.nodes, p.w_s_B, GyroScaleMode::kPerAxis);
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(per_axis[a], scale[a], 1e-12) << "axis " << a;
+  p.nodes.censored_axes.assign(p.nodes.size(), 0);  // the same clipped values taken as measurements
+  EXPECT_LT(ProjectedGyroScale(p.nodes, p.w_s_B, GyroScaleMode::kPerAxis)[1], scale[1] - 0.01);
+}
+
 TEST(GyroScale, AnAxisWithoutModelMotionKeepsTheScaleOne) {
   Problem p = MakeProblem(Eigen::Vector3d(1.02, 0.98, 1.015), 0.05);
   for (Eigen::Vector3d& w : p.w_s_B) w.z() = 0.0;

@@ -12,6 +12,8 @@
 // uncertainty enters the other parameters' through the Jacobian and the profiles of the projected residuals.
 // The closed form minimises the sum of squares behind (28) (the form the Ceres back end and the intervals use),
 // not (28) itself, which weighs residuals by their norm; the two optima differ at second order.
+// An axis reading censored at the gyro's rail (trajectory_error.hpp) is left out of both sums: it bounds ω,
+// it does not measure S·ω.
 #pragma once
 
 #include <string>
