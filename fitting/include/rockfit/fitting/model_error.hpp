@@ -44,7 +44,7 @@ struct ModelErrorStatement {
   bool dominates = false;          // model error explains more than dominance_share of ε²
   double rest_duration_s = 0.0;    // length of the rest segment used [s]
   std::size_t rest_samples = 0;
-  // Samples of the recording at the gyro's full scale (clipped), left out of ε and of the noise floor
+  // Samples of the recording at the gyro's full scale (clipped), censored in ε and left out of the noise floor
   // (gyro_clipping.hpp); counted whether or not the rest was measured.
   std::size_t clipped_samples = 0;
 };

@@ -31,7 +31,8 @@ struct TrialProblemOptions {
   // and out of the window with the parameters and makes ε jump). Not applied to a given t_end.
   double window_end_margin_s = 0.012;
   std::optional<double> t_end_s;  // given end of the window (recording time)
-  // Samples at the gyro's full scale are left out of (28), the noise floor and the phase-1 estimate.
+  // Samples at the gyro's full scale enter (28) as censored (or are left out, `censored` false); the noise floor
+  // and the phase-1 estimate pass over them.
   GyroClippingOptions clipping;
   void Validate() const;          // throws InvalidArgument
 };
