@@ -39,13 +39,11 @@ TEST(GlobalStage, FindsTheSignOfLambdaLatFromAStartWithTheWrongSign) {
 
 TEST(GlobalStage, GivesTheSameResultWithOneThreadAndWithMany) {
   const DisturbedStage stage;
-  const Objective& objective = stage.objective;
-  const Eigen::VectorXd& start = stage.start;
   FitOptions one, many;
   one.num_threads = 1;
   many.num_threads = 4;
-  const GlobalStageResult a = RunGlobalStage(objective, start, one);
-  const GlobalStageResult b = RunGlobalStage(objective, start, many);
+  const GlobalStageResult a = RunGlobalStage(stage.objective, stage.start, one);
+  const GlobalStageResult b = RunGlobalStage(stage.objective, stage.start, many);
   EXPECT_EQ(a.best_x, b.best_x);
   EXPECT_EQ(a.best_epsilon_rad_s, b.best_epsilon_rad_s);
 }
@@ -54,14 +52,12 @@ TEST(GlobalStage, GivesTheSameResultWithOneThreadAndWithMany) {
 // (the stop rule off in both).
 TEST(GlobalStage, ScanScreenLeavesTheResultUnchanged) {
   const DisturbedStage stage;
-  const Objective& objective = stage.objective;
-  const Eigen::VectorXd& start = stage.start;
   FitOptions screened, unscreened;
   screened.num_threads = unscreened.num_threads = 1;
   screened.global.continuation_prune_ratio = unscreened.global.continuation_prune_ratio = 0.0;
   unscreened.global.scan_prefix_fraction = 0.0;
-  const GlobalStageResult a = RunGlobalStage(objective, start, screened);
-  const GlobalStageResult b = RunGlobalStage(objective, start, unscreened);
+  const GlobalStageResult a = RunGlobalStage(stage.objective, stage.start, screened);
+  const GlobalStageResult b = RunGlobalStage(stage.objective, stage.start, unscreened);
   EXPECT_EQ(a.best_x, b.best_x);
   EXPECT_EQ(a.best_epsilon_rad_s, b.best_epsilon_rad_s);
 }
@@ -70,13 +66,11 @@ TEST(GlobalStage, ScanScreenLeavesTheResultUnchanged) {
 // them on this trial, and fewer starts reach the full window or the same number do.
 TEST(GlobalStage, StopRuleKeepsTheBestStart) {
   const DisturbedStage stage;
-  const Objective& objective = stage.objective;
-  const Eigen::VectorXd& start = stage.start;
   FitOptions pruned, kept;
   kept.global.continuation_prune_ratio = 0.0;
   pruned.global.refine = kept.global.refine = false;
-  const GlobalStageResult a = RunGlobalStage(objective, start, pruned);
-  const GlobalStageResult b = RunGlobalStage(objective, start, kept);
+  const GlobalStageResult a = RunGlobalStage(stage.objective, stage.start, pruned);
+  const GlobalStageResult b = RunGlobalStage(stage.objective, stage.start, kept);
   EXPECT_LE(a.num_continued, b.num_continued);
   EXPECT_EQ(a.best_epsilon_rad_s, b.best_epsilon_rad_s);
 }
