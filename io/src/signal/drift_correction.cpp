@@ -11,7 +11,6 @@
 #include "signal/euler_kinematics.hpp"
 #include "rockfit/io/gyro_attitude.hpp"
 #include "rockfit/io/impact_consistency.hpp"
-#include "rockfit/io/joint_impact_times.hpp"
 #include "rockfit/core/enum_names.hpp"
 
 namespace rockfit::io {
@@ -57,7 +56,7 @@ void DriftCorrectionOptions::Validate() const {
     throw InvalidArgument("min_rate_jump_rad_s must be a finite number ≥ 0 [rad/s]");
   }
   zero_crossing.Validate();
-  joint_impact_times.Validate();
+  if (gyro_impact_passes < 0) throw InvalidArgument("gyro_impact_passes must be ≥ 0");
   if (!std::isfinite(same_impact_s) || same_impact_s < 0.0 || same_impact_s >= impacts.min_separation_s) {
     throw InvalidArgument("same_impact_s must be ≥ 0 and shorter than the impacts' min_separation_s [s]");
   }
@@ -78,11 +77,6 @@ double DriftAt(const std::vector<Anchor>& anchors, double t_s) {
 
 namespace {
 
-// A located impact time this close to an anchor's fitted time [samples] is that anchor's impact: the fit on the
-// split angle lands within a sample of the split (measured: up to 0.4 sample), and two impacts of one axis are
-// at least min_separation_s (13 samples at 256 Hz) apart.
-constexpr double kLocatedMatch_samples = 1.5;
-
 // Euler angle (component 1 = φy, 2 = φx) and its rate from the gyro through the ZYX kinematics.
 struct AngleAndRate {
   std::vector<double> angle_rad;
@@ -102,7 +96,7 @@ AngleAndRate ExtractAngle(const Recording& recording, int component) {
 
 Anchor MakeAnchor(const Recording& recording, const AngleAndRate& signal, const Peak& peak, AnchorSource source,
                   const DriftCorrectionOptions& options, const AnchorFitOptions& fit_options,
-                  std::optional<double> known_t_s = std::nullopt, const std::vector<double>& located_s = {}) {
+                  std::optional<double> known_t_s = std::nullopt) {
   Anchor anchor;
   anchor.index = peak.index;
   anchor.source = source;
@@ -112,21 +106,8 @@ Anchor MakeAnchor(const Recording& recording, const AngleAndRate& signal, const 
     anchor.value_rad = signal.angle_rad[peak.index];
     return anchor;
   }
-  AnchorEstimate estimate =
+  const AnchorEstimate estimate =
       EstimateAnchor(recording.t_s, signal.angle_rad, signal.rate_rad_s, peak.index, fit_options, known_t_s);
-  if (!known_t_s && !located_s.empty()) {
-    // An impact located before the attitude was integrated with its interval split there: read the angle at that
-    // time (the fit on the split angle cannot place it better than the split it was given).
-    const auto after = std::lower_bound(located_s.begin(), located_s.end(), estimate.t_s);
-    std::optional<double> nearest;
-    for (auto it : {after, after == located_s.begin() ? after : after - 1}) {
-      if (it == located_s.end()) continue;
-      if (!nearest || std::abs(*it - estimate.t_s) < std::abs(*nearest - estimate.t_s)) nearest = *it;
-    }
-    if (nearest && std::abs(*nearest - estimate.t_s) <= kLocatedMatch_samples / recording.rate_hz) {
-      estimate = EstimateAnchor(recording.t_s, signal.angle_rad, signal.rate_rad_s, peak.index, fit_options, nearest);
-    }
-  }
   anchor.t_s = estimate.t_s;
   anchor.value_rad = estimate.value_rad;
   return anchor;
@@ -151,48 +132,49 @@ std::vector<Anchor> KeepZeroInstants(const Recording& recording, const AngleAndR
   return kept;
 }
 
-// The impact times at which the integration of a gyro-only attitude splits its sample intervals, from the angle
-// integrated by the mean rule and its first correction: every sample interval holding an anchor of φ_y or φ_x is
-// a split; each anchor reads its axis' error there from the samples before it (impact_zero_crossing.hpp), and
-// the times inside the intervals follow with the error in one linear solve (joint_impact_times.hpp).
-std::vector<double> ImpactTimesJointly(const Recording& integrated, const DriftCorrection& correction,
-                                       const DriftCorrectionOptions& options) {
+// The impact times at which the next integration of a gyro-only attitude splits its sample intervals: each anchor
+// of φ_y, and each anchor of φ_x marked by its own |ω_x| peak, moved to where its angle minus the error Ê read
+// from all of its axis' anchors crosses zero (impact_zero_crossing.hpp); an anchor without such a crossing in its
+// interval keeps its time. One time per sample interval (φ_y's first), increasing.
+std::vector<double> ImpactTimesAtZero(const Recording& integrated, const DriftCorrection& correction,
+                                      const ZeroCrossingOptions& options) {
   const std::vector<double>& t = integrated.t_s;
-  const auto interval_of = [&](double t_s) -> std::optional<std::size_t> {
-    const auto after = std::upper_bound(t.begin(), t.end(), t_s);
-    if (after == t.begin() || after == t.end()) return std::nullopt;
-    return static_cast<std::size_t>(after - t.begin()) - 1;
-  };
-  std::vector<std::size_t> intervals;
-  for (const std::vector<Anchor>* anchors : {&correction.impacts_y, &correction.anchors_x}) {
-    for (const Anchor& a : *anchors) {
-      if (const auto m = interval_of(a.t_s)) intervals.push_back(*m);
-    }
-  }
-  std::sort(intervals.begin(), intervals.end());
-  intervals.erase(std::unique(intervals.begin(), intervals.end()), intervals.end());
-  if (intervals.empty()) return {};
-  std::vector<SplitInterval> splits;
-  for (std::size_t m : intervals) splits.push_back({t[m], t[m + 1]});
-  std::vector<AxisReadings> axes;
-  for (const auto& [anchors, component] : {std::pair{&correction.impacts_y, 1}, std::pair{&correction.anchors_x, 2}}) {
+  std::vector<std::pair<std::size_t, double>> located;  // (interval, time)
+  const auto locate = [&](const std::vector<Anchor>& anchors, int component, bool only_own_peaks) {
     const AngleAndRate signal = ExtractAngle(integrated, component);
-    AxisReadings axis;
-    for (std::size_t m : intervals) axis.rate_jump_rad_s.push_back(signal.rate_rad_s[m] - signal.rate_rad_s[m + 1]);
-    for (const Anchor& a : *anchors) {
-      const auto m = interval_of(a.t_s);
-      if (!m) continue;
-      const auto split = static_cast<std::size_t>(std::lower_bound(intervals.begin(), intervals.end(), *m) -
-                                                  intervals.begin());
-      if (!axis.readings.empty() && axis.readings.back().split >= split) continue;
-      const auto before = AngleBeforeImpact(t, signal.angle_rad, signal.rate_rad_s, *m, options.zero_crossing);
-      if (!before) continue;
-      const double t_mid = splits[split].middle_s();
-      axis.readings.push_back({split, before->At(t_mid), before->RateAt(t_mid)});
+    struct Candidate {
+      std::size_t interval;
+      double t_s;
+      bool moved;  // located here (φ_x's anchors at φ_y's impacts only read the error)
+      std::optional<BeforeImpact> before;
+    };
+    std::vector<Candidate> candidates;
+    std::vector<DriftPoint> readings;
+    for (const Anchor& a : anchors) {
+      const auto after = std::upper_bound(t.begin(), t.end(), a.t_s);
+      if (after == t.begin() || after == t.end()) continue;
+      const auto m = static_cast<std::size_t>(after - t.begin()) - 1;
+      Candidate c{m, a.t_s, !only_own_peaks || a.source == AnchorSource::kOmegaX,
+                  AngleBeforeImpact(t, signal.angle_rad, signal.rate_rad_s, m, options)};
+      if (c.before) readings.push_back(c.before->MiddleReading(options.reading_scatter_rad));
+      candidates.push_back(c);
     }
-    axes.push_back(axis);
+    for (const Candidate& c : candidates) {
+      if (!c.moved) continue;
+      std::optional<double> tau;
+      if (c.before) tau = ZeroCrossingTime(*c.before, SmoothDriftAt(readings, c.before->t0_s, options.drift_half_window_s));
+      located.emplace_back(c.interval, tau.value_or(c.t_s));
+    }
+  };
+  locate(correction.impacts_y, 1, false);
+  locate(correction.anchors_x, 2, true);
+  std::stable_sort(located.begin(), located.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<double> times;
+  for (std::size_t i = 0; i < located.size(); ++i) {
+    if (i > 0 && located[i].first == located[i - 1].first) continue;
+    times.push_back(located[i].second);
   }
-  return EstimateJointImpactTimes(splits, axes, options.joint_impact_times).times_s;
+  return times;
 }
 
 void RequireUsable(const Recording& recording) {
@@ -213,8 +195,7 @@ void RequireUsable(const Recording& recording) {
 }
 
 // The correction of a recording's own Euler angles (file or integrated).
-DriftCorrection CorrectAngles(const Recording& recording, const DriftCorrectionOptions& options,
-                              const std::vector<double>& located_s = {}) {
+DriftCorrection CorrectAngles(const Recording& recording, const DriftCorrectionOptions& options) {
   RequireUsable(recording);
   DriftCorrection result;
   result.attitude = "file";
@@ -232,8 +213,7 @@ DriftCorrection CorrectAngles(const Recording& recording, const DriftCorrectionO
   // φ_y: the peaks of |ω_y|, located inside their sample interval, then only those where φ_y is zero.
   std::vector<Anchor> candidates_y;
   for (const Peak& peak : DetectRatePeaks(recording, 1, options.impacts)) {
-    candidates_y.push_back(
-        MakeAnchor(recording, phi_y, peak, AnchorSource::kOmegaY, options, fit_options, std::nullopt, located_s));
+    candidates_y.push_back(MakeAnchor(recording, phi_y, peak, AnchorSource::kOmegaY, options, fit_options));
   }
   std::stable_sort(candidates_y.begin(), candidates_y.end(),
                    [](const Anchor& a, const Anchor& b) { return a.t_s < b.t_s; });
@@ -266,8 +246,7 @@ DriftCorrection CorrectAngles(const Recording& recording, const DriftCorrectionO
     for (const Anchor& impact : result.impacts_y) {
       if (distance(peak.index, impact.index) <= same_impact_samples && subsample) known_t = impact.t_s;
     }
-    candidates_x.push_back(
-        MakeAnchor(recording, phi_x, peak, AnchorSource::kOmegaX, options, fit_options, known_t));
+    candidates_x.push_back(MakeAnchor(recording, phi_x, peak, AnchorSource::kOmegaX, options, fit_options, known_t));
   }
   for (std::size_t i = 0; i < result.impacts_y.size(); ++i) {
     const Anchor& impact = result.impacts_y[i];
@@ -304,14 +283,13 @@ DriftCorrection CorrectDrift(const Recording& recording, const DriftCorrectionOp
     GyroAttitudeOptions attitude_options;
     Recording integrated = WithAttitude(recording, attitude_options);
     DriftCorrection result = CorrectAngles(integrated, options);
-    // The anchors of the angle integrated by the mean rule sit near their intervals' middles: the impact times
-    // are estimated from its readings once, and the attitude is integrated again with the rate jumps placed there.
-    if (options.locate_gyro_impacts) {
-      attitude_options.impact_times_s = ImpactTimesJointly(integrated, result, options);
-      if (!attitude_options.impact_times_s.empty()) {
-        integrated = WithAttitude(recording, attitude_options);
-        result = CorrectAngles(integrated, options, attitude_options.impact_times_s);
-      }
+    // The anchors of the angle integrated by the mean rule sit near their intervals' middles; each pass moves them
+    // to where the levelled angle comes back to zero and integrates again with the rate jumps placed there.
+    for (int pass = 0; pass < options.gyro_impact_passes; ++pass) {
+      attitude_options.impact_times_s = ImpactTimesAtZero(integrated, result, options.zero_crossing);
+      if (attitude_options.impact_times_s.empty()) break;
+      integrated = WithAttitude(recording, attitude_options);
+      result = CorrectAngles(integrated, options);
     }
     result.attitude = integrated.orientation_source;
     std::vector<std::string> notes{"the recording has no attitude; it was " + integrated.orientation_source};
