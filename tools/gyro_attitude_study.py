@@ -16,7 +16,10 @@ prints the same comparison for each: which artefact of the device moves which re
 --held-out DIR N makes N further synthetic trials with `rockfit synth` in DIR, their parameters and device
 artefacts drawn (fixed seed) from the ranges of the sample campaign (tools/make_samples.sh), and prints the same
 comparison: trials the sample campaign's numbers were not seen on. --held-out-seed S draws another set (default
-29; the synth seeds are 100·S + k).
+29; the synth seeds are 100·S + k). With --truth each trial is also made as an ideal sensor (its attitude files
+are then the true angles) and the AVRF read from it is printed beside the others: how far each path is from the
+truth, as the attitude files have errors of their own; and the AVRF's sensitivity, how much 0.1 mrad at the two
+peaks of the median ratio (each moved to widen it) moves the AVRF read from the files.
 
 --anchors TRIAL... prints, for each anchor of φ_y of each TRIAL (a manifest trial id, or the prefix of a synth
 recording with its _truth.json), its time minus the nearest true impact's, read with the attitude files and
@@ -33,6 +36,8 @@ import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# The held-out blocks' half-width and height [m] (tools/make_samples.sh); their depth b2 varies.
+B1_M, H_M = 0.05000453, 0.2
 # The options `rockfit synth` takes for a measurement artefact; an ideal sensor (--no-noise) takes none of them.
 MEASUREMENT_OPTIONS = ("--gyro-noise-dps", "--gyro-bias-dps", "--ringing-gain", "--ringing-frequency-hz",
                        "--ringing-decay-time-s", "--drift-slope-dps", "--drift-walk-deg-per-rt-s", "--accel-noise-g")
@@ -115,17 +120,44 @@ def variants(rockfit, manifest, out_dir, trial_id):
         print(row(label, file_m, gyro_m, truth["summary"]["opmf"]))
 
 
-def held_out(rockfit, out_dir, count, seed):
+def ideal_command(command):
+    """The synth command without the measurement artefacts, as an ideal sensor (--no-noise)."""
+    ideal, skip = [], False
+    for word in command:
+        if skip:
+            skip = False
+            continue
+        name = word.split("=", 1)[0]
+        if name in MEASUREMENT_OPTIONS:
+            skip = "=" not in word
+            continue
+        ideal.append(word)
+    return ideal + ["--no-noise"]
+
+
+def median_sensitivity(m, b1, h):
+    """|ΔAVRF|/AVRF [%] when the two peaks of the median ratio move by 0.1 mrad each, so as to widen it."""
+    import math
+    ratios, peaks = m["avrf_ratios"], m["avrf_peak_angles"]
+    order = sorted(range(len(ratios)), key=lambda i: ratios[i])
+    i = order[len(order) // 2]
+    def relative(phi):
+        return 1e-4 * abs(b1 * math.cos(phi) - h * math.sin(phi)) / (b1 * math.sin(phi) - h * (1.0 - math.cos(phi)))
+    return 100.0 * 0.5 * (relative(peaks[i]) + relative(peaks[i + 1]))
+
+
+def held_out(rockfit, out_dir, count, seed, truth=False):
     import random
     draw = random.Random(seed)
     os.makedirs(out_dir, exist_ok=True)
-    print(HEADER)
-    print(HEADER2)
+    print(HEADER + ("  %8s %8s %8s %8s" % ("AVRF", "gyro/", "file/", "0.1mrad") if truth else ""))
+    print(HEADER2 + ("  %8s %8s %8s %8s" % ("ideal", "ideal-1", "ideal-1", "moves") if truth else ""))
     worst_opmf = worst_avrf = 0.0
     beyond_opmf = beyond_avrf = 0
+    gaps = {"gyro": [], "file": []}
     for k in range(count):
         b2 = (0.025, 0.035, 0.045, 0.06)[k % 4]
-        block = ["--b1", "0.05000453", "--b2", repr(b2), "--h", "0.2", "--density", "2692"]
+        block = ["--b1", repr(B1_M), "--b2", repr(b2), "--h", repr(H_M), "--density", "2692"]
         bias = ",".join("%.3f" % draw.uniform(-0.06, 0.06) for _ in range(3))
         synth = block + ["--alpha", "%.3f" % draw.uniform(0.17, 0.24), "--lambda", "%.2f" % draw.uniform(1.0, 2.5),
                          "--lambda-lat", "%.2f" % draw.uniform(-4.5, 4.5),
@@ -145,7 +177,18 @@ def held_out(rockfit, out_dir, count, seed):
         gyro_m = metrics(rockfit, [prefix] + block + ["--orientation", "none"])
         with open(prefix + "_truth.json", encoding="utf-8") as f:
             truth_opmf = json.load(f)["summary"]["opmf"]
-        print(row("held-%02d" % k, file_m, gyro_m, truth_opmf))
+        line = row("held-%02d" % k, file_m, gyro_m, truth_opmf)
+        if truth:
+            ideal_prefix = prefix + "-ideal"
+            subprocess.run([rockfit, "synth"] + ideal_command(synth) + ["-o", ideal_prefix], capture_output=True,
+                           check=True)
+            ideal_m = metrics(rockfit, [ideal_prefix] + block)
+            for label, m in (("gyro", gyro_m), ("file", file_m)):
+                gaps[label].append(m["avrf"] / ideal_m["avrf"] - 1.0)
+            line += "  %8.4f %+7.2f%% %+7.2f%% %7.2f%%" % (ideal_m["avrf"], 100.0 * gaps["gyro"][-1],
+                                                        100.0 * gaps["file"][-1],
+                                                        median_sensitivity(file_m, B1_M, H_M))
+        print(line)
         d_opmf = abs(gyro_m["opmf"] - file_m["opmf"])
         d_avrf = abs(gyro_m["avrf"] / file_m["avrf"] - 1.0)
         worst_opmf, worst_avrf = max(worst_opmf, d_opmf), max(worst_avrf, d_avrf)
@@ -153,6 +196,10 @@ def held_out(rockfit, out_dir, count, seed):
         beyond_avrf += d_avrf > 0.01
     print("largest |OPMF gyro − file| %.4f (%d beyond 0.003), largest |AVRF gyro/file − 1| %.2f %% (%d beyond 1 %%)" %
           (worst_opmf, beyond_opmf, 100.0 * worst_avrf, beyond_avrf))
+    for label in gaps if truth else ():
+        values = [abs(v) for v in gaps[label]]
+        print("largest |AVRF %s/ideal − 1| %.2f %% (%d beyond 1 %%), mean %.2f %%" %
+              (label, 100.0 * max(values), sum(v > 0.01 for v in values), 100.0 * sum(values) / len(values)))
 
 
 def anchors(manifest, trials):
@@ -212,12 +259,14 @@ def main():
     parser.add_argument("--held-out", nargs=2, metavar=("DIR", "N"))
     parser.add_argument("--held-out-seed", type=int, default=29,
                         help="seed of the held-out draw (29: the trials io/README.md reports first)")
+    parser.add_argument("--truth", action="store_true",
+                        help="with --held-out: also read each trial as an ideal sensor (the AVRF of the true angles)")
     parser.add_argument("--anchors", nargs="+", metavar="TRIAL")
     args = parser.parse_args()
     if args.anchors:
         anchors(args.manifest, args.anchors)
     elif args.held_out:
-        held_out(args.rockfit, args.held_out[0], int(args.held_out[1]), args.held_out_seed)
+        held_out(args.rockfit, args.held_out[0], int(args.held_out[1]), args.held_out_seed, args.truth)
     elif args.variants:
         variants(args.rockfit, args.manifest, *args.variants)
     else:
