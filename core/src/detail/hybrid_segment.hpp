@@ -129,6 +129,14 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
     integrator.Interpolate(t, &y_dense);
     return y_dense;
   };
+  // A sample without attitude needs only the states from ModeT::kFirstRateState on (the body rate); the
+  // others of the returned state are stale.
+  const int first_sample_state = sampler.with_attitude() ? 0 : ModeT::kFirstRateState;
+  const auto interpolate_sample = [&](double t) -> const State& {
+    integrator.PrepareDense(mode);
+    integrator.InterpolateFrom(t, first_sample_state, &y_dense);
+    return y_dense;
+  };
 
   for (;;) {
     // Round-off floor of the time variable: closer to the limit than this counts as reaching it.
@@ -148,18 +156,34 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
     const State& y1 = integrator.y();
     const std::array<GuardValue, kGuards> g1 = EvaluateGuards(mode, t1, y1);
 
+    // The earliest crossing of any guard (the lowest index at equal times). Guards that change sign over the step
+    // are polished first; every other guard is then searched only up to the earliest crossing found (its value
+    // there from the dense output), since a crossing after it does not matter. A guard that stays above zero
+    // by the values at the step's ends alone (StaysAboveZero) needs no search at all.
     double t_event = std::numeric_limits<double>::infinity();
     int fired = -1;
-    for (int i = 0; i < kGuards; ++i) {
+    const auto search = [&](int i) {
       const auto eval = [&](double t) { return mode.Guard(i, t, interpolate(t)); };
-      const std::optional<double> root = FindFirstDescent(eval, t0, g0[i], t1, g1[i], polisher, settings.event_time_tol_s);
-      if (root && *root < t_event) {
+      std::optional<double> root;
+      if (t_event > t0 && t_event < t1) {
+        root = FindFirstDescent(eval, t0, g0[i], t_event, eval(t_event), polisher, settings.event_time_tol_s);
+      } else {
+        root = FindFirstDescent(eval, t0, g0[i], t1, g1[i], polisher, settings.event_time_tol_s);
+      }
+      if (root && (*root < t_event || (*root == t_event && i < fired))) {
         t_event = *root;
         fired = i;
       }
+    };
+    const auto changes_sign = [&](int i) { return g0[i].value > 0.0 && g1[i].value < 0.0; };
+    for (int i = 0; i < kGuards; ++i) {
+      if (changes_sign(i)) search(i);
+    }
+    for (int i = 0; i < kGuards; ++i) {
+      if (!changes_sign(i) && !StaysAboveZero(t0, g0[i], t1, g1[i])) search(i);
     }
     const double t_stop = fired >= 0 ? t_event : t1;
-    while (sampler.pending() && sampler.next_time() < t_stop) emit(interpolate(sampler.next_time()));
+    while (sampler.pending() && sampler.next_time() < t_stop) emit(interpolate_sample(sampler.next_time()));
     if (fired >= 0) {
       outcome.next_step_hint_s = integrator.suggested_step();
       const State y_event = t_event >= t1 ? y1 : interpolate(t_event);
