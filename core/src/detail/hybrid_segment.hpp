@@ -156,31 +156,15 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
     const State& y1 = integrator.y();
     const std::array<GuardValue, kGuards> g1 = EvaluateGuards(mode, t1, y1);
 
-    // The earliest crossing of any guard (the lowest index at equal times). Guards that change sign over the step
-    // are polished first; every other guard is then searched only up to the earliest crossing found (its value
-    // there from the dense output), since a crossing after it does not matter. A guard that stays above zero
-    // by the values at the step's ends alone (StaysAboveZero) needs no search at all.
     double t_event = std::numeric_limits<double>::infinity();
     int fired = -1;
-    const auto search = [&](int i) {
+    for (int i = 0; i < kGuards; ++i) {
       const auto eval = [&](double t) { return mode.Guard(i, t, interpolate(t)); };
-      std::optional<double> root;
-      if (t_event > t0 && t_event < t1) {
-        root = FindFirstDescent(eval, t0, g0[i], t_event, eval(t_event), polisher, settings.event_time_tol_s);
-      } else {
-        root = FindFirstDescent(eval, t0, g0[i], t1, g1[i], polisher, settings.event_time_tol_s);
-      }
-      if (root && (*root < t_event || (*root == t_event && i < fired))) {
+      const std::optional<double> root = FindFirstDescent(eval, t0, g0[i], t1, g1[i], polisher, settings.event_time_tol_s);
+      if (root && *root < t_event) {
         t_event = *root;
         fired = i;
       }
-    };
-    const auto changes_sign = [&](int i) { return g0[i].value > 0.0 && g1[i].value < 0.0; };
-    for (int i = 0; i < kGuards; ++i) {
-      if (changes_sign(i)) search(i);
-    }
-    for (int i = 0; i < kGuards; ++i) {
-      if (!changes_sign(i) && !StaysAboveZero(t0, g0[i], t1, g1[i])) search(i);
     }
     const double t_stop = fired >= 0 ? t_event : t1;
     while (sampler.pending() && sampler.next_time() < t_stop) emit(interpolate_sample(sampler.next_time()));

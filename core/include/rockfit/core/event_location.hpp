@@ -45,38 +45,6 @@ class RootPolisher {
   void* solver_;  // gsl_root_fsolver*
 };
 
-// A root in (a, b) of the cubic through g and ġ at both ends of a bracket where g changes sign (Hermite), by
-// Newton's method on the cubic kept inside [a, b] (bisection where a step leaves it); the secant's root where the
-// rates are not finite. Pure arithmetic: no evaluation of g.
-inline double HermiteCubicRoot(double a, const GuardValue& ga, double b, const GuardValue& gb) {
-  // Newton steps on the cubic: it converges quadratically from the secant's root; more only where it bisects.
-  constexpr int kMaxIterations = 12;
-  // Steps below this fraction of the bracket end the search: the cubic's own error is far larger.
-  constexpr double kRelativeStepTol = 1e-12;
-  const double h = b - a;
-  double s = ga.value / (ga.value - gb.value);  // the secant's root in s = (t − a)/h
-  if (!std::isfinite(ga.rate) || !std::isfinite(gb.rate)) return a + s * h;
-  // p(s) = d + c s + q s² + k s³ on [0, 1] with p(0) = g(a), p(1) = g(b), p'(0) = h ġ(a), p'(1) = h ġ(b).
-  const double d = ga.value;
-  const double c = h * ga.rate;
-  const double q = 3.0 * (gb.value - ga.value) - 2.0 * h * ga.rate - h * gb.rate;
-  const double k = 2.0 * (ga.value - gb.value) + h * ga.rate + h * gb.rate;
-  const bool positive_at_0 = ga.value > 0.0;
-  double lo = 0.0, hi = 1.0;
-  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
-    const double p = ((k * s + q) * s + c) * s + d;
-    if (p == 0.0) break;
-    ((p > 0.0) == positive_at_0 ? lo : hi) = s;
-    const double slope = (3.0 * k * s + 2.0 * q) * s + c;
-    double next = s - p / slope;
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    const double step = std::abs(next - s);
-    s = next;
-    if (step < kRelativeStepTol) break;
-  }
-  return a + s * h;
-}
-
 // A root of g in [a, b], where g(a) and g(b) do not have the same strict sign, with g and ġ at both ends.
 // Newton steps from the latest point, kept inside the bracket, which shrinks with every evaluation; a step that
 // leaves the bracket, or that does not at least halve the one before it, becomes a bisection. It ends when a
@@ -93,10 +61,8 @@ std::optional<double> PolishCrossing(const Eval& eval, double a, GuardValue ga, 
   if (gb.value == 0.0) return b;
   if ((ga.value > 0.0) == (gb.value > 0.0)) return std::nullopt;
   const bool positive_at_a = ga.value > 0.0;
-  // First point: the root of the Hermite cubic through g and ġ at both ends (a Newton step from either end can
-  // overshoot the other), which is of fourth order in the bracket's width where the secant is of second: on a
-  // vertex segment's step it saves two or three evaluations of the dense output.
-  double x = HermiteCubicRoot(a, ga, b, gb);
+  // First point: the secant of the bracket (a Newton step from either end can overshoot the other).
+  double x = a - ga.value * (b - a) / (gb.value - ga.value);
   if (!(x > a && x < b)) x = 0.5 * (a + b);
   double step_before = b - a;
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
@@ -126,14 +92,6 @@ std::optional<double> PolishCrossing(const Eval& eval, double a, GuardValue ga, 
 // from below: their intersection's value is a lower bound, and once it is positive there is no dip. Each new
 // point is the secant root of ġ (exact for a parabola), with bisection when the bracket does not shrink by a
 // quarter. A dip that clears the ground by more than the tangents' gap ends without any evaluation.
-// Over [a, b] with ġ(a) < 0 < ġ(b) and g convex there: the value where the tangents at a and b meet (clamped to
-// the bracket), a lower bound of g on [a, b].
-inline double TangentLowerBound(double a, const GuardValue& ga, double b, const GuardValue& gb) {
-  const double slope_gap = gb.rate - ga.rate;  // > 0
-  const double t_x = (gb.value - ga.value + ga.rate * a - gb.rate * b) / -slope_gap;
-  return ga.value + ga.rate * (std::clamp(t_x, a, b) - a);
-}
-
 template <class Eval>
 std::optional<double> TimeBelowZeroNearMinimum(const Eval& eval, double t0, const GuardValue& g0, double t1,
                                                const GuardValue& g1, double extremum_tol) {
@@ -143,8 +101,10 @@ std::optional<double> TimeBelowZeroNearMinimum(const Eval& eval, double t0, cons
   double width_before = 2.0 * (b - a);
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
     // The tangents at a and b meet at t_x; by convexity g ≥ their value there on [a, b].
-    if (TangentLowerBound(a, ga, b, gb) > 0.0) return std::nullopt;
     const double slope_gap = gb.rate - ga.rate;  // > 0
+    const double t_x = (gb.value - ga.value + ga.rate * a - gb.rate * b) / -slope_gap;
+    const double lower_bound = ga.value + ga.rate * (std::clamp(t_x, a, b) - a);
+    if (lower_bound > 0.0) return std::nullopt;
     const double width = b - a;
     if (width < extremum_tol) {
       const double mid = 0.5 * (a + b);
@@ -245,16 +205,6 @@ std::optional<double> CrossingAfterItRose(const Eval& eval, double t0, double t_
     }
   }
   return t0;
-}
-
-// Whether FindFirstDescent below finds no crossing on [t0, t1] from the values at the ends alone, without
-// evaluating g inside the step: g starts and ends above zero (not below at the end) and neither the tangent bound
-// at an interior minimum nor the Hermite cubic shows a dip. Exactly the early exits of FindFirstDescent, so a
-// guard for which this holds has no crossing in the step, as FindFirstDescent would say.
-inline bool StaysAboveZero(double t0, const GuardValue& g0, double t1, const GuardValue& g1) {
-  if (!(g0.value > 0.0) || g1.value < 0.0) return false;
-  if (g0.rate < 0.0 && g1.rate > 0.0) return TangentLowerBound(t0, g0, t1, g1) > 0.0;
-  return !HermiteDipTime(t0, g0, t1, g1);
 }
 
 // The first time in [t0, t1] at which g becomes negative, or empty. `eval(t)` returns g and ġ at any t
