@@ -54,10 +54,7 @@ class Dop853 {
   void PrepareDense(const Rhs& rhs);
 
   // The continuous extension at t ∈ [t_previous(), t()]; requires PrepareDense() after the last Step().
-  void Interpolate(double t, Vector* y) const { InterpolateFrom(t, 0, y); }
-  // The same for components first…N−1 only (the others of *y are left as they are): the same values, bit for
-  // bit, for a caller that needs only some components (e.g. the rates of a sample without attitude).
-  void InterpolateFrom(double t, int first, Vector* y) const;
+  void Interpolate(double t, Vector* y) const;
 
   double t() const { return t_; }
   const Vector& y() const { return y_; }
@@ -299,11 +296,11 @@ void Dop853<N>::PrepareDense(const Rhs& rhs) {
 }
 
 template <int N>
-void Dop853<N>::InterpolateFrom(double t, int first, Vector* y) const {
+void Dop853<N>::Interpolate(double t, Vector* y) const {
   const double theta = h_ > 0.0 ? (t - t_previous_) / h_ : 0.0;
   const double theta1 = 1.0 - theta;
   // Horner form of the continuous extension (see detail/dop853_tableau.hpp).
-  for (int i = first; i < N; ++i) {
+  for (int i = 0; i < N; ++i) {
     (*y)[i] = dense_[0][i] +
               theta * (dense_[1][i] +
                        theta1 * (dense_[2][i] +

@@ -57,9 +57,10 @@ BENCHMARK(BM_SimulateWithinBoundsZeno)->Unit(benchmark::kMicrosecond);
 void BM_SimulateWithinBoundsZeno_NoAttitude(benchmark::State& state) { Run(state, WithinBoundsParameters(), false); }
 BENCHMARK(BM_SimulateWithinBoundsZeno_NoAttitude)->Unit(benchmark::kMicrosecond);
 
-// One run as a fit makes it (fitting::SimulatorModel): the Fig. 14 case over the 0.8 s window of the fitting benchmark's
-// trial, ω sampled at 256 Hz without attitudes, stopped at the last sample, at relative tolerance 10^-Arg (absolute
-// tolerance 100 times smaller). Short runs like this are dominated by per-run and per-segment costs.
+// One run as a fit makes it (fitting::SimulatorModel): the Fig. 14 case over the 0.8 s window of the fitting
+// benchmark's trial, ω sampled at 256 Hz without attitudes, stopped at the last sample, at relative tolerance
+// 10^-Arg (absolute tolerance 100 times smaller). Its cost is per vertex segment (one DOP853 step or two between
+// impacts), so it hardly falls with the tolerance (README.md, "Performance").
 void BM_SimulateFitWindow(benchmark::State& state) {
   SimulationOptions options;
   options.stop = rockfit::core::StopCondition::kTMax;

@@ -35,8 +35,6 @@ class VertexMode {
   static constexpr int kNumGuards = 4;
   // The sample's Euler angles come from its quaternion (the sampler's EulerZyxSequence), not from the state.
   static constexpr bool kEulerFromQuaternion = true;
-  // w_B is y[4..6]: AngularVelocity_B reads no other state (a sample without attitude interpolates only these).
-  static constexpr int kFirstRateState = 4;
   // A vertex height can fall below zero and rise again within one step: steps stay below max_step_s.
   static constexpr bool kGuardsNeedStepBound = true;
   using State = VertexDynamics::State;
@@ -88,7 +86,6 @@ class EdgeMode {
   static constexpr int kStateSize = EdgeDynamics::kStateSize;
   static constexpr int kNumGuards = 2;
   static constexpr bool kEulerFromQuaternion = false;  // EulerZyx reads them off the yaw and the tilt
-  static constexpr int kFirstRateState = 1;  // AngularVelocity_B reads ψ̇ = y[1] alone
   // Neither guard can cross zero and come back: below θ_c the tilt is concave in time (ψ̈ = −(mgR/J_e)
   // sin(θ_c − ψ) < 0, also for ψ < 0), so once it falls through zero it keeps falling, and beyond θ_c it is convex,
   // so once the COM passes over the edge it keeps going. A guard positive at both ends of a step is positive

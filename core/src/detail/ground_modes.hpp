@@ -40,7 +40,6 @@ class GroundVertexMode {
   static constexpr int kStateSize = VertexMode::kStateSize;
   static constexpr int kNumGuards = VertexMode::kNumGuards;
   static constexpr bool kEulerFromQuaternion = VertexMode::kEulerFromQuaternion;
-  static constexpr int kFirstRateState = VertexMode::kFirstRateState;
   static constexpr bool kGuardsNeedStepBound = true;
   using State = VertexMode::State;
 
@@ -101,7 +100,6 @@ class GroundEdgeMode {
   static constexpr int kStateSize = EdgeMode::kStateSize;
   static constexpr int kNumGuards = EdgeMode::kNumGuards + 2;
   static constexpr bool kEulerFromQuaternion = EdgeMode::kEulerFromQuaternion;
-  static constexpr int kFirstRateState = EdgeMode::kFirstRateState;
   // The table's acceleration makes the tilt's curvature change sign: steps stay bounded.
   static constexpr bool kGuardsNeedStepBound = true;
   using State = EdgeMode::State;

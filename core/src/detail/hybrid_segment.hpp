@@ -129,14 +129,6 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
     integrator.Interpolate(t, &y_dense);
     return y_dense;
   };
-  // A sample without attitude needs only the states from ModeT::kFirstRateState on (the body rate); the
-  // others of the returned state are stale.
-  const int first_sample_state = sampler.with_attitude() ? 0 : ModeT::kFirstRateState;
-  const auto interpolate_sample = [&](double t) -> const State& {
-    integrator.PrepareDense(mode);
-    integrator.InterpolateFrom(t, first_sample_state, &y_dense);
-    return y_dense;
-  };
 
   for (;;) {
     // Round-off floor of the time variable: closer to the limit than this counts as reaching it.
@@ -167,7 +159,7 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
       }
     }
     const double t_stop = fired >= 0 ? t_event : t1;
-    while (sampler.pending() && sampler.next_time() < t_stop) emit(interpolate_sample(sampler.next_time()));
+    while (sampler.pending() && sampler.next_time() < t_stop) emit(interpolate(sampler.next_time()));
     if (fired >= 0) {
       outcome.next_step_hint_s = integrator.suggested_step();
       const State y_event = t_event >= t1 ? y1 : interpolate(t_event);

@@ -21,7 +21,6 @@ class TrajectorySampler {
   TrajectorySampler(const SimulationOptions& options, double t_last_s, Trajectory* out);
 
   bool pending() const { return pending_; }
-  bool with_attitude() const { return with_attitude_; }
   double next_time() const { return next_time_; }
 
   // Appends the sample at next_time() and moves on. `attitude()` returns q_WB, of unit norm to round-off (it is
