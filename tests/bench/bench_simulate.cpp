@@ -3,6 +3,8 @@
 // --benchmark_repetitions=N --benchmark_report_aggregates_only=true for the median.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+
 #include "rockfit/core/simulator.hpp"
 #include "simulation_cases.hpp"
 
@@ -54,6 +56,41 @@ BENCHMARK(BM_SimulateWithinBoundsZeno)->Unit(benchmark::kMicrosecond);
 
 void BM_SimulateWithinBoundsZeno_NoAttitude(benchmark::State& state) { Run(state, WithinBoundsParameters(), false); }
 BENCHMARK(BM_SimulateWithinBoundsZeno_NoAttitude)->Unit(benchmark::kMicrosecond);
+
+// One run as a fit makes it (fitting::SimulatorModel): the Fig. 14 case over the 0.8 s window of the fitting
+// benchmark's trial, ω sampled at 256 Hz without attitudes, stopped at the last sample, at relative tolerance
+// 10^-Arg (absolute tolerance 100 times smaller). Its cost is per vertex segment (one DOP853 step or two between
+// impacts), so it hardly falls with the tolerance (README.md, "Performance").
+void BM_SimulateFitWindow(benchmark::State& state) {
+  SimulationOptions options;
+  options.stop = rockfit::core::StopCondition::kTMax;
+  options.sample_attitude = false;
+  options.max_impacts = 5000;
+  options.rel_tol = std::pow(10.0, -static_cast<double>(state.range(0)));
+  options.abs_tol = 1e-2 * options.rel_tol;
+  constexpr double kRate_hz = 256.0;
+  constexpr double kWindow_s = 0.8;
+  for (int n = 0; n / kRate_hz <= kWindow_s; ++n) options.sample_times_s.push_back(n / kRate_hz);
+  options.t_max_s = options.sample_times_s.back();
+  const Block block = rockfit::testing::Fig14Block();
+  const ModelParameters params = Fig14Parameters();
+  std::size_t impacts = 0, segments = 0;
+  long evaluations = 0, steps = 0;
+  for (auto _ : state) {
+    const Trajectory tr = rockfit::core::Simulate(block, params, options);
+    benchmark::DoNotOptimize(tr.w_B.data());
+    if (tr.w_B.size() != options.sample_times_s.size()) state.SkipWithError("the run ended before its last sample");
+    impacts = tr.impacts.size();
+    segments = tr.segments.size();
+    evaluations = tr.num_evaluations;
+    steps = tr.num_steps;
+  }
+  state.counters["impacts"] = static_cast<double>(impacts);
+  state.counters["segments"] = static_cast<double>(segments);
+  state.counters["rhs_evaluations"] = static_cast<double>(evaluations);
+  state.counters["steps"] = static_cast<double>(steps);
+}
+BENCHMARK(BM_SimulateFitWindow)->Arg(12)->Arg(9)->Arg(7)->Unit(benchmark::kMicrosecond);
 
 // The planar Housner case run to rest (about 4.4 s, 85 facet impacts, 256 Hz samples, default tolerances). The
 // time per simulated second is the reported time divided by the counter t_end_s (also given as us_per_sim_s).
