@@ -48,6 +48,9 @@ void AddFitOptions(CLI::App& app, FitArgs& args) {
                  "or per-axis; the model is then compared scaled, and the scale is reported with its 95 % interval")
       ->capture_default_str()
       ->check(CLI::IsMember({"off", "common", "per-axis"}));
+  app.add_flag("--fit-release-roll", args.fit_release_roll,
+               "Estimate the release roll release_roll [rad] (the block released on one corner of its release edge, "
+               "tilted alpha about the edge and rolled about the edge's inward axis), as --free release_roll");
 }
 
 void AddMetricsOptions(CLI::App& app, MetricsArgs& args) {
