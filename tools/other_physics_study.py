@@ -208,6 +208,9 @@ def main():
                         help="rockfit fit --model-error-widening C (default: rockfit's; 0: off)")
     parser.add_argument("--t0-floor-samples", type=float, default=None,
                         help="rockfit fit --t0-floor-samples Q (default: rockfit's; 0: off)")
+    parser.add_argument("--estimate-gyro-scale", default=None, choices=["off", "common", "per-axis"],
+                        help="rockfit fit --estimate-gyro-scale MODE (default: not given, rockfit's off); the widening "
+                             "options above share coverage_study's helper, which reads it")
     parser.add_argument("--fit-release-roll", action="store_true",
                         help="rockfit fit --fit-release-roll: estimate the release roll (and synthesise the fitted "
                              "model's metrics with it)")
