@@ -19,7 +19,7 @@ void AddFitOptions(CLI::App& app, FitArgs& args) {
       ->capture_default_str();
   app.add_option("--bounds", args.bounds, "Default bounds: empirical (wider than (25)/(27)) or theoretical")
       ->capture_default_str();
-  app.add_option("--free", args.free, "Parameters to fit in addition to the defaults (t0,alpha,lambda,lambda_lat,lambda_lon,tau_edge)")
+  app.add_option("--free", args.free, "Parameters to fit in addition to the defaults (t0,alpha,lambda,lambda_lat,lambda_lon,tau_edge,release_roll)")
       ->delimiter(',');
   app.add_option("--fix", args.fix,
                  "Parameters to hold fixed: NAME (at the data estimate) or NAME=VALUE, e.g. --fix lambda_lat=0")
