@@ -72,7 +72,8 @@ def run_trial(args, trial, out_dir):
                     "--seed", str(trial["seed"]), "--solref-damping-ratio", repr(trial.get("damping_ratio", 1.0))],
                    check=True, capture_output=True)
     fit = subprocess.run([args.rockfit, "fit", prefix, "--rate", "256", "--b1", repr(B1), "--b2", repr(trial["b2"]),
-                          "--h", repr(H), "--density", repr(DENSITY), "--threads", "1", "--json"] + widening_args(args),
+                          "--h", repr(H), "--density", repr(DENSITY), "--threads", "1", "--json"] + widening_args(args)
+                         + (["--fit-release-roll"] if args.fit_release_roll else []),
                          capture_output=True, text=True)
     trial["exit_code"] = fit.returncode
     trial["fit"] = json.loads(fit.stdout) if fit.stdout.strip() else None
@@ -115,7 +116,9 @@ def metrics_trial(args, trial, out_dir):
                             "--alpha", repr(p["alpha"]["value"]), "--lambda", repr(p["lambda"]["value"]),
                             "--lambda-lat", repr(p["lambda_lat"]["value"]), "--lambda-lon", repr(p["lambda_lon"]["value"]),
                             "--b1", repr(B1), "--b2", repr(trial["b2"]), "--h", repr(H), "--density", repr(DENSITY),
-                            "--seed", str(trial["seed"]), "--no-rotation-matrix"], capture_output=True, text=True)
+                            "--seed", str(trial["seed"]), "--no-rotation-matrix"]
+                           + (["--release-roll", repr(p["release_roll"]["value"])] if "release_roll" in p else []),
+                           capture_output=True, text=True)
     row["model"] = metrics_of(args, model, trial["b2"]) if synth.returncode == 0 else {"status": "error",
                                                                                       "message": synth.stderr.strip()}
     return row
@@ -165,6 +168,14 @@ def report(trials):
             err = statistics.median(abs(q["value"] - x) for q, x in zip(p, truth)) * scale
             out.append(f"  {name:6} 95 % holds {c95}/{len(subset)} ({100 * c95 / len(subset):.0f} %), 68 % holds "
                        f"{c68}/{len(subset)}; median 95 % width {w95:.3g} {unit}; median |error| {err:.3g} {unit}")
+        rolled = [t for t in subset if "release_roll" in t["fit"]["parameters"]]
+        if rolled:  # fitted with --fit-release-roll: the roll MuJoCo was given is its truth
+            p = [t["fit"]["parameters"]["release_roll"] for t in rolled]
+            c95 = sum(holds(q["interval_95"], t["roll"]) for q, t in zip(p, rolled))
+            err = statistics.median(abs(q["value"] - t["roll"]) for q, t in zip(p, rolled)) * 1e3
+            w95 = statistics.median(width(q["interval_95"]) for q in p) * 1e3
+            out.append(f"  roll   95 % holds {c95}/{len(rolled)} ({100 * c95 / len(rolled):.0f} %); median 95 % width "
+                       f"{w95:.3g} mrad; median |error| {err:.3g} mrad")
         ratios = [t["fit"]["model_error"]["ratio"] for t in subset if t["fit"]["model_error"]["available"]]
         flagged = sum(bool(t["fit"]["model_error"]["dominates"]) for t in subset)
         if ratios:
@@ -197,6 +208,12 @@ def main():
                         help="rockfit fit --model-error-widening C (default: rockfit's; 0: off)")
     parser.add_argument("--t0-floor-samples", type=float, default=None,
                         help="rockfit fit --t0-floor-samples Q (default: rockfit's; 0: off)")
+    parser.add_argument("--estimate-gyro-scale", default=None, choices=["off", "common", "per-axis"],
+                        help="rockfit fit --estimate-gyro-scale MODE (default: not given, rockfit's off); the widening "
+                             "options above share coverage_study's helper, which reads it")
+    parser.add_argument("--fit-release-roll", action="store_true",
+                        help="rockfit fit --fit-release-roll: estimate the release roll (and synthesise the fitted "
+                             "model's metrics with it)")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--first", type=int, default=0,
                         help="run only trials FIRST..TRIALS-1 of the seed (the earlier ones are drawn, not run): "
@@ -220,7 +237,9 @@ def main():
                 f.flush()
                 print(f"[{i + 1}/{args.trials}]", file=sys.stderr)
     trials = [json.loads(line) for line in open(path)]
-    text = f"family {args.family}, seed {args.seed}, widening {args.model_error_widening}, t0 floor {args.t0_floor_samples} (None: rockfit's defaults)\n" + report(trials)
+    text = (f"family {args.family}, seed {args.seed}, widening {args.model_error_widening}, t0 floor "
+            f"{args.t0_floor_samples} (None: rockfit's defaults), release roll fitted: {args.fit_release_roll}\n"
+            + report(trials))
     if args.metrics:
         metrics_path = os.path.join(args.out, "metrics.jsonl")
         if not os.path.exists(metrics_path):

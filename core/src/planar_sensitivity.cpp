@@ -78,6 +78,7 @@ PlanarSensitivitySummary PlanarSampleSensitivities(const Block& block, const Mod
   sensitivity_options.Validate();
   if (params.lambda_lat != 0.0) return NotAvailable("lambda_lat is not 0: the run is not planar");
   if (options.initial_state) return NotAvailable("the run starts from an initial state, not from the release");
+  if (params.release_roll_rad != 0.0) return NotAvailable("the release is rolled: the run is not planar");
   if (trajectory.end_reason == EndReason::kFailed || trajectory.end_reason == EndReason::kOverturned) {
     return NotAvailable(fmt::format("the run ended as {}", ToString(trajectory.end_reason)));
   }

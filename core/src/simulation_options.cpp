@@ -154,6 +154,12 @@ bool FromString(std::string_view text, FailureReason* value) {
 
 void ModelParameters::Validate(bool check_alpha) const {
   if (check_alpha) RequirePositive(alpha_rad, "the release tilt alpha", "radians");
+  // A roll of π/4 or more would stand the block on a side edge rather than on a corner of its release edge.
+  constexpr double kMaxReleaseRoll_rad = M_PI / 4.0;
+  if (check_alpha && !(std::abs(release_roll_rad) < kMaxReleaseRoll_rad)) {
+    throw InvalidArgument("the release roll must be finite and less than pi/4 rad in magnitude, got " +
+                          std::to_string(release_roll_rad));
+  }
   RequireFinite(lambda, "the edge-impact parameter lambda");
   RequireFinite(tau_edge, "the edge-impact parameter tau_edge");
   RequireFinite(lambda_lat, "the facet-impact parameter lambda_lat");

@@ -22,6 +22,7 @@
 #include "detail/trajectory_sampler.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/ground_uplift.hpp"
+#include "rockfit/core/rolled_release.hpp"
 
 namespace rockfit::core {
 namespace {
@@ -367,6 +368,13 @@ void HybridRun::Run() {
       }
       next = Next::kEdge;
     }
+  } else if (params_.release_roll_rad != 0.0) {
+    // Release from rest on a corner of the release edge, tilted by α and rolled by β (rolled_release.hpp).
+    const RolledRelease rolled = MakeRolledRelease(block_, release_.first, release_.second, params_.alpha_rad,
+                                                   params_.release_roll_rad);
+    vertex_start_.vertex = rolled.pivot_vertex;
+    vertex_start_.y = VertexDynamics::MakeState(rolled.q_WB, Eigen::Vector3d::Zero());
+    next = Next::kVertex;
   } else {
     // Release from rest on the release edge, tilted by α (docs/design.md §2).
     edge_start_.edge = Contact::Edge(release_.first, release_.second);

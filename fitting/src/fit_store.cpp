@@ -12,7 +12,7 @@ namespace {
 constexpr const char* kPerRow = "per row: see the unit dataset";
 constexpr const char* kPerRowOpen = "per row: see the unit dataset; NaN: open";
 
-// The columns of the parameter table as written (one row per parameter in kAllParameters order).
+// The columns of the parameter table as written (one row per reported parameter, ParameterSet::ReportedIds).
 struct ParameterColumns {
   std::vector<std::string> names, units, determined;
   std::vector<double> value, lower, upper, std_error, start, lo68, hi68, lo95, hi95;
@@ -21,7 +21,7 @@ struct ParameterColumns {
 
 ParameterColumns CollectParameterColumns(const FitSummary& s) {
   ParameterColumns c;
-  for (ParameterId id : kAllParameters) {
+  for (ParameterId id : s.parameters.ReportedIds()) {
     const Parameter& p = s.parameters[id];
     const std::size_t k = static_cast<std::size_t>(id);
     c.names.push_back(Name(id));
@@ -41,14 +41,16 @@ ParameterColumns CollectParameterColumns(const FitSummary& s) {
   return c;
 }
 
-// The correlation matrix of the parameters, row-major kNumParameters², NaN where undefined.
+// The correlation matrix of the reported parameters, row-major (their number)², NaN where undefined.
 std::vector<double> CorrelationRowMajor(const FitSummary& s) {
-  std::vector<double> correlation(kNumParameters * kNumParameters, std::nan(""));
+  const std::vector<ParameterId> ids = s.parameters.ReportedIds();
+  const std::size_t n = ids.size();
+  std::vector<double> correlation(n * n, std::nan(""));
   if (s.uncertainty.correlation.rows() != static_cast<Eigen::Index>(kNumParameters)) return correlation;
-  for (std::size_t a = 0; a < kNumParameters; ++a) {
-    for (std::size_t b = 0; b < kNumParameters; ++b) {
-      correlation[a * kNumParameters + b] =
-          s.uncertainty.correlation(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
+  for (std::size_t a = 0; a < n; ++a) {
+    for (std::size_t b = 0; b < n; ++b) {
+      correlation[a * n + b] =
+          s.uncertainty.correlation(static_cast<Eigen::Index>(ids[a]), static_cast<Eigen::Index>(ids[b]));
     }
   }
   return correlation;
@@ -70,7 +72,8 @@ void WriteParameterTable(const io::hdf5::Group& fit, const FitSummary& s) {
   table.WriteDoubles("interval_95_lower", c.lo95, kPerRowOpen);
   table.WriteDoubles("interval_95_upper", c.hi95, kPerRowOpen);
   table.WriteStrings("determined", c.determined);
-  table.WriteMatrix("correlation", CorrelationRowMajor(s), kNumParameters, kNumParameters, "1");
+  const std::size_t reported = s.parameters.ReportedIds().size();
+  table.WriteMatrix("correlation", CorrelationRowMajor(s), reported, reported, "1");
 }
 
 // The model-error statement (model_error.hpp): NaN numbers and dominates = -1 when it was not measured.

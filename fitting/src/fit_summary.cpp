@@ -55,7 +55,7 @@ std::string FitSummary::FullReport() const {
   std::ostringstream out;
   out << fmt::format("{:<11} {:>12} {:>12} {:>10} {:>10}  {:<25} {:<25} {:<9} {}\n", "parameter", "value", "std error",
                      "lower", "upper", "68 % interval", "95 % interval", "determined", "");
-  for (ParameterId id : kAllParameters) {
+  for (ParameterId id : parameters.ReportedIds()) {
     const Parameter& p = parameters[id];
     const std::size_t k = static_cast<std::size_t>(id);
     std::string flags = p.fixed ? "fixed" : "";
@@ -93,7 +93,7 @@ std::string FitSummary::ToJson(const std::string& trial) const {
   nlohmann::json j;
   if (!trial.empty()) j["trial"] = trial;
   nlohmann::json params = nlohmann::json::object();
-  for (ParameterId id : kAllParameters) {
+  for (ParameterId id : parameters.ReportedIds()) {
     const Parameter& p = parameters[id];
     const std::size_t k = static_cast<std::size_t>(id);
     params[Name(id)] = {{"value", p.value},

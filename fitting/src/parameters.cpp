@@ -35,6 +35,7 @@ const char* Name(ParameterId id) {
     case ParameterId::kLambdaLat: return "lambda_lat";
     case ParameterId::kLambdaLon: return "lambda_lon";
     case ParameterId::kTauEdge: return "tau_edge";
+    case ParameterId::kReleaseRoll: return "release_roll";
   }
   return "?";
 }
@@ -43,6 +44,7 @@ const char* Unit(ParameterId id) {
   switch (id) {
     case ParameterId::kT0: return "s";
     case ParameterId::kAlpha: return "rad";
+    case ParameterId::kReleaseRoll: return "rad";
     case ParameterId::kTauEdge: return "N*m*s";
     default: return "1";
   }
@@ -53,7 +55,7 @@ ParameterId ParseParameterName(const std::string& name) {
     if (name == Name(id)) return id;
   }
   throw InvalidArgument(fmt::format(
-      "unknown parameter '{}'; the parameters are t0, alpha, lambda, lambda_lat, lambda_lon, tau_edge", name));
+      "unknown parameter '{}'; the parameters are t0, alpha, lambda, lambda_lat, lambda_lon, tau_edge, release_roll", name));
 }
 
 const char* ToString(BoundsSet set) { return set == BoundsSet::kEmpirical ? "empirical" : "theoretical"; }
@@ -74,6 +76,7 @@ ParameterSet ParameterSet::Defaults(BoundsSet bounds) {
   set[ParameterId::kT0] = {0.0, -kInfinity, kInfinity, false};
   set[ParameterId::kAlpha] = {kDefaultAlphaRad, kAlphaLowerRad, kAlphaUpperRad, false};
   set[ParameterId::kTauEdge] = {0.0, 0.0, 0.0, true};
+  set[ParameterId::kReleaseRoll] = {0.0, -kReleaseRollBound_rad, kReleaseRollBound_rad, true};
   if (bounds == BoundsSet::kEmpirical) {
     set[ParameterId::kLambda] = {kDefaultLambda, -0.5, 4.0, false};
     set[ParameterId::kLambdaLat] = {kDefaultLambdaLat, -6.0, 6.0, false};
@@ -130,8 +133,19 @@ core::ModelParameters ParameterSet::ToModel() const {
   model.tau_edge = value(ParameterId::kTauEdge);
   model.lambda_lat = value(ParameterId::kLambdaLat);
   model.lambda_lon = value(ParameterId::kLambdaLon);
+  model.release_roll_rad = value(ParameterId::kReleaseRoll);
   model.facet_tau_rule = facet_tau_rule_;
   return model;
+}
+
+std::vector<ParameterId> ParameterSet::ReportedIds() const {
+  std::vector<ParameterId> ids;
+  for (ParameterId id : kAllParameters) {
+    const Parameter& p = (*this)[id];
+    if (id == ParameterId::kReleaseRoll && p.fixed && p.value == 0.0) continue;
+    ids.push_back(id);
+  }
+  return ids;
 }
 
 }  // namespace rockfit::fitting

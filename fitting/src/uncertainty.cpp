@@ -31,7 +31,7 @@ constexpr double kInfeasibleSumOfSquares = 1e30;
 constexpr double kBetterPointFraction = 1e-3;
 // Initial simplex of the re-fits where no linearised σ is available: a quarter of the Nelder–Mead default,
 // as the continuation of the global stage uses.
-constexpr PerParameter kFallbackStep = {1e-3, 1.25e-3, 0.05, 0.075, 0.0125, 2.5e-4};
+constexpr PerParameter kFallbackStep = {1e-3, 1.25e-3, 0.05, 0.075, 0.0125, 2.5e-4, 5e-4};
 // Relative tolerance of the least-squares re-fits: changes of S below it are round-off of the sum.
 constexpr double kSumOfSquaresFtolRel = 1e-7;
 

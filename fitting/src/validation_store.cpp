@@ -98,6 +98,8 @@ OwnFit ReadOwnFit(const io::hdf5::Group& root, const std::string& trial) {
   f.position = labels.position;
   f.epsilon_rad_s = labels.epsilon_rad_s;
   f.feasible = labels.feasible;
+  // A fit that did not estimate the release roll stores no row for it: the roll was held at 0.
+  f.values[ParameterId::kReleaseRoll].fixed = true;
   for (ParameterId id : kAllParameters) {
     const std::size_t row = stored.Row(Name(id)), k = static_cast<std::size_t>(id);
     if (row >= stored.size()) {

@@ -137,7 +137,8 @@ std::vector<std::string> BoundEntries(const py::object& bounds, const char* what
 app::FitArgs MakeFitArgs(const std::string& method, const py::object& bounds, const py::object& free,
                            const py::object& fix, const py::object& lower, const py::object& upper,
                            std::optional<double> t_end, int max_evaluations, bool global_stage, bool keep_bias,
-                           int threads, const std::string& estimate_gyro_scale = "off") {
+                           int threads, const std::string& estimate_gyro_scale = "off",
+                           bool fit_release_roll = false) {
   app::FitArgs args;
   args.method = method;
   if (py::isinstance<py::str>(bounds)) {
@@ -163,6 +164,7 @@ app::FitArgs MakeFitArgs(const std::string& method, const py::object& bounds, co
   args.keep_bias = keep_bias;
   args.threads = threads;
   args.estimate_gyro_scale = estimate_gyro_scale;
+  args.fit_release_roll = fit_release_roll;
   fitting::ParseGyroScaleMode(args.estimate_gyro_scale);
   app::MakeParameterSet(args);  // bad names, values and bounds before any work
   fitting::ParseFitMethod(args.method);
@@ -211,7 +213,8 @@ py::object FitRecord(FitOutcome& o) {
   py::dict parameters;
   py::dict values;
   const py::dict all = d["parameters"].cast<py::dict>();
-  for (fitting::ParameterId id : fitting::kAllParameters) {  // t0, alpha, lambda, lambda_lat, lambda_lon, tau_edge
+  for (fitting::ParameterId id : fitting::kAllParameters) {  // the reported ones (release_roll only when estimated)
+    if (!all.contains(fitting::Name(id))) continue;
     const py::dict fields = all[fitting::Name(id)].cast<py::dict>();
     parameters[fitting::Name(id)] = MakeRecord("Parameter", fields);
     values[fitting::Name(id)] = fields["value"];
@@ -256,9 +259,9 @@ py::object FitRecord(FitOutcome& o) {
 py::object Fit(const TrialRecording& r, const std::optional<core::Block>& given, const std::string& method,
                const py::object& bounds, const py::object& free, const py::object& fix, const py::object& lower,
                const py::object& upper, std::optional<double> t_end, int max_evaluations, bool global_stage,
-               bool keep_bias, int threads, const std::string& estimate_gyro_scale) {
+               bool keep_bias, int threads, const std::string& estimate_gyro_scale, bool fit_release_roll) {
   const app::FitArgs args = MakeFitArgs(method, bounds, free, fix, lower, upper, t_end, max_evaluations, global_stage,
-                                        keep_bias, threads, estimate_gyro_scale);
+                                        keep_bias, threads, estimate_gyro_scale, fit_release_roll);
   const core::Block block = BlockFor(given, r, "the fit");
   auto interrupted = std::make_shared<std::atomic<bool>>(false);
   // The recording is shared with the worker: keep it alive even if Python drops it meanwhile.
@@ -275,12 +278,12 @@ py::object Fit(const TrialRecording& r, const std::optional<core::Block>& given,
 py::list FitCampaign(const PathArgument& manifest_argument, const py::object& trials, int jobs, const std::string& method,
                      const py::object& bounds, const py::object& free, const py::object& fix, const py::object& lower,
                      const py::object& upper, std::optional<double> t_end, int max_evaluations, bool global_stage,
-                     bool keep_bias, const std::string& estimate_gyro_scale) {
+                     bool keep_bias, const std::string& estimate_gyro_scale, bool fit_release_roll) {
   if (jobs < 0) throw InvalidArgument("jobs must be ≥ 0 (0: all cores)");
   const std::string& manifest_path = manifest_argument.path;
   app::FitArgs args =
       MakeFitArgs(method, bounds, free, fix, lower, upper, t_end, max_evaluations, global_stage, keep_bias, 1,
-                  estimate_gyro_scale);
+                  estimate_gyro_scale, fit_release_roll);
   args.threads = 1;  // parallel over trials, not inside one fit (as `rockfit batch`)
   const io::Manifest manifest = io::ReadManifest(manifest_path);
   std::vector<const io::TrialSpec*> selected;
@@ -383,15 +386,17 @@ constexpr const char* kProblemArgs =
     "method: 'auto' (global stage, Nelder–Mead, Ceres polish), 'nelder-mead' or 'ceres'.\n"
     "bounds: 'empirical' (wider than (25)/(27)) or 'theoretical', or a dict NAME → (lower, upper) on top of the\n"
     "  empirical bounds (None keeps a side). Names: t0 [s], alpha [rad], lambda, lambda_lat, lambda_lon, tau_edge\n"
-    "  [N·m·s].\n"
-    "free: names to fit in addition to the defaults (t0, alpha, lambda, lambda_lat, lambda_lon; tau_edge is fixed\n"
-    "  at 0). fix: a name or list of names held at the data estimate, 'NAME=VALUE' entries, or a dict NAME → value\n"
+    "  [N·m·s], release_roll [rad].\n"
+    "free: names to fit in addition to the defaults (t0, alpha, lambda, lambda_lat, lambda_lon; tau_edge and\n"
+    "  release_roll are fixed at 0). fix: a name or list of names held at the data estimate, 'NAME=VALUE' entries, or a dict NAME → value\n"
     "  (None: at the data estimate). lower, upper: dicts NAME → bound.\n"
     "t_end: end of the fitting window in recording time [s] (default: 12 ms before the impact that ends phase 4).\n"
     "max_evaluations: Nelder–Mead budget (0: default). global_stage=False: local search from the data estimate.\n"
     "keep_bias=True: do not subtract the gyro bias measured at rest before the release.\n"
     "estimate_gyro_scale: 'off', 'common' or 'per-axis': a gyro scale factor estimated in the fit (the result's\n"
-    "  gyro_scale: mode, value, interval_95), as `rockfit fit --estimate-gyro-scale`.\n";
+    "  gyro_scale: mode, value, interval_95), as `rockfit fit --estimate-gyro-scale`.\n"
+    "fit_release_roll=True: estimate the release roll release_roll [rad] (the block released on one corner of its\n"
+    "  release edge), as `rockfit fit --fit-release-roll` (the same as free='release_roll').\n";
 
 }  // namespace
 
@@ -400,7 +405,7 @@ void RegisterFit(py::module_& m) {
         py::arg("bounds") = "empirical", py::arg("free") = py::none(), py::arg("fix") = py::none(),
         py::arg("lower") = py::none(), py::arg("upper") = py::none(), py::arg("t_end") = py::none(),
         py::arg("max_evaluations") = 0, py::arg("global_stage") = true, py::arg("keep_bias") = false,
-        py::arg("threads") = 0, py::arg("estimate_gyro_scale") = "off",
+        py::arg("threads") = 0, py::arg("estimate_gyro_scale") = "off", py::arg("fit_release_roll") = false,
         (std::string("Fits t0, α, λ, λ_lat, λ_lon of one trial by minimising the error (28) between measured and\n"
                      "simulated ω, from no starting point, as `rockfit fit --json` (the same code and result).\n\n"
                      "recording: a rockfit.Recording; block: a rockfit.Block (default: the recording's manifest block).\n") +
@@ -418,7 +423,7 @@ void RegisterFit(py::module_& m) {
         py::arg("jobs") = 0, py::arg("method") = "auto", py::arg("bounds") = "empirical", py::arg("free") = py::none(),
         py::arg("fix") = py::none(), py::arg("lower") = py::none(), py::arg("upper") = py::none(),
         py::arg("t_end") = py::none(), py::arg("max_evaluations") = 0, py::arg("global_stage") = true,
-        py::arg("keep_bias") = false, py::arg("estimate_gyro_scale") = "off",
+        py::arg("keep_bias") = false, py::arg("estimate_gyro_scale") = "off", py::arg("fit_release_roll") = false,
         (std::string("Fits every trial of a campaign manifest in parallel, as `rockfit batch` (one thread per trial,\n"
                      "jobs trials at once, at most one per core; 0: all cores), without writing a file.\n\n"
                      "trials: a list of trial ids (default: all).\n") +

@@ -35,6 +35,7 @@ struct SynthKeywords {
   py::object drift_slope_dps, drift_walk_deg_per_rt_s;
   bool drift;
   std::optional<double> accel_noise_g;
+  double release_roll;  // [rad], 0: released on the edge
 };
 
 std::optional<Eigen::Vector3d> OptionalVector(const py::object& value, const char* name) {
@@ -46,6 +47,7 @@ std::optional<Eigen::Vector3d> OptionalVector(const py::object& value, const cha
 app::SynthArgs MakeArgs(const SynthKeywords& k) {
   app::SynthArgs a;
   a.alpha_rad = k.alpha;
+  a.release_roll_rad = k.release_roll;
   a.lambda = k.lambda;
   a.lambda_lat = k.lambda_lat;
   a.lambda_lon = k.lambda_lon;
@@ -92,6 +94,7 @@ py::object Synth(const std::string& prefix, const core::Block& block, const Synt
       "lambda_lon={}, tau_edge={}, facet_tau='{}', t0={}, duration={}, rate={}, mounting='{}', seed={}, noise={})",
       prefix, block.b1(), block.b2(), block.h(), block.mass(), k.alpha, k.lambda, k.lambda_lat, k.lambda_lon,
       k.tau_edge, k.facet_tau, k.t0, k.duration, k.rate, o.mounting_text, k.seed, k.noise ? "True" : "False");
+  if (k.release_roll != 0.0) o.command_line.insert(o.command_line.size() - 1, fmt::format(", release_roll={}", k.release_roll));
 
   io::SynthRecording recording;
   std::vector<std::string> files;
@@ -105,6 +108,7 @@ py::object Synth(const std::string& prefix, const core::Block& block, const Synt
   d["parameters"] = py::dict(py::arg("t0") = o.t0_s, py::arg("alpha") = k.alpha, py::arg("lambda") = k.lambda,
                              py::arg("lambda_lat") = k.lambda_lat, py::arg("lambda_lon") = k.lambda_lon,
                              py::arg("tau_edge") = k.tau_edge, py::arg("facet_tau") = k.facet_tau);
+  if (k.release_roll != 0.0) d["parameters"]["release_roll"] = k.release_roll;  // as in the truth file
   std::vector<double> times(recording.motion.size());
   for (std::size_t n = 0; n < times.size(); ++n) times[n] = recording.motion.t_s(n);
   d["t"] = OwnedArray(std::move(times));
@@ -127,12 +131,13 @@ void RegisterSynth(py::module_& m) {
          bool noise, std::optional<double> gyro_noise_dps, py::object gyro_bias_dps, bool quantisation,
          std::optional<double> ringing_gain, std::optional<double> ringing_frequency_hz,
          std::optional<double> ringing_decay_time_s, bool ringing, py::object drift_slope_dps,
-         py::object drift_walk_deg_per_rt_s, bool drift, std::optional<double> accel_noise_g) {
+         py::object drift_walk_deg_per_rt_s, bool drift, std::optional<double> accel_noise_g, double release_roll) {
         const SynthKeywords k{alpha, lambda, lambda_lat, lambda_lon, tau_edge, facet_tau, rest_energy_height, t0,
                               duration, rate, quaternion_rate, mounting, std::move(sensor_position), rtc_start_s,
                               rotation_matrix, crlf, seed, noise, gyro_noise_dps, std::move(gyro_bias_dps),
                               quantisation, ringing_gain, ringing_frequency_hz, ringing_decay_time_s, ringing,
-                              std::move(drift_slope_dps), std::move(drift_walk_deg_per_rt_s), drift, accel_noise_g};
+                              std::move(drift_slope_dps), std::move(drift_walk_deg_per_rt_s), drift, accel_noise_g,
+                              release_roll};
         return Synth(prefix.path, block, k);
       },
       py::arg("prefix"), py::arg("block"), py::kw_only(), py::arg("alpha") = p.alpha_rad, py::arg("lambda_") = p.lambda,
@@ -145,12 +150,14 @@ void RegisterSynth(py::module_& m) {
       py::arg("ringing_gain") = py::none(), py::arg("ringing_frequency_hz") = py::none(),
       py::arg("ringing_decay_time_s") = py::none(), py::arg("ringing") = true, py::arg("drift_slope_dps") = py::none(),
       py::arg("drift_walk_deg_per_rt_s") = py::none(), py::arg("drift") = true, py::arg("accel_noise_g") = py::none(),
+      py::arg("release_roll") = p.release_roll_rad,
       "Writes a synthetic x-IMU recording (GUI CSV set + <prefix>_truth.json) of one rocking trial, as `rockfit\n"
       "synth`: the block rests at tilt alpha until t0, rocks as the simulator says, and rests after; the\n"
       "measurement model adds gyro noise, bias, quantisation, ringing after impacts and attitude drift. The same\n"
       "arguments (seed) give the same files as the program.\n\n"
       "Model: alpha [rad], lambda_ (19), lambda_lat, lambda_lon (21), tau_edge [N·m·s], facet_tau 'no-spin' or\n"
-      "'fixed', rest_energy_height [m]. Recording: t0 [s], duration [s], rate [Hz] (an x-IMU rate 2^(v−1)),\n"
+      "'fixed', rest_energy_height [m], release_roll [rad] (0: on the edge; otherwise on one corner of it, as\n"
+      "`rockfit synth --release-roll`). Recording: t0 [s], duration [s], rate [Hz] (an x-IMU rate 2^(v−1)),\n"
       "quaternion_rate [Hz], mounting 'x,-y,-z' or 'w,x,y,z', sensor_position (3,) [m], rtc_start_s,\n"
       "rotation_matrix, crlf. Measurement: seed; noise=False for an ideal sensor; gyro_noise_dps (0.1),\n"
       "gyro_bias_dps (3,), quantisation, ringing_gain (0.25), ringing_frequency_hz (38), ringing_decay_time_s\n"

@@ -63,6 +63,20 @@ def test_fit_with_a_gyro_scale_equals_the_program(rockfit, sample_recording):
         rockfit.fit(sample_recording, estimate_gyro_scale="yes")
 
 
+def test_fit_with_the_release_roll_equals_the_program(rockfit, sample_recording):
+    result = rockfit.fit(sample_recording, fit_release_roll=True, method="nelder-mead", max_evaluations=60,
+                         global_stage=False)
+    cli = run_cli("fit", MANIFEST, "--trial", SAMPLE_TRIAL, "--fit-release-roll", "--method", "nelder-mead",
+                  "--max-evaluations", "60", "--no-global")
+    assert_equal_to_cli(result, cli)
+    assert not cli["parameters"]["release_roll"]["fixed"]
+    assert "release_roll" in result.values
+
+
+def test_a_fit_without_the_release_roll_does_not_report_it(default_fit):
+    assert "release_roll" not in default_fit.parameters and "release_roll" not in default_fit.values
+
+
 def test_fit_recovers_the_truth_of_the_synthetic_trial(default_fit):
     truth = json.loads((SAMPLES / "recordings" / f"{SAMPLE_TRIAL}_truth.json").read_text())
     assert truth["command"].find("--alpha 0.197") > 0  # made with the paper's Fig. 14 values, t0 = 2.33 s

@@ -36,6 +36,18 @@ def test_synth_writes_the_same_files_as_the_program(rockfit, block, tmp_path):
             assert mine == theirs, name
 
 
+def test_a_rolled_release_writes_the_same_files_as_the_program(rockfit, block, tmp_path):
+    (tmp_path / "py").mkdir()
+    (tmp_path / "cli").mkdir()
+    truth = rockfit.synth(str(tmp_path / "py" / "trial"), block, release_roll=0.005, **ARGS)
+    run_cli("synth", *CLI, "--release-roll", "0.005", "-o", tmp_path / "cli" / "trial")
+    name = "trial_CalInertialAndMag.csv"
+    assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
+    assert truth.parameters["release_roll"] == 0.005 == truth.truth["parameters"]["release_roll_rad"]
+    w_x = np.abs(truth.w_B_true[:, 0])
+    assert w_x.max() > 0.01  # the premise: the roll rocks the block about x from the release on
+
+
 def test_synth_returns_the_truth_and_the_true_motion(rockfit, block, tmp_path):
     truth = rockfit.synth(str(tmp_path / "trial"), block, **ARGS)
     assert truth.parameters["alpha"] == 0.197 and truth.parameters["t0"] == 1.0

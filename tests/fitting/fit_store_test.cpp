@@ -49,20 +49,25 @@ TEST(FitStore, FitGroupReadsBackItsParametersIntervalsAndLabels) {
   const io::hdf5::File file = io::hdf5::File::Open(dir / "fits.h5");
   const io::hdf5::Group fit = file.Root().OpenGroup("fits/T1");
   const StoredParameters stored = ReadFitParameters(fit);
-  ASSERT_EQ(stored.size(), kNumParameters);
-  for (ParameterId id : kAllParameters) {
+  // One row per reported parameter: the release roll, fixed at 0 here, has none.
+  const std::vector<ParameterId> reported = w.summary.parameters.ReportedIds();
+  ASSERT_EQ(stored.size(), kNumParameters - 1);
+  ASSERT_EQ(stored.size(), reported.size());
+  EXPECT_GE(stored.Row(Name(ParameterId::kReleaseRoll)), stored.size());
+  for (std::size_t row = 0; row < reported.size(); ++row) {
+    const ParameterId id = reported[row];
     const std::size_t k = static_cast<std::size_t>(id);
-    EXPECT_EQ(stored.name[k], Name(id));
-    EXPECT_EQ(stored.unit[k], Unit(id));
-    EXPECT_EQ(stored.Row(Name(id)), k);
-    EXPECT_EQ(stored.value[k], w.summary.parameters.value(id)) << Name(id);
-    EXPECT_EQ(stored.lower[k], w.summary.parameters[id].lower) << Name(id);
-    EXPECT_EQ(stored.upper[k], w.summary.parameters[id].upper) << Name(id);
-    ExpectSameValue(stored.interval_95_lower[k], w.summary.uncertainty.interval_95[k][0], Name(id));
-    ExpectSameValue(stored.interval_95_upper[k], w.summary.uncertainty.interval_95[k][1], Name(id));
-    ExpectSameValue(stored.interval_68_lower[k], w.summary.uncertainty.interval_68[k][0], Name(id));
+    EXPECT_EQ(stored.name[row], Name(id));
+    EXPECT_EQ(stored.unit[row], Unit(id));
+    EXPECT_EQ(stored.Row(Name(id)), row);
+    EXPECT_EQ(stored.value[row], w.summary.parameters.value(id)) << Name(id);
+    EXPECT_EQ(stored.lower[row], w.summary.parameters[id].lower) << Name(id);
+    EXPECT_EQ(stored.upper[row], w.summary.parameters[id].upper) << Name(id);
+    ExpectSameValue(stored.interval_95_lower[row], w.summary.uncertainty.interval_95[k][0], Name(id));
+    ExpectSameValue(stored.interval_95_upper[row], w.summary.uncertainty.interval_95[k][1], Name(id));
+    ExpectSameValue(stored.interval_68_lower[row], w.summary.uncertainty.interval_68[k][0], Name(id));
     const auto& determined = w.summary.uncertainty.determined[k];
-    EXPECT_EQ(stored.determined[k], determined ? ToString(*determined) : "fixed") << Name(id);
+    EXPECT_EQ(stored.determined[row], determined ? ToString(*determined) : "fixed") << Name(id);
   }
   const StoredFitLabels labels = ReadFitLabels(fit);
   EXPECT_EQ(labels.block, "b1");

@@ -19,7 +19,7 @@ void AddFitOptions(CLI::App& app, FitArgs& args) {
       ->capture_default_str();
   app.add_option("--bounds", args.bounds, "Default bounds: empirical (wider than (25)/(27)) or theoretical")
       ->capture_default_str();
-  app.add_option("--free", args.free, "Parameters to fit in addition to the defaults (t0,alpha,lambda,lambda_lat,lambda_lon,tau_edge)")
+  app.add_option("--free", args.free, "Parameters to fit in addition to the defaults (t0,alpha,lambda,lambda_lat,lambda_lon,tau_edge,release_roll)")
       ->delimiter(',');
   app.add_option("--fix", args.fix,
                  "Parameters to hold fixed: NAME (at the data estimate) or NAME=VALUE, e.g. --fix lambda_lat=0")
@@ -48,6 +48,9 @@ void AddFitOptions(CLI::App& app, FitArgs& args) {
                  "or per-axis; the model is then compared scaled, and the scale is reported with its 95 % interval")
       ->capture_default_str()
       ->check(CLI::IsMember({"off", "common", "per-axis"}));
+  app.add_flag("--fit-release-roll", args.fit_release_roll,
+               "Estimate the release roll release_roll [rad] (the block released on one corner of its release edge, "
+               "tilted alpha about the edge and rolled about the edge's inward axis), as --free release_roll");
 }
 
 void AddMetricsOptions(CLI::App& app, MetricsArgs& args) {

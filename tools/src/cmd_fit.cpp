@@ -114,7 +114,7 @@ int RunFit(const FitCommand& cmd) {
     std::vector<std::string> names, units;
     std::vector<double> values, lo, hi;
     std::vector<bool> fixed;
-    for (fitting::ParameterId id : fitting::kAllParameters) {
+    for (fitting::ParameterId id : summary.parameters.ReportedIds()) {
       const std::size_t k = static_cast<std::size_t>(id);
       names.push_back(fitting::Name(id));
       units.push_back(fitting::Unit(id));

@@ -80,6 +80,7 @@ std::string ReproducingCommand(const SynthCommand& cmd, const core::ModelParamet
   if (cmd.block.mass_kg) c += fmt::format(" --mass {}", *cmd.block.mass_kg);
   c += fmt::format(" --alpha {} --lambda {} --lambda-lat {} --lambda-lon {} --tau-edge {} --facet-tau {}", p.alpha_rad,
                    p.lambda, p.lambda_lat, p.lambda_lon, p.tau_edge, cmd.args.facet_tau);
+  if (p.release_roll_rad != 0.0) c += fmt::format(" --release-roll {}", p.release_roll_rad);
   if (cmd.args.rest_energy_height_m) c += fmt::format(" --rest-energy-height-m {}", *cmd.args.rest_energy_height_m);
   c += fmt::format(" --t0 {} --duration {} --rate {} --quaternion-rate {} --mounting={}", o.t0_s, o.duration_s, o.rate_hz,
                    o.files.quaternion_rate_hz, o.mounting_text);
@@ -142,6 +143,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       "Deterministic for a given --seed.");
   AddBlockOptions(*app, cmd->block);
   app->add_option("--alpha", cmd->args.alpha_rad, "Release tilt α [rad]")->group("Model")->capture_default_str();
+  app->add_option("--release-roll", cmd->args.release_roll_rad,
+                  "Release roll β [rad]: the block released on one corner of its release edge, rolled β about the "
+                  "edge's inward axis (0: on the edge)")
+      ->group("Model")->capture_default_str();
   app->add_option("--lambda", cmd->args.lambda, "λ of edge impacts (19)")->group("Model")->capture_default_str();
   app->add_option("--lambda-lat", cmd->args.lambda_lat, "λ_lat of facet impacts (21)")->group("Model")->capture_default_str();
   app->add_option("--lambda-lon", cmd->args.lambda_lon, "λ_lon of facet impacts (21)")->group("Model")->capture_default_str();

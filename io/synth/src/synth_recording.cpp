@@ -85,6 +85,8 @@ json TruthJson(const core::Block& block, const core::ModelParameters& params, co
                      {"lambda_lon", params.lambda_lon},
                      {"facet_tau_rule", core::ToString(params.facet_tau_rule)},
                      {"t0_s", o.t0_s}};
+  // Only for a rolled release, so that the truth of a release on the edge reads as before.
+  if (params.release_roll_rad != 0.0) j["parameters"]["release_roll_rad"] = params.release_roll_rad;
   j["recording"] = {{"duration_s", o.duration_s},
                     {"rate_hz", o.rate_hz},
                     {"samples", r.motion.size()},

@@ -73,6 +73,7 @@ std::vector<FixEntry> ParseFixEntries(const FitArgs& args) {
 fitting::ParameterSet MakeParameterSet(const FitArgs& args) {
   fitting::ParameterSet set = fitting::ParameterSet::Defaults(fitting::ParseBoundsSet(args.bounds));
   for (const std::string& name : SplitList(args.free)) set[fitting::ParseParameterName(name)].fixed = false;
+  if (args.fit_release_roll) set[fitting::ParameterId::kReleaseRoll].fixed = false;
   for (const FixEntry& fix : ParseFixEntries(args)) {
     fitting::Parameter& p = set[fix.id];
     if (fix.value) {
@@ -150,7 +151,8 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
                                      args.t_end_s ? fmt::format("{:.17g}", *args.t_end_s) : "auto",
                                      args.max_evaluations, !args.no_global, args.keep_bias, block.b1(), block.b2(),
                                      block.h(), block.mass());
-  for (fitting::ParameterId id : fitting::kAllParameters) {
+  // The reported parameters only: a fit that does not estimate the release roll keeps the settings of v9.
+  for (fitting::ParameterId id : set.ReportedIds()) {
     const fitting::Parameter& p = set[id];
     settings += fmt::format("; {}:{}[{:.17g},{:.17g}]", fitting::Name(id), p.fixed ? "fixed" : "free", p.lower, p.upper);
     if (p.fixed) settings += fmt::format("={:.17g}", p.value);
@@ -212,7 +214,7 @@ std::string FitResultTable(const std::string& trial, const fitting::FitSummary& 
   out += fmt::format("{:<12} {:>12} {:>10} {:>23} {:>23} {:>10} {:>10} {:>10}  {:<6} {}\n", "parameter", "value",
                      "std_error", "68 % interval", "95 % interval", "determined", "lower", "upper", "unit", "");
   auto end = [](double v) { return std::isnan(v) ? std::string("open") : fmt::format("{:.6g}", v); };
-  for (fitting::ParameterId id : fitting::kAllParameters) {
+  for (fitting::ParameterId id : s.parameters.ReportedIds()) {
     const fitting::Parameter& p = s.parameters[id];
     const std::size_t k = static_cast<std::size_t>(id);
     const double se = s.std_error[k];

@@ -10,6 +10,7 @@ namespace rockfit::app {
 core::ModelParameters MakeSynthParameters(const SynthArgs& args) {
   core::ModelParameters params;
   params.alpha_rad = args.alpha_rad;
+  params.release_roll_rad = args.release_roll_rad;
   params.lambda = args.lambda;
   params.lambda_lat = args.lambda_lat;
   params.lambda_lon = args.lambda_lon;

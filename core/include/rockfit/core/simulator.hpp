@@ -62,12 +62,16 @@ bool FromString(std::string_view text, OverturnRule* rule);
 // Initial conditions and impact parameters of one run (constant during the run).
 struct ModelParameters {
   double alpha_rad = 0.2;    // release tilt (> 0; beyond the critical angle the block overturns at t = 0)
+  // Release roll about the release edge's inward axis (rolled_release.hpp): 0 releases on the edge (the paper's
+  // release); otherwise the block starts at rest on one corner of the edge, in a vertex phase.
+  double release_roll_rad = 0.0;
   double lambda = 1.0;       // edge impacts (19)
   double tau_edge = 0.0;     // edge impacts [N·m·s]
   double lambda_lat = 0.0;   // facet impacts (21)
   double lambda_lon = 1.0;   // facet impacts (21)
   FacetTauRule facet_tau_rule = FacetTauRule::kNoSpin;  // kFixed means τ = 0 (the paper's Sect. 5)
-  // Throws InvalidArgument for a non-finite value or a tilt α ≤ 0 (α is checked only for a release run).
+  // Throws InvalidArgument for a non-finite value, a tilt α ≤ 0 or a roll |β| ≥ π/4 (α and β are checked only
+  // for a release run).
   void Validate(bool check_alpha = true) const;
 };
 

@@ -28,9 +28,9 @@ struct NelderMeadOptions {
   // Stops when one step changes ε by less than this [rad/s] …
   double ftol_abs_rad_s = 1e-7;
   // … or moves every parameter by less than its xtol_abs (units of the parameter).
-  PerParameter xtol_abs = {1e-5, 1e-5, 1e-4, 1e-4, 1e-5, 1e-7};
+  PerParameter xtol_abs = {1e-5, 1e-5, 1e-4, 1e-4, 1e-5, 1e-7, 1e-6};
   // Size of the initial simplex along each parameter.
-  PerParameter initial_step = {4e-3, 5e-3, 0.2, 0.3, 0.05, 1e-3};
+  PerParameter initial_step = {4e-3, 5e-3, 0.2, 0.3, 0.05, 1e-3, 2e-3};
   // After convergence, restart from the best point with a fresh simplex up to this many times while that
   // improves ε by more than ftol_abs_rad_s (within max_evaluations in total).
   int restarts = 2;
@@ -49,7 +49,7 @@ struct CeresOptions {
   // Central-difference steps per parameter. Impacts make the simulated ω jump, so residuals are only
   // piecewise smooth in the parameters; steps of a fraction of a sample period (t0) or of the typical
   // resolution (others) average over that instead of differentiating it.
-  PerParameter difference_step = {5e-4, 5e-4, 5e-3, 1e-2, 2e-3, 1e-4};
+  PerParameter difference_step = {5e-4, 5e-4, 5e-3, 1e-2, 2e-3, 1e-4, 2e-4};
   // Use the model's exact derivatives (residual_jacobian.hpp) wherever it gives them, in the search and in the
   // covariance; the differences above elsewhere. The simulator gives them for planar runs only (λ_lat fixed at 0),
   // so this is off until the general case exists and is shown to fit no worse.
@@ -112,7 +112,7 @@ struct GlobalStageOptions {
 
 // "Not identifiable": ε does not change when the parameter is moved by ±probe_step (within its bounds).
 struct IdentifiabilityOptions {
-  PerParameter probe_step = {2e-3, 2e-3, 0.1, 0.2, 0.05, 1e-3};
+  PerParameter probe_step = {2e-3, 2e-3, 0.1, 0.2, 0.05, 1e-3, 2e-3};
   // |Δε| ≤ relative_tolerance·ε counts as no change: changes of ε below round-off of its sum.
   double relative_tolerance = 1e-9;
   void Validate() const;
@@ -178,7 +178,7 @@ struct IntervalOptions {
   double profile_growth = 1.5;  // factor between successive offsets (after the first two)
   // Smallest profile step per parameter (units of the parameter), used where the linearised σ is smaller or
   // not available: about a tenth of a sample period for t0, the resolution of the model otherwise.
-  PerParameter min_step = {2e-4, 2e-4, 0.01, 0.01, 0.005, 1e-5};
+  PerParameter min_step = {2e-4, 2e-4, 0.01, 0.01, 0.005, 1e-5, 1e-4};
   // A 95 % interval wider than this fraction of the parameter's range counts as not determining it.
   double undetermined_range_fraction = 0.5;
   void Validate() const;

@@ -39,10 +39,12 @@ struct FitArgs {
   double model_error_widening = fitting::kDefaultModelErrorWidening;  // fitting::IntervalOptions (0: off)
   double t0_floor_samples = fitting::kDefaultT0FloorSamples;          // fitting::IntervalOptions (0: off)
   std::string estimate_gyro_scale = "off";  // off | common | per-axis (fitting::GyroScaleMode)
+  // Estimate the release roll β (core/rolled_release.hpp) as a parameter: the same as --free release_roll.
+  bool fit_release_roll = false;
 };
 
 // --method, --bounds, --free, --fix, --lower, --upper, --t-end, --max-evaluations, --no-global, --keep-bias,
-// --threads, --intervals, --model-error-widening, --t0-floor-samples, --estimate-gyro-scale (declared by
+// --threads, --intervals, --model-error-widening, --t0-floor-samples, --estimate-gyro-scale, --fit-release-roll (declared by
 // tools/src/cli_common.cpp).
 
 struct PreparedFit {

@@ -19,6 +19,7 @@ namespace rockfit::app {
 struct SynthArgs {
   // Model.
   double alpha_rad = 0.2;
+  double release_roll_rad = 0.0;  // core::ModelParameters::release_roll_rad (0: released on the edge)
   double lambda = 1.0;
   double lambda_lat = 0.0;
   double lambda_lon = 1.0;
