@@ -229,6 +229,32 @@ void BM_PlanarRunWithSensitivities(benchmark::State& state) {
 }
 BENCHMARK(BM_PlanarRunWithSensitivities)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
+// The same for a 3D run (the synthetic trial's parameters, λ_lat = −2.032: vertex rocking and edge impacts) over
+// 1 s: the price of the spatial pass (core/spatial_sensitivity.hpp).
+void BM_SpatialRunWithSensitivities(benchmark::State& state) {
+  const Trial& trial = SyntheticTrial();
+  const fitting::SimulatorModel model(trial.block);
+  core::ModelParameters p;
+  p.alpha_rad = 0.197;
+  p.lambda = 2.185;
+  p.lambda_lat = -2.032;
+  p.lambda_lon = 0.197;
+  std::vector<double> times;
+  for (int k = 0; k <= 256; ++k) times.push_back(k / 256.0);
+  fitting::ModelOutput out;
+  for (auto _ : state) {
+    if (state.range(0) == 0) {
+      model.Evaluate(p, times, &out);
+    } else {
+      model.EvaluateWithSensitivities(p, times, &out);
+    }
+    benchmark::ClobberMemory();
+  }
+  state.counters["with_derivatives"] = out.dw_B_dparams.empty() ? 0.0 : 1.0;
+  state.counters["impacts"] = static_cast<double>(out.events.size());
+}
+BENCHMARK(BM_SpatialRunWithSensitivities)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
 // The quality criterion for CeresOptions::exact_jacobian: each trial fitted with and without it (no intervals, one
 // core), the largest relative rise of ε over the trials, and the simulations of each. Arg 0: the bundled sample
 // campaign (3D trials, λ_lat free: the 3D derivatives of core/spatial_sensitivity.hpp where a run has them); Arg 1: 20 planar
