@@ -257,8 +257,8 @@ BENCHMARK(BM_SpatialRunWithSensitivities)->Arg(0)->Arg(1)->Unit(benchmark::kMicr
 
 // The quality criterion for CeresOptions::exact_jacobian: each trial fitted with and without it (no intervals, one
 // core), the largest relative rise of ε over the trials, and the simulations of each. Arg 0: the bundled sample
-// campaign (3D trials, λ_lat free: the 3D derivatives of core/spatial_sensitivity.hpp where a run has them); Arg 1: 20 planar
-// synthetic trials (α, λ_lon, t0 and the noise seed drawn with a fixed seed; λ_lat fixed at 0).
+// campaign (3D trials, λ_lat free: the derivatives of core/spatial_sensitivity.hpp where a run has them); Arg 1: 20
+// planar synthetic trials (α, λ_lon, t0 and the noise seed drawn with a fixed seed; λ_lat fixed at 0).
 void BM_ExactJacobianQuality(benchmark::State& state) {
   std::vector<fitting::MeasuredSignal> signals;
   std::vector<core::Block> blocks;

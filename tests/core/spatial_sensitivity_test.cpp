@@ -57,8 +57,8 @@ bool SameModes(const Trajectory& a, const Trajectory& b) {
 
 // Marks the samples that lie before an impact in one run of a stencil and after it in another (their ω jumps
 // within the stencil, and the difference says nothing about the derivative there). Runs with the same modes.
-void MarkStraddledSamples(const std::vector<const Trajectory*>& runs, const std::vector<const std::vector<double>*>& times,
-                          std::vector<bool>* straddled) {
+void MarkStraddledSamples(const std::vector<const Trajectory*>& runs,
+                          const std::vector<const std::vector<double>*>& times, std::vector<bool>* straddled) {
   const Trajectory& first = *runs.front();
   for (std::size_t i = 0; i < first.impacts.size(); ++i) {
     for (std::size_t k = 0; k < straddled->size(); ++k) {
@@ -173,14 +173,23 @@ TEST(SpatialSensitivity, DerivativesMatchCentralDifferencesOfTheSimulatorOnRando
                                    (12.0 * kParameterStep));
           });
     }
+    constexpr int kTimeColumn = static_cast<int>(SensitivityColumn::kTime);
     compare(
-        "time", [&](std::size_t k) { return Eigen::Vector3d(s.dw_B[k].col(static_cast<int>(SensitivityColumn::kTime))); },
+        "time", [&](std::size_t k) { return Eigen::Vector3d(s.dw_B[k].col(kTimeColumn)); },
         [&](std::size_t k) { return Eigen::Vector3d((t_plus.w_B[k] - t_minus.w_B[k]) / (2.0 * kTimeStep_s)); });
     const auto straddled_here = static_cast<std::size_t>(std::count(straddled.begin(), straddled.end(), true));
     samples_straddled += straddled_here;
     samples_compared += times.size() - straddled_here;
-    std::printf("case %d: %zu impacts, %d vertex and %d edge phases, %zu samples left out, worst relative "
-                "difference %.2e\n", trial, base.impacts.size(), s.vertex_phases, s.edge_phases, straddled_here, worst);
+    int facet = 0, to_edge = 0, zeno = 0;
+    for (const ImpactRecord& r : base.impacts) {
+      facet += r.kind == ImpactKind::kFacet ? 1 : 0;
+      to_edge += r.kind == ImpactKind::kEdge && r.contact_after.is_edge() ? 1 : 0;
+      zeno += r.kind == ImpactKind::kZeno ? 1 : 0;
+    }
+    std::printf("case %d: %zu impacts (%d facet, %d edge impacts to edge contact, %d Zeno switches), %d vertex and "
+                "%d edge phases, %zu samples left out, worst relative difference %.2e\n",
+                trial, base.impacts.size(), facet, to_edge, zeno, s.vertex_phases, s.edge_phases, straddled_here,
+                worst);
     ++checked;
   }
   std::printf("%d cases checked (%zu samples compared, %zu left out next to an impact or the release), %d skipped as "

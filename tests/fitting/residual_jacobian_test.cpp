@@ -176,7 +176,9 @@ MeasuredSignal SpatialRecording(const core::ModelParameters& truth, unsigned see
   EXPECT_TRUE(out.ok()) << out.failure_detail;
   std::mt19937 rng(seed);
   std::normal_distribution<double> noise(0.0, kNoise_rad_s);
-  for (const Eigen::Vector3d& w : out.w_B) signal.w_B.push_back(w + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
+  for (const Eigen::Vector3d& w : out.w_B) {
+    signal.w_B.push_back(w + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
+  }
   return signal;
 }
 
