@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/core/planar_sensitivity.hpp"
+#include "rockfit/core/spatial_sensitivity.hpp"
 
 namespace rockfit::fitting {
 namespace {
@@ -93,8 +95,14 @@ void SimulatorModel::Run(const core::ModelParameters& params, const std::vector<
     return;
   }
   if (sensitivities) {
-    core::PlanarSensitivitySummary planar = core::PlanarSampleSensitivities(block_, params, run, trajectory);
-    if (planar.available) out->dw_B_dparams = std::move(planar.dw_B);
+    // λ_lat = 0 keeps a release planar (planar_sensitivity.hpp); otherwise the run is 3D (spatial_sensitivity.hpp).
+    if (params.lambda_lat == 0.0) {
+      core::PlanarSensitivitySummary planar = core::PlanarSampleSensitivities(block_, params, run, trajectory);
+      if (planar.available) out->dw_B_dparams = std::move(planar.dw_B);
+    } else {
+      core::SpatialSensitivitySummary spatial = core::SpatialSampleSensitivities(block_, params, run, trajectory);
+      if (spatial.available) out->dw_B_dparams = std::move(spatial.dw_B);
+    }
   }
   out->w_B = std::move(trajectory.w_B);
   out->events.reserve(trajectory.impacts.size());

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ctime>
 #include <filesystem>
 #include <memory>
 #include <random>
@@ -228,10 +229,36 @@ void BM_PlanarRunWithSensitivities(benchmark::State& state) {
 }
 BENCHMARK(BM_PlanarRunWithSensitivities)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
+// The same for a 3D run (the synthetic trial's parameters, λ_lat = −2.032: vertex rocking and edge impacts) over
+// 1 s: the price of the spatial pass (core/spatial_sensitivity.hpp).
+void BM_SpatialRunWithSensitivities(benchmark::State& state) {
+  const Trial& trial = SyntheticTrial();
+  const fitting::SimulatorModel model(trial.block);
+  core::ModelParameters p;
+  p.alpha_rad = 0.197;
+  p.lambda = 2.185;
+  p.lambda_lat = -2.032;
+  p.lambda_lon = 0.197;
+  std::vector<double> times;
+  for (int k = 0; k <= 256; ++k) times.push_back(k / 256.0);
+  fitting::ModelOutput out;
+  for (auto _ : state) {
+    if (state.range(0) == 0) {
+      model.Evaluate(p, times, &out);
+    } else {
+      model.EvaluateWithSensitivities(p, times, &out);
+    }
+    benchmark::ClobberMemory();
+  }
+  state.counters["with_derivatives"] = out.dw_B_dparams.empty() ? 0.0 : 1.0;
+  state.counters["impacts"] = static_cast<double>(out.events.size());
+}
+BENCHMARK(BM_SpatialRunWithSensitivities)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
 // The quality criterion for CeresOptions::exact_jacobian: each trial fitted with and without it (no intervals, one
 // core), the largest relative rise of ε over the trials, and the simulations of each. Arg 0: the bundled sample
-// campaign (3D trials: the simulator has no derivatives there, so the fits must be the same); Arg 1: 20 planar
-// synthetic trials (α, λ_lon, t0 and the noise seed drawn with a fixed seed; λ_lat fixed at 0).
+// campaign (3D trials, λ_lat free: the derivatives of core/spatial_sensitivity.hpp where a run has them); Arg 1: 20
+// planar synthetic trials (α, λ_lon, t0 and the noise seed drawn with a fixed seed; λ_lat fixed at 0).
 void BM_ExactJacobianQuality(benchmark::State& state) {
   std::vector<fitting::MeasuredSignal> signals;
   std::vector<core::Block> blocks;
@@ -259,22 +286,46 @@ void BM_ExactJacobianQuality(benchmark::State& state) {
     }
   }
   double worst_rise = -1.0, simulations_off = 0.0, simulations_on = 0.0, exact_better = 0.0;
+  // The local stage (Ceres): its model runs and wall time with and without the exact Jacobian.
+  double ceres_runs_off = 0.0, ceres_runs_on = 0.0, ceres_s_off = 0.0, ceres_s_on = 0.0;
+  double fit_cpu_s_off = 0.0, fit_cpu_s_on = 0.0;
+  auto add_ceres = [](const fitting::FitSummary& s, double* runs, double* seconds) {
+    for (const fitting::StageReport& stage : s.stages) {
+      if (stage.name != "ceres") continue;
+      *runs += static_cast<double>(stage.evaluations);
+      *seconds += stage.wall_time_s;
+    }
+  };
   for (auto _ : state) {
     for (std::size_t i = 0; i < signals.size(); ++i) {
       const fitting::TrialProblem problem = fitting::PrepareTrialProblem(signals[i], blocks[i], parameters[i]);
       fitting::FitOptions options;
       options.num_threads = 1;
       options.intervals.method = fitting::IntervalMethod::kNone;
+      // Process CPU time of each whole fit (one thread; the machine is shared, so wall time is not the measure).
+      const std::clock_t c0 = std::clock();
       const fitting::FitSummary off = fitting::Fit(problem.objective, problem.start, options);
+      const std::clock_t c1 = std::clock();
       options.ceres.exact_jacobian = true;
       const fitting::FitSummary on = fitting::Fit(problem.objective, problem.start, options);
+      const std::clock_t c2 = std::clock();
+      fit_cpu_s_off += static_cast<double>(c1 - c0) / CLOCKS_PER_SEC;
+      fit_cpu_s_on += static_cast<double>(c2 - c1) / CLOCKS_PER_SEC;
       const double rise = (on.epsilon_rad_s - off.epsilon_rad_s) / off.epsilon_rad_s;
       worst_rise = std::max(worst_rise, rise);
       exact_better += rise < 0.0 ? 1.0 : 0.0;
       simulations_off += static_cast<double>(off.simulations);
       simulations_on += static_cast<double>(on.simulations);
+      add_ceres(off, &ceres_runs_off, &ceres_s_off);
+      add_ceres(on, &ceres_runs_on, &ceres_s_on);
     }
   }
+  state.counters["ceres_runs_off"] = ceres_runs_off;
+  state.counters["ceres_runs_on"] = ceres_runs_on;
+  state.counters["ceres_ms_off"] = 1e3 * ceres_s_off;
+  state.counters["ceres_ms_on"] = 1e3 * ceres_s_on;
+  state.counters["fit_cpu_ms_off"] = 1e3 * fit_cpu_s_off;
+  state.counters["fit_cpu_ms_on"] = 1e3 * fit_cpu_s_on;
   state.counters["trials"] = static_cast<double>(signals.size());
   // In parts per million: this Google Benchmark prints counters below 1 wrongly.
   state.counters["worst_epsilon_rise_ppm"] = 1e6 * worst_rise;

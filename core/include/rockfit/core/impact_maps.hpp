@@ -11,5 +11,6 @@
 #include "rockfit/core/facet_impact.hpp"        // FacetImpact, FacetTauRule
 #include "rockfit/core/facet_impact_regions.hpp"  // EvaluateFacetRegions (Fig. 11)
 #include "rockfit/core/general_impact_map.hpp"  // ImpactStatus, ImpactGeometry, GeneralImpactMap, (14), (26)
+#include "rockfit/core/impact_map_derivatives.hpp"  // EdgeImpactDerivatives, FacetImpactDerivatives
 #include "rockfit/core/impact_outcome.hpp"      // ImpactOutcome, FacetCandidate
 #include "rockfit/core/planar_avrf.hpp"         // (3)–(6)

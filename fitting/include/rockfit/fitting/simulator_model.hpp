@@ -27,7 +27,8 @@ class SimulatorModel final : public TrajectoryModel {
   SimulatorModel(const core::Block& block, SimulatorModelOptions options = {});
   void Evaluate(const core::ModelParameters& params, const std::vector<double>& t_after_release_s,
                 ModelOutput* out) const override;
-  // Exact derivatives for planar runs (λ_lat = 0, no edge impacts: core/planar_sensitivity.hpp); none otherwise.
+  // Exact derivatives: planar runs (λ_lat = 0: core/planar_sensitivity.hpp) and 3D runs (λ_lat ≠ 0, no-spin facet
+  // rule: core/spatial_sensitivity.hpp); none where those passes give none (dw_B_dparams left empty).
   void EvaluateWithSensitivities(const core::ModelParameters& params, const std::vector<double>& t_after_release_s,
                                  ModelOutput* out) const override;
   std::string Describe() const override;
