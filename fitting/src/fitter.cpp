@@ -299,9 +299,7 @@ void ApplyLateralMotionCheck(const Objective& objective, const FitOptions& optio
 void AddModelErrorStatement(const Objective& objective, const FitOptions& options, FitSummary* summary) {
   // How much of ε the noise at rest explains; a warning when the rest is model error and dominates.
   if (!summary->feasible) return;
-  summary->model_error =
-      AssessModelError(objective, ObservedEpsilon(objective, summary->parameters, summary->epsilon_rad_s),
-                       options.model_error);
+  summary->model_error = AssessModelError(objective, summary->epsilon_rad_s, options.model_error);
   const ModelErrorStatement& m = summary->model_error;
   if (!m.dominates) return;
   summary->warnings.push_back(

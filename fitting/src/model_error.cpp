@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -17,19 +15,6 @@ void ModelErrorOptions::Validate() const {
   if (!(dominance_share >= 0.0 && dominance_share < 1.0)) {
     throw InvalidArgument(fmt::format("model error: dominance_share must lie in [0, 1), got {}", dominance_share));
   }
-}
-
-double ObservedEpsilon(const Objective& objective, const ParameterSet& fitted, double fitted_epsilon_rad_s) {
-  const std::vector<std::uint8_t>& censored = objective.signal().censored_axes;
-  if (std::none_of(censored.begin(), censored.end(), [](std::uint8_t axes) { return axes != 0; })) {
-    return fitted_epsilon_rad_s;
-  }
-  ErrorNodes nodes;
-  ModelOutput output;
-  const Evaluation e = objective.EvaluateDetailed(fitted, &nodes, &output);
-  if (!e.feasible || output.w_B.size() != nodes.size()) return fitted_epsilon_rad_s;
-  const double observed = ObservedTrajectoryError(nodes, output.w_B);
-  return std::isfinite(observed) ? observed : fitted_epsilon_rad_s;
 }
 
 ModelErrorStatement AssessModelError(const Objective& objective, double epsilon_rad_s, const ModelErrorOptions& options) {
@@ -78,7 +63,7 @@ std::string ModelErrorText(const ModelErrorStatement& s) {
                        s.rest_duration_s);
   }
   const std::string clipped =
-      s.clipped_samples > 0 ? fmt::format(" ({} clipped gyro samples censored; ε over the others)", s.clipped_samples) : std::string();
+      s.clipped_samples > 0 ? fmt::format(" ({} clipped gyro samples)", s.clipped_samples) : std::string();
   return fmt::format("ε = {:.2f} × the noise floor {:.3g} rad/s (rest {:.2f} s): the noise explains {:.0f} % of ε², "
                      "model error {:.3g} rad/s{}{}",
                      s.ratio, s.noise_floor_rad_s, s.rest_duration_s, 100.0 * s.noise_share, s.model_error_rad_s,

@@ -140,16 +140,4 @@ double TrajectoryError(const ErrorNodes& nodes, const std::vector<Eigen::Vector3
   return integral / covered_s;  // (28)
 }
 
-double ObservedTrajectoryError(const ErrorNodes& nodes, const std::vector<Eigen::Vector3d>& w_s_B) {
-  if (nodes.num_censored == 0) return TrajectoryError(nodes, w_s_B);
-  double integral = 0.0, observed_s = 0.0;
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    if (SatisfiedCensoredAxes(nodes, i, w_s_B[i]) != 0) continue;  // the misfit there is not observed
-    integral += nodes.weight_s[i] * NodeMisfit(nodes, i, w_s_B[i]).norm();
-    observed_s += nodes.weight_s[i];
-  }
-  if (!(observed_s > 0.0)) return std::numeric_limits<double>::infinity();
-  return integral / observed_s;  // (28) over the observed nodes
-}
-
 }  // namespace rockfit::fitting

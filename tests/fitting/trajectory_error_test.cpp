@@ -183,56 +183,6 @@ TEST(TrajectoryError, SatisfiedCensoredAxesAreThoseWhereTheMisfitIsZeroByCensori
   EXPECT_EQ(SatisfiedCensoredAxes(nodes, 0, Eigen::Vector3d(2.5, -2.5, 0.5)), 0);
 }
 
-TEST(TrajectoryError, ObservedErrorLeavesOutTheNodesWhoseRailTheModelReaches) {
-  // ω_m = c everywhere but at samples 40–43, censored on x at a rail of 0.3 with the model (0) short of it, and
-  // 60–61, censored on z with the model beyond its rail; model 0 elsewhere. By definition the observed error is
-  // Σ w_i ‖misfit_i‖ / Σ w_i over the nodes without a satisfied censored axis: 60–61 are left out (their misfit
-  // is 0 by censoring), 40–43 stay with their shortfall. (28) over every node keeps 60–61 with the censored misfit.
-  const Eigen::Vector3d c(0.3, -0.4, 1.2);  // ‖c‖ = 1.3
-  MeasuredSignal s = UniformSignal(256.0, 300, [&](double) { return c; });
-  s.censored_axes.assign(s.size(), 0);
-  s.excluded.assign(s.size(), false);
-  const Eigen::Vector3d short_sample(0.3, 5.0, -7.0);
-  for (std::size_t k : {40u, 41u, 42u, 43u}) {
-    s.w_B[k] = short_sample;
-    s.censored_axes[k] = 0b001;
-    s.excluded[k] = true;
-  }
-  for (std::size_t k : {60u, 61u}) {
-    s.w_B[k] = Eigen::Vector3d(2.0, 0.0, -1e-3);
-    s.censored_axes[k] = 0b100;
-    s.excluded[k] = true;
-  }
-  ErrorNodes nodes;
-  ASSERT_TRUE(BuildErrorNodes(s, 0.0123, 1.0, &nodes));
-  ASSERT_EQ(nodes.num_censored, 6u);
-  std::vector<Eigen::Vector3d> w_s = Zeros(nodes.size());
-  const std::size_t n60 = 60 - nodes.first_sample + 1, n61 = 61 - nodes.first_sample + 1;
-  w_s[n60].z() = -0.5;  // beyond the rail −1e-3 on z
-  w_s[n61].z() = -0.5;
-  double short_weight = 0.0;
-  for (std::size_t k : {40u, 41u, 42u, 43u}) short_weight += nodes.weight_s[k - nodes.first_sample + 1];
-  const double observed_s = nodes.duration_s() - nodes.weight_s[n60] - nodes.weight_s[n61];
-  const double expected = (1.3 * (observed_s - short_weight) + short_sample.norm() * short_weight) / observed_s;
-  EXPECT_NEAR(ObservedTrajectoryError(nodes, w_s), expected, kSumTolerance);
-  double all = 0.0;  // (28) by its definition, the censored misfit at the censored nodes
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    Eigen::Vector3d d = nodes.w_m_B[i] - w_s[i];
-    if (nodes.censored_axes[i] == 0b100) d.z() = 0.0;
-    all += nodes.weight_s[i] * d.norm();
-  }
-  EXPECT_NEAR(TrajectoryError(nodes, w_s), all / nodes.duration_s(), kSumTolerance);
-}
-
-TEST(TrajectoryError, ObservedErrorIsTheErrorItselfWithoutCensoredNodes) {
-  const MeasuredSignal s = UniformSignal(256.0, 300, [&](double t) { return Eigen::Vector3d(t, -0.3 * t, 0.1); });
-  ErrorNodes nodes;
-  ASSERT_TRUE(BuildErrorNodes(s, 0.0123, 1.0, &nodes));
-  std::vector<Eigen::Vector3d> w_s = Zeros(nodes.size());
-  for (std::size_t i = 0; i < nodes.size(); ++i) w_s[i] = Eigen::Vector3d(0.01 * static_cast<double>(i % 7), 0.0, 0.2);
-  EXPECT_EQ(ObservedTrajectoryError(nodes, w_s), TrajectoryError(nodes, w_s));  // bit for bit
-}
-
 TEST(TrajectoryError, WithoutExcludedSamplesTheDivisorIsTheWindowExactly) {
   const MeasuredSignal s = UniformSignal(256.0, 300, [&](double t) { return Eigen::Vector3d(t, 0, 0); });
   ErrorNodes nodes;

@@ -144,8 +144,8 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   // v7: the model-error statement is stored with each fit (the fitted values are those of v6).
   // v8: the 95 % intervals widened for model error by default (the fitted values are those of v7).
   // v9: clipped gyro samples censored in (28).
-  // v10: on clipped recordings, the censored components the model satisfies count in no degree of freedom, and
-  // the model-error ratio takes ε over the observed nodes (the intervals change; recordings without a rail not).
+  // v10: on clipped recordings, the censored components the model satisfies count in no degree of freedom (the
+  // intervals change; recordings without a rail do not).
   std::string settings = fmt::format("rockfit-fit v10; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
                                      "global={}; keep_bias={}; block=({:.17g},{:.17g},{:.17g},{:.17g})",
                                      fitting::ToString(fitting::ParseFitMethod(args.method)),

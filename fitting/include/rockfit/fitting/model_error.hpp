@@ -36,7 +36,7 @@ struct ModelErrorOptions {
 
 struct ModelErrorStatement {
   bool available = false;          // false: no rest segment long enough, or ε not finite
-  double epsilon_rad_s = 0.0;      // the fitted (28); over the observed nodes when some clipped (ObservedEpsilon)
+  double epsilon_rad_s = 0.0;      // the fitted (28)
   double noise_floor_rad_s = 0.0;  // ε_noise: (28) of the noise at rest alone
   double ratio = 0.0;              // ε / ε_noise
   double noise_share = 0.0;        // share of ε² the noise explains, in [0, 1]
@@ -55,14 +55,6 @@ struct ModelErrorStatement {
 // Never throws for numerical trouble (available = false instead).
 ModelErrorStatement AssessModelError(const Objective& objective, double epsilon_rad_s,
                                      const ModelErrorOptions& options = {});
-
-// The ε a statement compares with the noise floor: (28) at `fitted` over the nodes whose misfit the recording
-// observes (ObservedTrajectoryError: not the clipped samples whose rail the model reaches, where the misfit is
-// 0 by censoring — at the largest |ω|, next to the impacts, where the misfit is largest), so that a clipped
-// recording's zeros do not dilute the model error and with it the widening of the intervals (fitting/README.md,
-// "Clipped gyro samples"). `fitted_epsilon_rad_s` itself, bit for bit, when no sample is censored, and where the
-// model fails.
-double ObservedEpsilon(const Objective& objective, const ParameterSet& fitted, double fitted_epsilon_rad_s);
 
 // {"available", "epsilon_rad_s", "noise_floor_rad_s", "ratio", "noise_share", "model_error_rad_s",
 // "model_error_share", "dominates", "rest_duration_s", "rest_samples", "clipped_samples"} (numbers and `dominates` null when not

@@ -80,12 +80,4 @@ std::uint8_t SatisfiedCensoredAxes(const ErrorNodes& nodes, std::size_t i, const
 // (28) for the nodes and the model's ω_s at nodes.t_after_release_s (same length); +∞ when every node is excluded.
 double TrajectoryError(const ErrorNodes& nodes, const std::vector<Eigen::Vector3d>& w_s_B);
 
-// (28) over the nodes whose misfit the recording observes: every node but those with a censored axis that the
-// model satisfies (SatisfiedCensoredAxes), where the misfit is 0 by censoring, not by agreement — the clipped
-// samples sit at the largest |ω|, next to the impacts, where the misfit is largest. A censored node whose model
-// falls short of the rail stays, with its shortfall (the model is at least that far from the recording). This
-// is what the noise floor at rest, measured on samples below the rail, is compared with. Equal to
-// TrajectoryError, bit for bit, when no node is censored; +∞ when no weighted node is observed.
-double ObservedTrajectoryError(const ErrorNodes& nodes, const std::vector<Eigen::Vector3d>& w_s_B);
-
 }  // namespace rockfit::fitting
