@@ -80,6 +80,11 @@ class ResidualEvaluator {
   std::size_t num_weighted_nodes_at(const double* x) {
     return Lookup(x) ? last_entry_->num_weighted_nodes : 0;
   }
+  // Components at x that are censored observations the model satisfies (SatisfiedCensoredAxes): 0 whatever the
+  // model does nearby, so no residual and no degree of freedom.
+  std::size_t num_unobserved_components_at(const double* x) {
+    return Lookup(x) ? last_entry_->num_unobserved_components : 0;
+  }
 
   // Residuals (3 per slot) at x, or nullptr when the model fails there. The pointer stays valid until the
   // next call.
@@ -100,6 +105,7 @@ class ResidualEvaluator {
     bool jacobian_ok = false;
     std::size_t num_nodes = 0;
     std::size_t num_weighted_nodes = 0;
+    std::size_t num_unobserved_components = 0;
     std::uint64_t last_used = 0;
   };
 
@@ -133,6 +139,14 @@ class ResidualEvaluator {
     entry->ok = e.feasible && nodes_.size() >= 2 && nodes_.first_sample >= first_slot_sample_;
     entry->num_nodes = entry->ok ? nodes_.size() : 0;
     entry->num_weighted_nodes = entry->ok ? nodes_.size() - nodes_.num_excluded : 0;
+    entry->num_unobserved_components = 0;
+    if (entry->ok && nodes_.num_censored > 0) {
+      for (std::size_t i = 0; i < nodes_.size(); ++i) {
+        if (nodes_.weight_s[i] == 0.0) continue;
+        const std::uint8_t satisfied = SatisfiedCensoredAxes(nodes_, i, output_.w_B[i]);
+        for (int a = 0; a < 3; ++a) entry->num_unobserved_components += (satisfied >> a) & 1u;
+      }
+    }
     last_num_nodes_ = entry->num_nodes;
     if (!entry->ok) return nullptr;
     ResidualScale scale;
@@ -362,9 +376,11 @@ StandardErrors ComputeStandardErrors(const Objective& objective, const Eigen::Ve
   // t0) or a node without weight (a clipped sample) hold 0: they add nothing to either sum of ρ, so no pair
   // across them is counted as adjacent.
   const double inflation = Lag1InflationFactor(r, evaluator.num_slots(), 3);
-  // The degrees of freedom count the residuals: the nodes with weight only.
+  // The degrees of freedom count the residuals: the nodes with weight only, less the censored components the
+  // model satisfies.
   const std::size_t nodes = evaluator.num_weighted_nodes_at(x.data());
-  const double dof = 3.0 * static_cast<double>(nodes) - static_cast<double>(n);
+  const double dof = ResidualDegreesOfFreedom(nodes, evaluator.num_unobserved_components_at(x.data()),
+                                              static_cast<std::size_t>(n));
   result.weighted_nodes = nodes;
   result.dof = dof;
   result.lag1_factor = inflation;

@@ -63,7 +63,7 @@ std::string ModelErrorText(const ModelErrorStatement& s) {
                        s.rest_duration_s);
   }
   const std::string clipped =
-      s.clipped_samples > 0 ? fmt::format(" ({} clipped gyro samples left out)", s.clipped_samples) : std::string();
+      s.clipped_samples > 0 ? fmt::format(" ({} clipped gyro samples)", s.clipped_samples) : std::string();
   return fmt::format("ε = {:.2f} × the noise floor {:.3g} rad/s (rest {:.2f} s): the noise explains {:.0f} % of ε², "
                      "model error {:.3g} rad/s{}{}",
                      s.ratio, s.noise_floor_rad_s, s.rest_duration_s, 100.0 * s.noise_share, s.model_error_rad_s,

@@ -109,14 +109,23 @@ bool BuildErrorNodes(const MeasuredSignal& signal, double t0_s, double t_end_s, 
   return true;
 }
 
-Eigen::Vector3d NodeMisfit(const ErrorNodes& nodes, std::size_t i, const Eigen::Vector3d& w_s_B) {
-  Eigen::Vector3d d = nodes.w_m_B[i] - w_s_B;
+std::uint8_t SatisfiedCensoredAxes(const ErrorNodes& nodes, std::size_t i, const Eigen::Vector3d& w_s_B) {
   const std::uint8_t axes = nodes.censored_axes.empty() ? 0 : nodes.censored_axes[i];
-  if (axes == 0) return d;
+  std::uint8_t satisfied = 0;
   for (int a = 0; a < 3; ++a) {
     if ((axes & (1u << a)) == 0) continue;
     const double sense = nodes.w_m_B[i][a] >= 0.0 ? 1.0 : -1.0;
-    if (sense * d[a] <= 0.0) d[a] = 0.0;  // the model at or beyond the rail: consistent with "at least this fast"
+    // The model at or beyond the rail: consistent with "at least this fast".
+    if (sense * (nodes.w_m_B[i][a] - w_s_B[a]) <= 0.0) satisfied = static_cast<std::uint8_t>(satisfied | (1u << a));
+  }
+  return satisfied;
+}
+
+Eigen::Vector3d NodeMisfit(const ErrorNodes& nodes, std::size_t i, const Eigen::Vector3d& w_s_B) {
+  Eigen::Vector3d d = nodes.w_m_B[i] - w_s_B;
+  const std::uint8_t satisfied = SatisfiedCensoredAxes(nodes, i, w_s_B);
+  for (int a = 0; a < 3; ++a) {
+    if ((satisfied & (1u << a)) != 0) d[a] = 0.0;
   }
   return d;
 }

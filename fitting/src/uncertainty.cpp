@@ -232,8 +232,14 @@ bool FromString(std::string_view text, Determination* value) {
   return core::FromStringAmong(text, kAll, value);
 }
 
+double ResidualDegreesOfFreedom(std::size_t nodes, std::size_t unobserved_components, std::size_t free_parameters) {
+  return 3.0 * static_cast<double>(nodes) - static_cast<double>(unobserved_components) -
+         static_cast<double>(free_parameters);
+}
+
 bool WeightedResiduals(const Objective& objective, const ParameterSet& at, std::vector<Eigen::Vector3d>* residuals,
-                       double* epsilon_rad_s, std::vector<Eigen::Vector3d>* on_node_grid) {
+                       double* epsilon_rad_s, std::vector<Eigen::Vector3d>* on_node_grid,
+                       std::size_t* unobserved_components) {
   ErrorNodes nodes;
   ModelOutput output;
   const Evaluation e = objective.EvaluateDetailed(at, &nodes, &output);
@@ -244,10 +250,14 @@ bool WeightedResiduals(const Objective& objective, const ParameterSet& at, std::
   residuals->clear();
   residuals->reserve(nodes.size());
   if (on_node_grid != nullptr) on_node_grid->assign(nodes.size(), Eigen::Vector3d::Zero());
+  if (unobserved_components != nullptr) *unobserved_components = 0;
   for (std::size_t k = 0; k < nodes.size(); ++k) {
     if (nodes.weight_s[k] == 0.0) continue;
     residuals->push_back(std::sqrt(nodes.weight_s[k]) * NodeMisfit(nodes, k, output.w_B[k]));
     if (on_node_grid != nullptr) (*on_node_grid)[k] = residuals->back();
+    if (unobserved_components != nullptr && nodes.num_censored > 0) {
+      for (int a = 0; a < 3; ++a) *unobserved_components += (SatisfiedCensoredAxes(nodes, k, output.w_B[k]) >> a) & 1u;
+    }
   }
   return true;
 }
@@ -447,7 +457,8 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
   // node without weight (a clipped sample), for the correlation in time — no pair across a left-out sample is
   // taken for neighbours, and the zeros add nothing to the lag sums.
   std::vector<Eigen::Vector3d> r, r_grid;
-  if (profiled.empty() || !WeightedResiduals(ls, base, &r, nullptr, &r_grid)) {
+  std::size_t unobserved = 0;  // censored components the model satisfies: no residual, no degree of freedom
+  if (profiled.empty() || !WeightedResiduals(ls, base, &r, nullptr, &r_grid, &unobserved)) {
     u.description = "not available: the model fails at the fit";
     return u;
   }
@@ -481,7 +492,7 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
     u.noise_inflation[static_cast<std::size_t>(id)] = kappa[static_cast<std::size_t>(id)];
     u.correlation_factor = std::max(u.correlation_factor, kappa[static_cast<std::size_t>(id)]);
   }
-  const double dof = 3.0 * static_cast<double>(r.size()) - static_cast<double>(profiled.size());
+  const double dof = ResidualDegreesOfFreedom(r.size(), unobserved, profiled.size());
   double sum_sq_min = sum_sq_fit;  // the lowest S known (the profiles may find lower)
   if (!(dof > 0.0)) {
     u.description = "not available: fewer residuals than free parameters";

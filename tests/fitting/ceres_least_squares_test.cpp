@@ -1,6 +1,7 @@
 // The Ceres back end and the covariance standard errors.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -9,6 +10,7 @@
 #include "rockfit/fitting/local_optimizer.hpp"
 #include "rockfit/fitting/trajectory_error.hpp"
 #include "rockfit/fitting/trial_problem.hpp"
+#include "rockfit/fitting/uncertainty.hpp"
 #include "synth_trial.hpp"
 
 namespace rockfit::fitting {
@@ -162,6 +164,60 @@ TEST(Ceres, LeftOutSamplesCountNeitherInTheDegreesOfFreedomNorInTheLagOnePairs) 
   ASSERT_TRUE(se_other.available) << se_other.message;
   EXPECT_EQ(se_other.std_error, se.std_error);
   EXPECT_EQ(se_other.dof, se.dof);
+}
+
+TEST(Ceres, CensoredComponentsTheModelSatisfiesAreNoDegreesOfFreedom) {
+  // A clipped axis records the rail; where the model is at or beyond it the censored misfit is 0 whatever the
+  // model does nearby — no residual, so no degree of freedom. Where the model falls short it is a residual like
+  // any other. Recorded values written here on y: half the model's ω_y (same sense: the model is beyond, the
+  // observation satisfied) at four samples, twice it (the model falls short) at three; t0 held so that the slots
+  // are the nodes. The degrees of freedom are then 3 per node less the four satisfied components less the free
+  // parameters.
+  testing::SyntheticSignalOptions noise;
+  noise.noise_rad_s = 0.03;
+  noise.seed = 4;
+  testing::AnalyticTrial trial = MakeAnalyticTrial(0.2, 0.8, -2.0, 0.6, noise);
+  const ParameterSet p = Free(trial, {ParameterId::kAlpha, ParameterId::kLambdaLat, ParameterId::kLambdaLon});
+  const Eigen::VectorXd x = trial.MakeObjective(p).FreeValues(trial.truth);
+  ErrorNodes nodes;
+  ModelOutput model;
+  ASSERT_TRUE(trial.MakeObjective(p).EvaluateDetailed(trial.truth, &nodes, &model).feasible);
+  MeasuredSignal& signal = trial.data.signal;
+  signal.censored_axes.assign(signal.size(), 0);
+  signal.excluded.assign(signal.size(), false);
+  auto model_at = [&](std::size_t k) { return model.w_B[k - nodes.first_sample + 1]; };
+  constexpr double kClearSense_rad_s = 0.05;  // |ω_y| of the chosen samples: far from 0, so the sense is clear
+  std::vector<std::size_t> clear;  // interior samples where the model's ω_y is clearly of one sense
+  for (std::size_t i = 1; i <= nodes.num_interior; ++i) {
+    if (std::abs(model.w_B[i].y()) > kClearSense_rad_s) clear.push_back(nodes.first_sample + i - 1);
+  }
+  ASSERT_GT(clear.size(), 50u);
+  constexpr std::uint8_t kY = 0b010;
+  const std::size_t satisfied[] = {clear[10], clear[11], clear[12], clear[30]};
+  const std::size_t short_of_it[] = {clear[45], clear[46], clear[47]};
+  for (std::size_t k : satisfied) {
+    signal.w_B[k].y() = 0.5 * model_at(k).y();
+    signal.censored_axes[k] = kY;
+    signal.excluded[k] = true;  // as the trial problem marks a clipped sample
+  }
+  for (std::size_t k : short_of_it) {
+    signal.w_B[k].y() = 2.0 * model_at(k).y();
+    signal.censored_axes[k] = kY;
+    signal.excluded[k] = true;
+  }
+  const Objective objective = trial.MakeObjective(p);
+  const StandardErrors se = ComputeStandardErrors(objective, x, CeresOptions{});
+  ASSERT_TRUE(se.available) << se.message;
+  EXPECT_EQ(se.weighted_nodes, nodes.size());  // a censored sample keeps its node and its weight
+  EXPECT_EQ(se.dof, 3.0 * static_cast<double>(nodes.size()) - 4.0 - 3.0);
+
+  // The intervals count the same way (WeightedResiduals).
+  std::vector<Eigen::Vector3d> r;
+  std::size_t unobserved = 0;
+  ASSERT_TRUE(WeightedResiduals(objective, trial.truth, &r, nullptr, nullptr, &unobserved));
+  EXPECT_EQ(r.size(), nodes.size());
+  EXPECT_EQ(unobserved, 4u);
+  EXPECT_EQ(ResidualDegreesOfFreedom(r.size(), unobserved, 3), se.dof);
 }
 
 TEST(Ceres, StandardErrorsAreUnavailableForAParameterWithoutInfluence) {

@@ -168,6 +168,21 @@ TEST(TrajectoryError, CensoredSamplesKeepTheirWeightAndEnterWithTheirMisfit) {
   EXPECT_NEAR(TrajectoryError(nodes, w_s), expected, kSumTolerance);
 }
 
+TEST(TrajectoryError, SatisfiedCensoredAxesAreThoseWhereTheMisfitIsZeroByCensoring) {
+  // The cases of the one-sided misfit above, R = 2 rad/s on x (+) and y (−): an axis is satisfied when the model
+  // is at or beyond the rail in the recorded sense; a plain axis never is.
+  constexpr double kRail = 2.0;
+  ErrorNodes nodes;
+  nodes.w_m_B = {Eigen::Vector3d(kRail, -kRail, 0.5)};
+  nodes.censored_axes = {0b011};
+  EXPECT_EQ(SatisfiedCensoredAxes(nodes, 0, Eigen::Vector3d(2.5, -2.5, 0.5)), 0b011);  // beyond on both
+  EXPECT_EQ(SatisfiedCensoredAxes(nodes, 0, Eigen::Vector3d(2.0, -2.0, 9.0)), 0b011);  // at the rail
+  EXPECT_EQ(SatisfiedCensoredAxes(nodes, 0, Eigen::Vector3d(1.5, -1.0, 0.5)), 0);      // short on both
+  EXPECT_EQ(SatisfiedCensoredAxes(nodes, 0, Eigen::Vector3d(3.0, -1.5, 0.5)), 0b001);  // beyond on x only
+  nodes.censored_axes = {0};
+  EXPECT_EQ(SatisfiedCensoredAxes(nodes, 0, Eigen::Vector3d(2.5, -2.5, 0.5)), 0);
+}
+
 TEST(TrajectoryError, WithoutExcludedSamplesTheDivisorIsTheWindowExactly) {
   const MeasuredSignal s = UniformSignal(256.0, 300, [&](double t) { return Eigen::Vector3d(t, 0, 0); });
   ErrorNodes nodes;

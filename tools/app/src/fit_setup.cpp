@@ -144,7 +144,10 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   // v6: the lateral rescan.
   // v7: the model-error statement is stored with each fit (the fitted values are those of v6).
   // v8: the 95 % intervals widened for model error by default (the fitted values are those of v7).
-  std::string settings = fmt::format("rockfit-fit v9; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
+  // v9: clipped gyro samples censored in (28).
+  // v10: on clipped recordings, the censored components the model satisfies count in no degree of freedom (the
+  // intervals change; recordings without a rail do not).
+  std::string settings = fmt::format("rockfit-fit v10; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
                                      "global={}; keep_bias={}; block=({:.17g},{:.17g},{:.17g},{:.17g})",
                                      fitting::ToString(fitting::ParseFitMethod(args.method)),
                                      fitting::ToString(fitting::ParseIntervalMethod(args.intervals)), args.bounds,

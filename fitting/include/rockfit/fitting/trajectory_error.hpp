@@ -72,6 +72,11 @@ bool BuildErrorNodes(const MeasuredSignal& signal, double t0_s, double t_end_s, 
 // (fitting/README.md, "Clipped gyro samples").
 Eigen::Vector3d NodeMisfit(const ErrorNodes& nodes, std::size_t i, const Eigen::Vector3d& w_s_B);
 
+// The censored axes of node i whose observation the model satisfies (at or beyond the rail, bit a for axis a):
+// there NodeMisfit is 0 whatever the model does nearby, so the component is no residual — it has no value to
+// scatter about and its Jacobian row is 0. The intervals leave such components out of their degrees of freedom.
+std::uint8_t SatisfiedCensoredAxes(const ErrorNodes& nodes, std::size_t i, const Eigen::Vector3d& w_s_B);
+
 // (28) for the nodes and the model's ω_s at nodes.t_after_release_s (same length); +∞ when every node is excluded.
 double TrajectoryError(const ErrorNodes& nodes, const std::vector<Eigen::Vector3d>& w_s_B);
 

@@ -82,8 +82,15 @@ struct UncertaintySummary {
 // The residual series r_k = √w_k·(ω_m − ω_s) at `at` in time order (3 per node), over the nodes with weight
 // (excluded samples have none); false when the model fails there. `on_node_grid`, when given: the same residuals
 // at their nodes' places, 0 at a node without weight, for statistics of the correlation in time.
+// `unobserved_components`, when given: how many components of the series are censored observations that the
+// model satisfies (SatisfiedCensoredAxes: 0 by definition, no residual), which the degrees of freedom leave out.
 bool WeightedResiduals(const Objective& objective, const ParameterSet& at, std::vector<Eigen::Vector3d>* residuals,
-                       double* epsilon_rad_s = nullptr, std::vector<Eigen::Vector3d>* on_node_grid = nullptr);
+                       double* epsilon_rad_s = nullptr, std::vector<Eigen::Vector3d>* on_node_grid = nullptr,
+                       std::size_t* unobserved_components = nullptr);
+
+// Degrees of freedom of a residual series: its components, less those that are no residual (censored and
+// satisfied), less the free parameters.
+double ResidualDegreesOfFreedom(std::size_t nodes, std::size_t unobserved_components, std::size_t free_parameters);
 
 // κ = long-run variance / variance of the series (each component, pooled), Bartlett weights up to max_lag;
 // at least 1 (negative correlation at short lags never shrinks the noise level).
