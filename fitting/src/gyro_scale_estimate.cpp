@@ -54,7 +54,7 @@ GyroScaleEstimate EstimateGyroScale(const Objective& objective, const ParameterS
   out.value = e.gyro_scale;
   const Eigen::Vector3d s = e.gyro_scale;
 
-  // Var(s | θ̂): the closed form's noise (header comment).
+  // Var(s | θ̂): the noise of the least-squares form, taken for that of the (28) minimiser (header comment).
   const double dt_s = nodes.duration_s() / static_cast<double>(nodes.size() - 1);
   const int max_lag = static_cast<int>(std::lround(options.intervals.noise_correlation_window_s / dt_s));
   const std::size_t n = nodes.size();

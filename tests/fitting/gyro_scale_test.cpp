@@ -1,6 +1,8 @@
-// The gyro scale projected out of (28) (gyro_scale.hpp): the closed form equals an independent weighted least-
-// squares solve, is clamped to its bounds, leaves silent axes at 1, and the objective with it fits the truth of a
-// scaled recording exactly.
+// The gyro scale projected out of (28) (gyro_scale.hpp): the projected scale is a stationary point of (28) in the
+// scale (central differences of TrajectoryError itself) and no worse than the least-squares start or 1, scale 1 is
+// recovered from data without a scale error, the least-squares start equals an independent weighted least-squares
+// solve, scales are clamped to their bounds, silent axes keep 1, and the objective with the scale fits the truth of
+// a scaled recording exactly.
 #include "rockfit/fitting/gyro_scale.hpp"
 
 #include <cmath>
@@ -62,9 +64,9 @@ TEST(GyroScale, ProjectedScaleOfANoiselessScaledSignalIsTheScale) {
   EXPECT_EQ(ProjectedGyroScale(p.nodes, p.w_s_B, GyroScaleMode::kOff), Eigen::Vector3d::Ones());
 }
 
-TEST(GyroScale, PerAxisAndCommonScalesEqualAnIndependentWeightedLeastSquaresSolve) {
+TEST(GyroScale, TheLeastSquaresStartEqualsAnIndependentWeightedLeastSquaresSolve) {
   const Problem p = MakeProblem(Eigen::Vector3d(1.03, 0.97, 1.01), 0.05);
-  const Eigen::Vector3d s = ProjectedGyroScale(p.nodes, p.w_s_B, GyroScaleMode::kPerAxis);
+  const Eigen::Vector3d s = LeastSquaresGyroScale(p.nodes, p.w_s_B, GyroScaleMode::kPerAxis);
   std::vector<double> x_all, y_all, w_all;
   for (int a = 0; a < 3; ++a) {
     std::vector<double> x, y;
@@ -77,10 +79,95 @@ TEST(GyroScale, PerAxisAndCommonScalesEqualAnIndependentWeightedLeastSquaresSolv
     }
     EXPECT_NEAR(s[a], WeightedLeastSquares(p.nodes.weight_s, x, y), 1e-12) << "axis " << a;
   }
-  const Eigen::Vector3d common = ProjectedGyroScale(p.nodes, p.w_s_B, GyroScaleMode::kCommon);
+  const Eigen::Vector3d common = LeastSquaresGyroScale(p.nodes, p.w_s_B, GyroScaleMode::kCommon);
   EXPECT_NEAR(common[0], WeightedLeastSquares(w_all, x_all, y_all), 1e-12);
   EXPECT_EQ(common[0], common[1]);
   EXPECT_EQ(common[0], common[2]);
+}
+
+// (28) of the model scaled by S, by TrajectoryError itself (independent of the search's slope).
+double ErrorAtScale(const Problem& p, const Eigen::Vector3d& scale) {
+  std::vector<Eigen::Vector3d> scaled;
+  for (const Eigen::Vector3d& w : p.w_s_B) scaled.push_back(scale.cwiseProduct(w));
+  return TrajectoryError(p.nodes, scaled);
+}
+
+// d(28)/ds_a at `scale` by central differences [rad/s per unit scale].
+double ErrorSlope(const Problem& p, const Eigen::Vector3d& scale, const Eigen::Vector3d& along) {
+  // Step: (28)'s round-off (~1e-17 rad/s) over it stays ~1e-11, its third-order error h²·|ε‴| ~1e-12.
+  constexpr double kStep = 1e-6;
+  return (ErrorAtScale(p, scale + kStep * along) - ErrorAtScale(p, scale - kStep * along)) / (2.0 * kStep);
+}
+
+// A recording with heavy-tailed noise (a tenth of the nodes hit by a ringing burst of 0.5 rad/s), where the
+// least-squares scale and the minimiser of (28) differ clearly; one in six of the ω_y peaks clipped at the rail.
+Problem HeavyTailedProblem(const Eigen::Vector3d& scale, bool clip) {
+  Problem p = MakeProblem(scale, 0.02, 11);
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (Eigen::Vector3d& w : p.nodes.w_m_B) {
+    if (unit(rng) < 0.1) w += Eigen::Vector3d(0.5 * unit(rng), -0.5 * unit(rng), 0.3 * unit(rng));
+  }
+  if (clip) {
+    constexpr double kRail_rad_s = 2.9;  // ω_y of the model reaches 3 · 1.0 at most
+    p.nodes.censored_axes.assign(p.nodes.size(), 0);
+    for (std::size_t k = 0; k < p.nodes.size(); ++k) {
+      if (std::abs(p.nodes.w_m_B[k].y()) < kRail_rad_s) continue;
+      p.nodes.w_m_B[k].y() = std::copysign(kRail_rad_s, p.nodes.w_m_B[k].y());
+      p.nodes.censored_axes[k] = 1u << 1;
+    }
+  }
+  return p;
+}
+
+// The slope of (28) at the projected scale: its curvature there (~‖ω‖²/‖misfit‖ ≈ 10² rad/s) times the search's
+// tolerance (1e-12) plus the central difference's round-off (~1e-11 rad/s), with a margin of 100.
+constexpr double kStationarySlopeRadS = 1e-8;
+// The same for per-axis, whose sweeps stop when no axis moves by more than kPerAxisSweepTolerance.
+const double kStationaryPerAxisSlopeRadS = 1e3 * kPerAxisSweepTolerance;
+
+TEST(GyroScale, TheProjectedCommonScaleIsAStationaryPointOfTheErrorAndNoWorseThanTheLeastSquaresScaleOrOne) {
+  for (bool clip : {false, true}) {
+    const Problem p = HeavyTailedProblem(Eigen::Vector3d::Constant(1.03), clip);
+    const Eigen::Vector3d s = ProjectedGyroScale(p.nodes, p.w_s_B, GyroScaleMode::kCommon);
+    const Eigen::Vector3d least_squares = LeastSquaresGyroScale(p.nodes, p.w_s_B, GyroScaleMode::kCommon);
+    EXPECT_EQ(s[0], s[1]);
+    EXPECT_EQ(s[0], s[2]);
+    const Eigen::Vector3d ones = Eigen::Vector3d::Ones();
+    EXPECT_LT(std::abs(ErrorSlope(p, s, ones)), kStationarySlopeRadS) << "clip " << clip << " s " << s[0];
+    // The start is not already the answer: there (28) still slopes clearly.
+    EXPECT_GT(std::abs(ErrorSlope(p, least_squares, ones)), 1e3 * kStationarySlopeRadS) << "clip " << clip;
+    EXPECT_LT(ErrorAtScale(p, s), ErrorAtScale(p, least_squares));
+    EXPECT_LT(ErrorAtScale(p, s), ErrorAtScale(p, ones));
+    // (28) is convex in s: a stationary point is its minimum, also against points a little away.
+    for (double step : {-1e-4, 1e-4, -1e-2, 1e-2}) EXPECT_LT(ErrorAtScale(p, s), ErrorAtScale(p, (s[0] + step) * ones));
+  }
+}
+
+TEST(GyroScale, TheProjectedPerAxisScaleIsAStationaryPointOfTheErrorInEveryAxis) {
+  for (bool clip : {false, true}) {
+    const Problem p = HeavyTailedProblem(Eigen::Vector3d(1.03, 0.97, 1.01), clip);
+    const Eigen::Vector3d s = ProjectedGyroScale(p.nodes, p.w_s_B, GyroScaleMode::kPerAxis);
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_LT(std::abs(ErrorSlope(p, s, Eigen::Vector3d::Unit(a))), kStationaryPerAxisSlopeRadS)
+          << "clip " << clip << " axis " << a;
+    }
+    EXPECT_LT(ErrorAtScale(p, s), ErrorAtScale(p, LeastSquaresGyroScale(p.nodes, p.w_s_B, GyroScaleMode::kPerAxis)));
+  }
+}
+
+TEST(GyroScale, ScaleOneIsRecoveredFromDataWithoutAScaleError) {
+  // Noiseless: exactly 1, up to the search's tolerance.
+  const Problem exact = MakeProblem(Eigen::Vector3d::Ones(), 0.0);
+  for (GyroScaleMode mode : {GyroScaleMode::kCommon, GyroScaleMode::kPerAxis}) {
+    const Eigen::Vector3d s = ProjectedGyroScale(exact.nodes, exact.w_s_B, mode);
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(s[a], 1.0, kGyroScaleTolerance) << ToString(mode) << " axis " << a;
+  }
+  // With heavy-tailed noise: 1 within the noise's reach on the scale. The common scale's standard deviation is
+  // about σ/(‖ω‖·√n) ≈ 0.05/(1.5·16) ≈ 0.002 here (σ the noise and bursts per axis); 0.01 is five of them.
+  constexpr double kNoiseReach = 0.01;
+  const Problem noisy = HeavyTailedProblem(Eigen::Vector3d::Ones(), false);
+  EXPECT_NEAR(ProjectedGyroScale(noisy.nodes, noisy.w_s_B, GyroScaleMode::kCommon)[0], 1.0, kNoiseReach);
 }
 
 TEST(GyroScale, ScalesBeyondTheLargestScaleErrorAreClampedToTheBound) {
@@ -92,8 +179,9 @@ TEST(GyroScale, ScalesBeyondTheLargestScaleErrorAreClampedToTheBound) {
 }
 
 // A reading at the gyro's rail bounds ω and does not measure S·ω: with the peaks of ω_y clipped (censored) the
-// scale comes from the other readings alone and is the scale of the noiseless recording, where the clipped
-// values would pull it down.
+// scale is the scale of the noiseless recording, where (28) vanishes (the scaled model is beyond the rail at the
+// clipped readings, which the censored misfit allows); the least-squares start, taking the clipped values as
+// measurements, would be pulled down.
 TEST(GyroScale, ReadingsCensoredAtTheRailDoNotEnterTheScale) {
   const Eigen::Vector3d scale(1.02, 0.98, 1.015);
   Problem p = MakeProblem(scale, 0.0);
@@ -110,7 +198,7 @@ TEST(GyroScale, ReadingsCensoredAtTheRailDoNotEnterTheScale) {
   const Eigen::Vector3d per_axis = ProjectedGyroScale(p.nodes, p.w_s_B, GyroScaleMode::kPerAxis);
   for (int a = 0; a < 3; ++a) EXPECT_NEAR(per_axis[a], scale[a], 1e-12) << "axis " << a;
   p.nodes.censored_axes.assign(p.nodes.size(), 0);  // the same clipped values taken as measurements
-  EXPECT_LT(ProjectedGyroScale(p.nodes, p.w_s_B, GyroScaleMode::kPerAxis)[1], scale[1] - 0.01);
+  EXPECT_LT(LeastSquaresGyroScale(p.nodes, p.w_s_B, GyroScaleMode::kPerAxis)[1], scale[1] - 0.01);
 }
 
 TEST(GyroScale, AnAxisWithoutModelMotionKeepsTheScaleOne) {

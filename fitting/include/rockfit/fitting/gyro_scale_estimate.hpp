@@ -3,8 +3,10 @@
 //
 //   Var s_a = Var(s_a | θ̂) + G_a·Cov(θ)·G_aᵀ,      G_a = ∂s_a/∂θ,
 //
-// the first the noise of the closed form at fixed θ, the second what the uncertainty of θ moves it (the two add:
-// the marginal variance of a linear parameter in a separable least-squares problem). Var(s_a | θ̂) =
+// the first the noise at fixed θ of the least-squares scale (LeastSquaresGyroScale), taken for that of the (28)
+// minimiser the fit uses (both estimate the same s; fitting/README.md), the second what the uncertainty of θ
+// moves it (the two add: the marginal variance of a linear parameter in a separable least-squares problem).
+// Var(s_a | θ̂) =
 // V_a / D_a², D_a = Σ w_k ω_s,a,k², V_a the Newey–West long-run variance (Bartlett window of
 // IntervalOptions::noise_correlation_window_s) of the score terms w_k ω_s,a,k (ω_m − S ω_s)_a,k, times the
 // model-error allowance and the model-error widening factor² of the other 95 % intervals; G_a by central
