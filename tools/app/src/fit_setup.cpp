@@ -146,7 +146,7 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   // v8: the 95 % intervals widened for model error by default (the fitted values are those of v7).
   // v9: clipped gyro samples censored in (28).
   // v10: on clipped recordings, the censored components the model satisfies count in no degree of freedom (the
-  // intervals change; recordings without a rail do not).
+  // intervals change; recordings without a rail do not); the projected gyro scale minimises (28) itself.
   std::string settings = fmt::format("rockfit-fit v10; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
                                      "global={}; keep_bias={}; block=({:.17g},{:.17g},{:.17g},{:.17g})",
                                      fitting::ToString(fitting::ParseFitMethod(args.method)),

@@ -44,8 +44,8 @@ struct FitArgs {
 };
 
 // --method, --bounds, --free, --fix, --lower, --upper, --t-end, --max-evaluations, --no-global, --keep-bias,
-// --threads, --intervals, --model-error-widening, --t0-floor-samples, --estimate-gyro-scale, --fit-release-roll (declared by
-// tools/src/cli_common.cpp).
+// --threads, --intervals, --model-error-widening, --t0-floor-samples, --estimate-gyro-scale, --fit-release-roll
+// (declared by tools/src/cli_common.cpp).
 
 struct PreparedFit {
   fitting::Objective objective;
