@@ -28,13 +28,7 @@ constexpr double kRate_hz = 256.0;
 constexpr double kWindow_s = 1.2;
 
 SimulationOptions Options(double time_shift_s = 0.0) {
-  SimulationOptions options;
-  options.sample_attitude = false;
-  options.stop = StopCondition::kTMax;
-  const int n = static_cast<int>(kWindow_s * kRate_hz);
-  for (int i = 0; i <= n; ++i) options.sample_times_s.push_back(i / kRate_hz + time_shift_s);
-  options.t_max_s = options.sample_times_s.back();
-  return options;
+  return testing::SampledRateOptions(kWindow_s, kRate_hz, time_shift_s);
 }
 
 ModelParameters Planar(double alpha_rad, double lambda_lon) {

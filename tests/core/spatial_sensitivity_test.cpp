@@ -31,13 +31,7 @@ constexpr double kWindow_s = 1.0;
 constexpr int kCases = 16;
 
 SimulationOptions Options(double time_shift_s = 0.0) {
-  SimulationOptions options;
-  options.sample_attitude = false;
-  options.stop = StopCondition::kTMax;
-  const int n = static_cast<int>(kWindow_s * kRate_hz);
-  for (int i = 0; i <= n; ++i) options.sample_times_s.push_back(i / kRate_hz + time_shift_s);
-  options.t_max_s = options.sample_times_s.back();
-  return options;
+  return testing::SampledRateOptions(kWindow_s, kRate_hz, time_shift_s);
 }
 
 // True when the impacts of two runs pair up one to one (same kinds and contacts): the same sequence of modes. A
@@ -199,16 +193,21 @@ TEST(SpatialSensitivity, DerivativesMatchCentralDifferencesOfTheSimulatorOnRando
   EXPECT_EQ(not_available, 0);
 }
 
+// The pass over a run of the Fig. 14 block with parameters p, sampled as the fitting samples it.
+SpatialSensitivitySummary PassOverItsOwnRun(const ModelParameters& p) {
+  const Block block = testing::Fig14Block();
+  const SimulationOptions options = Options();
+  return SpatialSampleSensitivities(block, p, options, Simulate(block, p, options));
+}
+
 TEST(SpatialSensitivity, NotAvailableWhenAFacetImpactKeepsTwoVerticesDown) {
   // λ_lat = 0: every facet impact leaves edge contact (two candidates with the same ω⁺), whose derivative in λ_lat
   // is one-sided; the planar pass covers these runs.
-  const Block block = testing::Fig14Block();
-  const SimulationOptions options = Options();
   ModelParameters p;
   p.alpha_rad = 0.15;
   p.lambda_lat = 0.0;
   p.lambda_lon = 0.6;
-  const SpatialSensitivitySummary s = SpatialSampleSensitivities(block, p, options, Simulate(block, p, options));
+  const SpatialSensitivitySummary s = PassOverItsOwnRun(p);
   EXPECT_FALSE(s.available);
   EXPECT_NE(s.reason.find("two vertices down"), std::string::npos) << s.reason;
 }
@@ -228,26 +227,22 @@ TEST(SpatialSensitivity, NotAvailableWhenTheSamplesAreNotThoseOfTheRun) {
 }
 
 TEST(SpatialSensitivity, NotAvailableForTheFixedTauFacetRule) {
-  const Block block = testing::Fig14Block();
-  const SimulationOptions options = Options();
   ModelParameters p;
   p.lambda_lat = 0.5;
   p.facet_tau_rule = FacetTauRule::kFixed;
-  const SpatialSensitivitySummary s = SpatialSampleSensitivities(block, p, options, Simulate(block, p, options));
+  const SpatialSensitivitySummary s = PassOverItsOwnRun(p);
   EXPECT_FALSE(s.available);
   EXPECT_NE(s.reason.find("no-spin"), std::string::npos) << s.reason;
 }
 
 TEST(SpatialSensitivity, NotAvailableForARolledRelease) {
   // The pass starts its first phase about the release edge; a rolled release starts about a corner.
-  const Block block = testing::Fig14Block();
-  const SimulationOptions options = Options();
   ModelParameters p;
   p.alpha_rad = 0.15;
   p.lambda_lat = 0.5;
   p.lambda_lon = 0.6;
   p.release_roll_rad = 0.005;
-  const SpatialSensitivitySummary s = SpatialSampleSensitivities(block, p, options, Simulate(block, p, options));
+  const SpatialSensitivitySummary s = PassOverItsOwnRun(p);
   EXPECT_FALSE(s.available);
   EXPECT_NE(s.reason.find("rolled"), std::string::npos) << s.reason;
 }

@@ -84,6 +84,15 @@ TEST(MujocoTrial, PerturbedBodyWithItsCentreOfMassOffTheAxisAndAProudCorner) {
   EXPECT_GT(f.summary.model_error.ratio, 2.0);
 }
 
+// A release of the box at α with a roll about x (0: planar), measured with seed 5.
+testing::MujocoRockingOptions ReleaseOptions(double roll_rad, double alpha_rad = 0.18) {
+  testing::MujocoRockingOptions o;
+  o.alpha_rad = alpha_rad;
+  o.roll_rad = roll_rad;
+  o.measurement.seed = 5;
+  return o;
+}
+
 TEST(MujocoTrial, ReleaseWithARollIsFlaggedWhereTheIntervalsMissTheTruth) {
   // With a roll the block stands on one corner of its release edge, drops onto the edge and rocks about x through
   // the whole fall (±0.3 rad/s at 0.01 rad), which the model — released at rest on the edge — cannot make. The
@@ -91,10 +100,7 @@ TEST(MujocoTrial, ReleaseWithARollIsFlaggedWhereTheIntervalsMissTheTruth) {
   // physics"); what must hold is that the fit says so.
   ROCKFIT_REQUIRE_OPTIMISED_BUILD();
   for (double roll : {0.001, 0.01}) {
-    testing::MujocoRockingOptions o;
-    o.alpha_rad = 0.19;
-    o.roll_rad = roll;
-    o.measurement.seed = 5;
+    const testing::MujocoRockingOptions o = ReleaseOptions(roll, 0.19);
     const MujocoFit f = FitMujocoTrial(o);
     const FitSummary& s = f.summary;
     ASSERT_TRUE(s.model_error.available);
@@ -114,10 +120,7 @@ TEST(MujocoTrial, ARolledReleaseFittedWithItsRollHasTheTruthInTheIntervalsAndLes
   // MuJoCo's soft corner and edge contact, which is not the paper's impact map.
   ROCKFIT_REQUIRE_OPTIMISED_BUILD();
   for (double roll : {0.001, 0.01}) {
-    testing::MujocoRockingOptions o;
-    o.alpha_rad = 0.19;
-    o.roll_rad = roll;
-    o.measurement.seed = 5;
+    const testing::MujocoRockingOptions o = ReleaseOptions(roll, 0.19);
     const MujocoFit with_roll = FitMujocoTrial(o, true);
     const MujocoFit without_roll = FitMujocoTrial(o, false);
     const FitSummary& s = with_roll.summary;
@@ -168,14 +171,6 @@ Metrics RecordedAndFitted(const MujocoFit& f, const testing::MujocoRockingOption
 }
 
 // The release of the two metrics tests: α = 0.18 rad, measurement seed 5, and a roll about x [rad].
-testing::MujocoRockingOptions ReleaseOptions(double roll_rad) {
-  testing::MujocoRockingOptions o;
-  o.alpha_rad = 0.18;
-  o.roll_rad = roll_rad;
-  o.measurement.seed = 5;
-  return o;
-}
-
 TEST(MujocoTrial, TheFittedModelReproducesTheAvrfAndOpmfOfAPlanarRelease) {
   // MuJoCo's box rocks for several cycles after the release (peaks of |φ_y| up to 0.13 rad); the fit sees only
   // the window up to the first return impact, so the AVRF over the later cycles is a prediction.

@@ -13,6 +13,18 @@ namespace rockfit::testing {
 // The block of the paper's Fig. 14 (its block 4): granite 2692 kg/m³, h = 0.20 m, b1 = h·tan 0.245, b2 = 0.04 m.
 inline core::Block Fig14Block() { return core::Block::FromDensity(0.2 * std::tan(0.245), 0.04, 0.2, 2692.0); }
 
+// ω samples only (no attitudes) at rate_hz from time_shift_s over window_s, the run ending at the last sample: the
+// runs the fitting's model asks of the simulator.
+inline core::SimulationOptions SampledRateOptions(double window_s, double rate_hz, double time_shift_s = 0.0) {
+  core::SimulationOptions options;
+  options.sample_attitude = false;
+  options.stop = core::StopCondition::kTMax;
+  const int n = static_cast<int>(window_s * rate_hz);
+  for (int i = 0; i <= n; ++i) options.sample_times_s.push_back(i / rate_hz + time_shift_s);
+  options.t_max_s = options.sample_times_s.back();
+  return options;
+}
+
 // The model parameters of the Fig. 14 simulation.
 inline core::ModelParameters Fig14Parameters() {
   core::ModelParameters p;
