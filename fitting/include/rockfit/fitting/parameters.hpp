@@ -1,8 +1,9 @@
 // The fitted quantities of one trial (paper Sect. 5.1, docs/design.md §7): the release time t0 and tilt α (initial
 // conditions) and the impact parameters λ (edge impacts (19)), λ_lat and λ_lon (facet impacts (21)), plus the
 // edge-impact torque τ_edge, fixed at 0 by default as in the paper, and the release roll β (a release on one
-// corner of the release edge, core/rolled_release.hpp), fixed at 0 unless the fit is asked to estimate it. Each parameter has a value, bounds and a
-// fixed flag; a ParameterSet is a plain value type that the fitter copies and never shares.
+// corner of the release edge, core/rolled_release.hpp), fixed at 0 unless the fit is asked to estimate it. Each
+// parameter has a value, bounds and a fixed flag; a ParameterSet is a plain value type that the fitter copies and
+// never shares.
 #pragma once
 
 #include <array>
