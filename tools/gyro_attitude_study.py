@@ -94,22 +94,11 @@ def variants(rockfit, manifest, out_dir, trial_id):
     command = shlex.split(truth["command"])[1:]  # without the program name
     out_at = command.index("-o")
     del command[out_at:out_at + 2]
-    ideal = []
-    skip = False
-    for word in command:
-        if skip:
-            skip = False
-            continue
-        name = word.split("=", 1)[0]
-        if name in MEASUREMENT_OPTIONS:
-            skip = "=" not in word
-            continue
-        ideal.append(word)
     os.makedirs(out_dir, exist_ok=True)
     print(HEADER)
     print(HEADER2)
     for label, synth_args in (("as sampled", command), ("no ringing", command + ["--no-ringing"]),
-                              ("no drift", command + ["--no-drift"]), ("ideal", ideal + ["--no-noise"])):
+                              ("no drift", command + ["--no-drift"]), ("ideal", ideal_command(command))):
         prefix = os.path.join(out_dir, label.replace(" ", "-"))
         subprocess.run([rockfit] + synth_args + ["-o", prefix], check=True, capture_output=True)
         common = ["--manifest", manifest, "--block", trial["block"]]

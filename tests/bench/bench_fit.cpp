@@ -205,40 +205,10 @@ void BM_CeresLocalStagePlanar(benchmark::State& state) {
 }
 BENCHMARK(BM_CeresLocalStagePlanar)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
-// One model run of the planar trial's window (1 s at 256 Hz after the release) without (Arg 0) and with (Arg 1)
-// the exact derivatives: the price of the sensitivity pass.
-void BM_PlanarRunWithSensitivities(benchmark::State& state) {
-  const Trial& trial = PlanarSyntheticTrial();
-  const fitting::SimulatorModel model(trial.block);
-  core::ModelParameters p;
-  p.alpha_rad = 0.15;
-  p.lambda_lat = 0.0;
-  p.lambda_lon = 0.6;
-  std::vector<double> times;
-  for (int k = 0; k <= 256; ++k) times.push_back(k / 256.0);
-  fitting::ModelOutput out;
-  for (auto _ : state) {
-    if (state.range(0) == 0) {
-      model.Evaluate(p, times, &out);
-    } else {
-      model.EvaluateWithSensitivities(p, times, &out);
-    }
-    benchmark::ClobberMemory();
-  }
-  state.counters["with_derivatives"] = out.dw_B_dparams.empty() ? 0.0 : 1.0;
-}
-BENCHMARK(BM_PlanarRunWithSensitivities)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
-
-// The same for a 3D run (the synthetic trial's parameters, λ_lat = −2.032: vertex rocking and edge impacts) over
-// 1 s: the price of the spatial pass (core/spatial_sensitivity.hpp).
-void BM_SpatialRunWithSensitivities(benchmark::State& state) {
-  const Trial& trial = SyntheticTrial();
-  const fitting::SimulatorModel model(trial.block);
-  core::ModelParameters p;
-  p.alpha_rad = 0.197;
-  p.lambda = 2.185;
-  p.lambda_lat = -2.032;
-  p.lambda_lon = 0.197;
+// One model run of a trial's window (1 s at 256 Hz after the release) without (Arg 0) and with (Arg 1) the exact
+// derivatives of its samples: the price of the sensitivity pass.
+void RunWithSensitivities(benchmark::State& state, const core::Block& block, const core::ModelParameters& p) {
+  const fitting::SimulatorModel model(block);
   std::vector<double> times;
   for (int k = 0; k <= 256; ++k) times.push_back(k / 256.0);
   fitting::ModelOutput out;
@@ -252,6 +222,27 @@ void BM_SpatialRunWithSensitivities(benchmark::State& state) {
   }
   state.counters["with_derivatives"] = out.dw_B_dparams.empty() ? 0.0 : 1.0;
   state.counters["impacts"] = static_cast<double>(out.events.size());
+}
+
+// The planar trial's window.
+void BM_PlanarRunWithSensitivities(benchmark::State& state) {
+  core::ModelParameters p;
+  p.alpha_rad = 0.15;
+  p.lambda_lat = 0.0;
+  p.lambda_lon = 0.6;
+  RunWithSensitivities(state, PlanarSyntheticTrial().block, p);
+}
+BENCHMARK(BM_PlanarRunWithSensitivities)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+// The same for a 3D run (the synthetic trial's parameters, λ_lat = −2.032: vertex rocking and edge impacts) over
+// 1 s: the price of the spatial pass (core/spatial_sensitivity.hpp).
+void BM_SpatialRunWithSensitivities(benchmark::State& state) {
+  core::ModelParameters p;
+  p.alpha_rad = 0.197;
+  p.lambda = 2.185;
+  p.lambda_lat = -2.032;
+  p.lambda_lon = 0.197;
+  RunWithSensitivities(state, SyntheticTrial().block, p);
 }
 BENCHMARK(BM_SpatialRunWithSensitivities)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
