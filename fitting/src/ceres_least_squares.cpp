@@ -139,14 +139,7 @@ class ResidualEvaluator {
     entry->ok = e.feasible && nodes_.size() >= 2 && nodes_.first_sample >= first_slot_sample_;
     entry->num_nodes = entry->ok ? nodes_.size() : 0;
     entry->num_weighted_nodes = entry->ok ? nodes_.size() - nodes_.num_excluded : 0;
-    entry->num_unobserved_components = 0;
-    if (entry->ok && nodes_.num_censored > 0) {
-      for (std::size_t i = 0; i < nodes_.size(); ++i) {
-        if (nodes_.weight_s[i] == 0.0) continue;
-        const std::uint8_t satisfied = SatisfiedCensoredAxes(nodes_, i, output_.w_B[i]);
-        for (int a = 0; a < 3; ++a) entry->num_unobserved_components += (satisfied >> a) & 1u;
-      }
-    }
+    entry->num_unobserved_components = entry->ok ? NumSatisfiedCensoredComponents(nodes_, output_.w_B) : 0;
     last_num_nodes_ = entry->num_nodes;
     if (!entry->ok) return nullptr;
     ResidualScale scale;

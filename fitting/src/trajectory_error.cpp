@@ -121,6 +121,17 @@ std::uint8_t SatisfiedCensoredAxes(const ErrorNodes& nodes, std::size_t i, const
   return satisfied;
 }
 
+std::size_t NumSatisfiedCensoredComponents(const ErrorNodes& nodes, const std::vector<Eigen::Vector3d>& w_s_B) {
+  if (nodes.num_censored == 0) return 0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (nodes.weight_s[i] == 0.0) continue;
+    const std::uint8_t satisfied = SatisfiedCensoredAxes(nodes, i, w_s_B[i]);
+    for (int a = 0; a < 3; ++a) count += (satisfied >> a) & 1u;
+  }
+  return count;
+}
+
 Eigen::Vector3d NodeMisfit(const ErrorNodes& nodes, std::size_t i, const Eigen::Vector3d& w_s_B) {
   Eigen::Vector3d d = nodes.w_m_B[i] - w_s_B;
   const std::uint8_t satisfied = SatisfiedCensoredAxes(nodes, i, w_s_B);

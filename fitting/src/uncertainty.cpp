@@ -250,14 +250,11 @@ bool WeightedResiduals(const Objective& objective, const ParameterSet& at, std::
   residuals->clear();
   residuals->reserve(nodes.size());
   if (on_node_grid != nullptr) on_node_grid->assign(nodes.size(), Eigen::Vector3d::Zero());
-  if (unobserved_components != nullptr) *unobserved_components = 0;
+  if (unobserved_components != nullptr) *unobserved_components = NumSatisfiedCensoredComponents(nodes, output.w_B);
   for (std::size_t k = 0; k < nodes.size(); ++k) {
     if (nodes.weight_s[k] == 0.0) continue;
     residuals->push_back(std::sqrt(nodes.weight_s[k]) * NodeMisfit(nodes, k, output.w_B[k]));
     if (on_node_grid != nullptr) (*on_node_grid)[k] = residuals->back();
-    if (unobserved_components != nullptr && nodes.num_censored > 0) {
-      for (int a = 0; a < 3; ++a) *unobserved_components += (SatisfiedCensoredAxes(nodes, k, output.w_B[k]) >> a) & 1u;
-    }
   }
   return true;
 }

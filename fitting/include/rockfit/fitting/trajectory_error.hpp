@@ -76,6 +76,8 @@ Eigen::Vector3d NodeMisfit(const ErrorNodes& nodes, std::size_t i, const Eigen::
 // there NodeMisfit is 0 whatever the model does nearby, so the component is no residual — it has no value to
 // scatter about and its Jacobian row is 0. The intervals leave such components out of their degrees of freedom.
 std::uint8_t SatisfiedCensoredAxes(const ErrorNodes& nodes, std::size_t i, const Eigen::Vector3d& w_s_B);
+// The number of such components over the nodes with weight, for the model's ω_s at the nodes (same length).
+std::size_t NumSatisfiedCensoredComponents(const ErrorNodes& nodes, const std::vector<Eigen::Vector3d>& w_s_B);
 
 // (28) for the nodes and the model's ω_s at nodes.t_after_release_s (same length); +∞ when every node is excluded.
 double TrajectoryError(const ErrorNodes& nodes, const std::vector<Eigen::Vector3d>& w_s_B);
