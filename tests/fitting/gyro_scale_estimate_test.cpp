@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "build_type.hpp"
+#include "fit_acceptance.hpp"
 #include "rockfit/fitting/fitter.hpp"
 #include "rockfit/fitting/trial_problem.hpp"
 #include "synth_trial.hpp"
@@ -38,7 +39,7 @@ FitSummary FitTrial(const testing::SynthTrial& trial, GyroScaleMode mode) {
   return Fit(problem.objective, problem.start, options);
 }
 
-bool Holds(const Interval& i, double value) { return !(i[0] > value) && !(i[1] < value); }
+bool Holds(const Interval& i, double value) { return testing::IntervalHolds(i, value); }
 
 TEST(GyroScaleEstimate, AKnownScaleOfTwoPercentPerAxisIsRecoveredWithinItsInterval) {
   ROCKFIT_REQUIRE_OPTIMISED_BUILD();

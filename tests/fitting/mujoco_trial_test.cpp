@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "build_type.hpp"
+#include "fit_acceptance.hpp"
 #include "mujoco_rocking.hpp"
 #include "rockfit/fitting/fitter.hpp"
 #include "rockfit/fitting/trial_problem.hpp"
@@ -45,7 +46,7 @@ MujocoFit FitMujocoTrial(const testing::MujocoRockingOptions& o, bool fit_releas
   return f;
 }
 
-bool Holds(const Interval& i, double truth) { return !(i[0] > truth) && !(i[1] < truth); }  // NaN: open end
+bool Holds(const Interval& i, double value) { return testing::IntervalHolds(i, value); }
 
 void ExpectTruthWithinIntervalsAndModelErrorFlagged(const MujocoFit& f) {
   const FitSummary& s = f.summary;

@@ -16,7 +16,7 @@ namespace {
 
 constexpr std::size_t Index(ParameterId id) { return static_cast<std::size_t>(id); }
 
-bool Holds(const Interval& i, double truth) { return !(i[0] > truth) && !(i[1] < truth); }  // NaN: open end
+bool Holds(const Interval& i, double value) { return testing::IntervalHolds(i, value); }
 
 TEST(ReleaseRoll, IsFixedAtZeroAndNotReportedUnlessFreed) {
   ParameterSet set = ParameterSet::Defaults();

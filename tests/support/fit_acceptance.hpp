@@ -11,4 +11,10 @@ constexpr double kLambdaLatRelative = 0.10;  // of |λ_lat|, with the sign alway
 constexpr double kLambdaTolerance = 0.1;     // when edge impacts happen in the window
 constexpr double kEpsilonRatio = 1.05;       // ε of the fit over ε of the true parameters
 
+// True when the interval i = [lower, upper] holds the value; a NaN end is open (an interval the data leave open).
+template <typename Interval>
+bool IntervalHolds(const Interval& i, double value) {
+  return !(i[0] > value) && !(i[1] < value);
+}
+
 }  // namespace rockfit::testing
