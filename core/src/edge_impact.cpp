@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 #include <gsl/gsl_poly.h>
 
+#include "detail/conditioned_solve.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/core/gsl_setup.hpp"
 
@@ -106,6 +107,67 @@ ImpactOutcome EdgeImpact(const Block& block, const Eigen::Matrix3d& R_WB, int pi
   out.contact_after = v_b_up > v_tol ? Contact::Vertex(landing) : Contact::Edge(pivot, landing);
 
   out.energy_after_J = KineticEnergyAbout(g, g.p_a, map.w_plus);
+  out.delta_energy_J = out.energy_after_J - out.energy_before_J;  // (26)
+  out.energy_nonincreasing = out.delta_energy_J <= kEnergyRelTol * out.energy_before_J;
+  return out;
+}
+
+EdgeImpactOperators MakeEdgeImpactOperators(const Block& block, int pivot, int landing,
+                                            const EdgeImpactParameters& params) {
+  RequireNeighbours(pivot, landing);
+  params.Validate();
+  EdgeImpactOperators operators;
+  operators.pivot = Block::WrapVertex(pivot);
+  operators.landing = Block::WrapVertex(landing);
+  operators.params = params;
+  // The geometry of (19) in B: R_WB = I.
+  const ImpactGeometry g = EdgeGeometry(block, Eigen::Matrix3d::Identity(), pivot, landing, params.lambda);
+  const Eigen::Matrix3d R_R = SkewOf(g.p_R, g.p_C);
+  const Eigen::Matrix3d R_a = SkewOf(g.p_a, g.p_C);
+  const Eigen::Matrix3d R_b = SkewOf(g.p_b, g.p_C);
+  const Eigen::Matrix3d A = g.inertia_C - g.mass_kg * R_R * R_a;  // (18): Θ − m R_R R_a
+  const Eigen::Matrix3d N = g.inertia_C - g.mass_kg * R_R * R_b;  //       Θ − m R_R R_b
+  // A⁻¹ with the conditioned solve's test of (18).
+  Eigen::Matrix3d A_inv;
+  operators.solvable = detail::InvertConditioned3(A, kImpactMinReciprocalCondition, &A_inv) && A_inv.allFinite();
+  if (operators.solvable) {
+    operators.w_plus_from_w_minus_B = A_inv * N;
+    operators.w_plus_from_up_B = A_inv;
+  }
+  operators.inertia_b_B = g.inertia_C + g.mass_kg * R_b.transpose() * R_b;
+  operators.inertia_a_B = g.inertia_C + g.mass_kg * R_a.transpose() * R_a;
+  operators.p_ab_B = g.p_b - g.p_a;
+  return operators;
+}
+
+ImpactOutcome EdgeImpact(const EdgeImpactOperators& operators, const Eigen::Matrix3d& R_WB,
+                         const Eigen::Vector3d& w_minus_B) {
+  if (!w_minus_B.allFinite()) throw InvalidArgument("edge impact: ω⁻ must be finite");
+  ImpactOutcome out;
+  out.w_minus_W = R_WB * w_minus_B;
+  out.contact_before = Contact::Vertex(operators.pivot);
+  out.energy_before_J = 0.5 * w_minus_B.dot(operators.inertia_b_B * w_minus_B);
+  out.within_geometric_bounds = WithinEdgeBounds(operators.params.lambda);
+  out.tau = operators.params.tau;
+  if (!operators.solvable) {
+    out.status = ImpactStatus::kSingular;
+    return out;
+  }
+  const Eigen::Vector3d up_B = R_WB.row(2).transpose();  // R_WBᵀ u_z
+  const Eigen::Vector3d w_plus_B =
+      operators.w_plus_from_w_minus_B * w_minus_B + operators.params.tau * (operators.w_plus_from_up_B * up_B);  // (18)
+  if (!w_plus_B.allFinite()) {
+    out.status = ImpactStatus::kSingular;
+    return out;
+  }
+  out.w_plus_B = w_plus_B;
+  out.w_plus_W = R_WB * w_plus_B;
+  // Contact after, as EdgeImpact in W: u_z·(ω⁺ × p_ab) = up_B·(ω⁺_B × p_ab_B).
+  const double v_b_up = up_B.dot(w_plus_B.cross(operators.p_ab_B));
+  const double v_tol = kContactVelocityRelTol * w_plus_B.norm() * operators.p_ab_B.norm();
+  out.contact_after =
+      v_b_up > v_tol ? Contact::Vertex(operators.landing) : Contact::Edge(operators.pivot, operators.landing);
+  out.energy_after_J = 0.5 * w_plus_B.dot(operators.inertia_a_B * w_plus_B);
   out.delta_energy_J = out.energy_after_J - out.energy_before_J;  // (26)
   out.energy_nonincreasing = out.delta_energy_J <= kEnergyRelTol * out.energy_before_J;
   return out;

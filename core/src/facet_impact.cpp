@@ -230,12 +230,14 @@ FacetNoSpinOperators MakeFacetNoSpinOperators(const Block& block, int pivot_b, c
     Eigen::Matrix3d system;
     Eigen::Matrix3d rhs_of_w_minus;
     NoSpinSystem(g, &system, &rhs_of_w_minus);
-    // Column by column, the conditioned solve of (18)+(24) for each unit ω⁻: the same test as for one ω⁻.
-    bool solvable = true;
+    // Column by column, the conditioned solve of (18)+(24) for each unit ω⁻: the same test as for one ω⁻, made
+    // once (one inverse for the three columns).
+    Eigen::Matrix3d system_inv;
+    bool solvable = detail::InvertConditioned3(system, kImpactMinReciprocalCondition, &system_inv);
     Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
     for (int k = 0; k < 3 && solvable; ++k) {
-      Eigen::Vector3d column;
-      solvable = detail::SolveConditioned3(system, rhs_of_w_minus.col(k), kImpactMinReciprocalCondition, &column);
+      const Eigen::Vector3d column = system_inv * rhs_of_w_minus.col(k);
+      solvable = column.allFinite();
       M.col(k) = column;
     }
     operators.x_from_w_minus[a - 1] = solvable ? M : Eigen::Matrix3d::Zero();

@@ -47,19 +47,28 @@ GuardValue GroundVertexMode::SideLanding(int index, const State& y) const {
 }
 
 ContactForce GroundVertexMode::Force(double t, const State& y, const State& dydt) const {
+  ContactForce force = Load(t, y, dydt);
+  force.F_W = free_.Attitude(y) * Force_B(t, y, dydt);
+  return force;
+}
+
+ContactForce GroundVertexMode::Load(double t, const State& y, const State& dydt) const {
+  const Eigen::Vector3d F_B = Force_B(t, y, dydt);
+  const Eigen::Vector3d up_B = VertexDynamics::UpInBody(y);
+  ContactForce force;
+  force.normal_N = F_B.dot(up_B);
+  force.tangential_N = (F_B - force.normal_N * up_B).norm();
+  return force;
+}
+
+Eigen::Vector3d GroundVertexMode::Force_B(double t, const State& y, const State& dydt) const {
   const Eigen::Vector3d a_W = ground_->Acceleration_W(t);
   const Eigen::Vector3d f_W(-a_W.x(), -a_W.y(), -gravity_m_s2_ - a_W.z());
   const Eigen::Vector3d f_B = BodyFromWorld(y, f_W);
   const Eigen::Vector3d w_B = y.tail<3>();
   const Eigen::Vector3d w_dot_B = dydt.tail<3>();
-  const Eigen::Vector3d up_B = VertexDynamics::UpInBody(y);
   const Eigen::Vector3d a_C_B = w_dot_B.cross(p_PC_B_) + w_B.cross(w_B.cross(p_PC_B_));
-  const Eigen::Vector3d F_B = mass_kg_ * (a_C_B - f_B);
-  ContactForce force;
-  force.F_W = free_.Attitude(y) * F_B;
-  force.normal_N = F_B.dot(up_B);
-  force.tangential_N = (F_B - force.normal_N * up_B).norm();
-  return force;
+  return mass_kg_ * (a_C_B - f_B);
 }
 
 GroundEdgeMode::GroundEdgeMode(const Block& block, int i, int j, const Eigen::Quaterniond& q_yaw, double gravity_m_s2,

@@ -323,6 +323,12 @@ class HybridRun {
   // Free rocking, no-spin rule: the facet outcome of a unit rate about each ordered pre-impact edge (pivot b and the
   // other vertex before or after it) in each sense, made when first needed.
   std::array<std::optional<ImpactOutcome>, 16> facet_unit_outcomes_;
+  // The edge map's operators for each ordered pair (pivot, landing), at EdgeOperatorSlot, made when first needed.
+  std::array<std::optional<EdgeImpactOperators>, 8> edge_operators_;
+  static int EdgeOperatorSlot(int pivot, int landing) {
+    const int b = Block::WrapVertex(pivot);
+    return 2 * (b - 1) + (Block::WrapVertex(b + 1) == Block::WrapVertex(landing) ? 0 : 1);
+  }
 };
 
 EdgeStart HybridRun::MakeEdgeStart(const Contact& edge, const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B,
@@ -648,8 +654,19 @@ HybridRun::Next HybridRun::AfterEdgeImpact(const VertexMode& mode, double t, con
   const Eigen::Quaterniond q_WB = mode.Attitude(y);
   const Eigen::Matrix3d R_WB = q_WB.toRotationMatrix();
   const Eigen::Vector3d w_minus_B = mode.AngularVelocity_B(y);
-  const Eigen::Vector3d w_minus_W = R_WB * w_minus_B;
-  const ImpactOutcome map = EdgeImpact(block_, R_WB, pivot, landing, w_minus_W, {params_.lambda, params_.tau_edge});
+  const EdgeImpactParameters edge_params{params_.lambda, params_.tau_edge};
+  ImpactOutcome map;
+  if (ground_ == nullptr) {
+    // Free rocking: the map in B, its operators made once per ordered pair (pivot, landing) and run (the same
+    // outcome to round-off). Under a table the map is built in W afresh, so that the response runs, whose chatter
+    // amplifies round-off, stay bit for bit those of the full map.
+    std::optional<EdgeImpactOperators>& operators = edge_operators_[EdgeOperatorSlot(pivot, landing)];
+    if (!operators) operators = MakeEdgeImpactOperators(block_, pivot, landing, edge_params);
+    map = EdgeImpact(*operators, R_WB, w_minus_B);
+  } else {
+    map = EdgeImpact(block_, R_WB, pivot, landing, R_WB * w_minus_B, edge_params);
+  }
+  const Eigen::Vector3d w_minus_W = map.w_minus_W;
 
   ImpactRecord record;
   record.t_s = t;
@@ -659,7 +676,7 @@ HybridRun::Next HybridRun::AfterEdgeImpact(const VertexMode& mode, double t, con
   record.w_minus_B = w_minus_B;
   record.w_minus_W = w_minus_W;
   record.w_plus_W = map.w_plus_W;
-  record.w_plus_B = R_WB.transpose() * map.w_plus_W;
+  record.w_plus_B = ground_ == nullptr ? map.w_plus_B : Eigen::Vector3d(R_WB.transpose() * map.w_plus_W);
   record.tau = map.tau;
   record.delta_energy_J = map.delta_energy_J;
   record.status = map.status;

@@ -46,17 +46,26 @@ Eigen::Vector3d VertexDynamics::AngularMomentum_W(const State& y) const {
   return Attitude(y).toRotationMatrix() * (inertia_P_B_ * AngularVelocity(y));
 }
 
-ContactForce VertexDynamics::Force(const State& y, const State& dydt) const {
+Eigen::Vector3d VertexDynamics::Force_B(const State& y, const State& dydt) const {
   const Eigen::Vector3d w_B = AngularVelocity(y);
   const Eigen::Vector3d w_dot_B = dydt.tail<3>();
-  const Eigen::Vector3d up_B = UpInBody(y);
   // Acceleration of the COM (P fixed), expressed in B.
   const Eigen::Vector3d a_C_B = w_dot_B.cross(p_PC_B_) + w_B.cross(w_B.cross(p_PC_B_));
-  const Eigen::Vector3d F_B = mass_kg_ * a_C_B + weight_N_ * up_B;
+  return mass_kg_ * a_C_B + weight_N_ * UpInBody(y);
+}
+
+ContactForce VertexDynamics::Load(const State& y, const State& dydt) const {
+  const Eigen::Vector3d F_B = Force_B(y, dydt);
+  const Eigen::Vector3d up_B = UpInBody(y);
   ContactForce force;
-  force.F_W = Attitude(y).toRotationMatrix() * F_B;
   force.normal_N = F_B.dot(up_B);
   force.tangential_N = (F_B - force.normal_N * up_B).norm();
+  return force;
+}
+
+ContactForce VertexDynamics::Force(const State& y, const State& dydt) const {
+  ContactForce force = Load(y, dydt);
+  force.F_W = Attitude(y).toRotationMatrix() * Force_B(y, dydt);
   return force;
 }
 

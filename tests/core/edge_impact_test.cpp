@@ -297,6 +297,62 @@ TEST(EdgeImpact, SingularLambdasAreRootsOfTheDeterminantAndGiveASingularStatus) 
   }
 }
 
+TEST(EdgeImpactOperators, SatisfyBalance17AndGiveTheOutcomeOfTheMapInWAtRandomAttitudes) {
+  const Block block = Fig11Block();
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (const auto& [pivot, landing] : kEdges) {
+    for (double lambda : {-1.0, 0.0, 0.45, 1.0, 1.7}) {
+      for (double tau : {0.0, 2e-3, -1e-4}) {
+        const EdgeImpactOperators operators = MakeEdgeImpactOperators(block, pivot, landing, {lambda, tau});
+        ASSERT_TRUE(operators.solvable);
+        for (int trial = 0; trial < 4; ++trial) {
+          // Any attitude: the operators' map is (18) turned into B, whatever R_WB.
+          const Eigen::Matrix3d R = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().toRotationMatrix();
+          const Eigen::Vector3d w_minus_W = RandomOmega(rng);
+          const Eigen::Vector3d w_minus_B = R.transpose() * w_minus_W;
+          const ImpactOutcome out = EdgeImpact(operators, R, w_minus_B);
+          ASSERT_EQ(out.status, ImpactStatus::kOk);
+          const ImpactGeometry g = GeometryOf(block, R, pivot, landing, lambda);
+          EXPECT_LE(testing::MomentumBalanceRelResidual(g, out.w_minus_W, out.w_plus_W, tau), kBalanceRelTol)
+              << "V" << pivot << "→V" << landing << " λ " << lambda << " τ " << tau;
+          EXPECT_LE((out.w_plus_W - R * out.w_plus_B).norm(), 1e-15 * out.w_plus_W.norm());
+          const ImpactOutcome in_W = EdgeImpact(block, R, pivot, landing, out.w_minus_W, {lambda, tau});
+          EXPECT_LE((out.w_plus_W - in_W.w_plus_W).norm(), kVectorRelTol * in_W.w_plus_W.norm());
+          EXPECT_NEAR(out.energy_before_J, in_W.energy_before_J, kVectorRelTol * in_W.energy_before_J);
+          EXPECT_NEAR(out.energy_after_J, in_W.energy_after_J, kVectorRelTol * in_W.energy_after_J);
+          EXPECT_EQ(out.contact_after, in_W.contact_after);
+          EXPECT_EQ(out.contact_before, Contact::Vertex(pivot));
+          EXPECT_EQ(out.tau, tau);
+          EXPECT_EQ(out.within_geometric_bounds, WithinEdgeBounds(lambda));
+        }
+      }
+    }
+  }
+}
+
+TEST(EdgeImpactOperators, AreSingularAtTheSingularLambdasAndRejectBadArguments) {
+  const Block block = Fig11Block();
+  for (const auto& [pivot, landing] : kEdges) {
+    for (double lambda : EdgeImpactSingularLambdas(block, Eigen::Matrix3d::Identity(), pivot, landing)) {
+      const EdgeImpactOperators operators = MakeEdgeImpactOperators(block, pivot, landing, {lambda, 0.0});
+      EXPECT_FALSE(operators.solvable) << "λ = " << lambda;
+      const Eigen::Matrix3d R = EdgeImpactAttitude(block, pivot, landing, 0.2);
+      const ImpactOutcome out = EdgeImpact(operators, R, Eigen::Vector3d(0.3, -1.0, 0.2));
+      EXPECT_EQ(out.status, ImpactStatus::kSingular);
+      EXPECT_EQ(out.contact_after, Contact{});
+      EXPECT_FALSE(out.energy_nonincreasing);
+      EXPECT_TRUE(MakeEdgeImpactOperators(block, pivot, landing, {lambda + 1e-3, 0.0}).solvable);
+    }
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(MakeEdgeImpactOperators(block, 1, 3, {}), InvalidArgument);
+  EXPECT_THROW(MakeEdgeImpactOperators(block, 1, 2, {nan, 0.0}), InvalidArgument);
+  EXPECT_THROW(MakeEdgeImpactOperators(block, 1, 2, {1.0, nan}), InvalidArgument);
+  const EdgeImpactOperators operators = MakeEdgeImpactOperators(block, 1, 2, {});
+  EXPECT_THROW(EdgeImpact(operators, Eigen::Matrix3d::Identity(), Eigen::Vector3d(nan, 0, 0)), InvalidArgument);
+}
+
 TEST(EdgeImpact, SquareBaseHasSingularitiesBeyondTheBoundsToo) {
   const Block block = Block::FromMass(0.05, 0.05, 0.20, 1.0);  // the block of Fig. 9
   const std::vector<double> roots = EdgeImpactSingularLambdas(block, EdgeImpactAttitude(block, 1, 4, 0.0873), 1, 4);

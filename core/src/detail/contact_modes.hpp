@@ -58,6 +58,8 @@ class VertexMode {
   int GuardVertex(int guard) const;
 
   Eigen::Quaterniond Attitude(const State& y) const { return VertexDynamics::Attitude(y); }
+  // The attitude of an output sample (VertexDynamics::SampleAttitude: Attitude(y) to round-off, cheaper).
+  Eigen::Quaterniond SampleAttitude(const State& y) const { return VertexDynamics::SampleAttitude(y); }
   // Euler angles (φz, φy, φx) of the sample attitude q_WB (canonical, from Attitude(y)).
   Eigen::Vector3d EulerZyx(const Eigen::Quaterniond& q_WB, const State& /*y*/) const {
     return EulerZyxFromUnitQuaternion(q_WB);
@@ -67,6 +69,8 @@ class VertexMode {
   double KineticEnergy(const State& y) const { return dynamics_.KineticEnergy(y); }
   ContactForce Force(const State& y, const State& dydt) const { return dynamics_.Force(y, dydt); }
   ContactForce Force(double /*t*/, const State& y, const State& dydt) const { return dynamics_.Force(y, dydt); }
+  // The interface of the segment runner: Force's normal and tangential parts (F_W left zero), what its diagnostics read.
+  ContactForce Load(double /*t*/, const State& y, const State& dydt) const { return dynamics_.Load(y, dydt); }
   // Renormalises the quaternion between steps.
   static void Project(State* y);
   Mode mode() const;
@@ -117,6 +121,7 @@ class EdgeMode {
   double KineticEnergy(const State& y) const { return dynamics_.KineticEnergy(y); }
   ContactForce Force(const State& y, const State& dydt) const { return dynamics_.Force(y, dydt, q_yaw_); }
   ContactForce Force(double /*t*/, const State& y, const State& dydt) const { return Force(y, dydt); }
+  ContactForce Load(double t, const State& y, const State& dydt) const { return Force(t, y, dydt); }
   static void Project(State* /*y*/) {}
   Mode mode() const;
   int first() const { return first_; }

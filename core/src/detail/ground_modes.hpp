@@ -70,18 +70,23 @@ class GroundVertexMode {
   static bool IsTouchdown(int guard) { return VertexMode::IsTouchdown(guard); }
   int GuardVertex(int guard) const { return free_.GuardVertex(guard); }
   Eigen::Quaterniond Attitude(const State& y) const { return free_.Attitude(y); }
+  Eigen::Quaterniond SampleAttitude(const State& y) const { return free_.SampleAttitude(y); }
   Eigen::Vector3d EulerZyx(const Eigen::Quaterniond& q_WB, const State& y) const { return free_.EulerZyx(q_WB, y); }
   Eigen::Vector3d AngularVelocity_B(const State& y) const { return free_.AngularVelocity_B(y); }
   double Energy(const State& y) const { return free_.Energy(y); }
   double KineticEnergy(const State& y) const { return free_.KineticEnergy(y); }
   // The ground's force on the block: F = m (a_C − f_W).
   ContactForce Force(double t, const State& y, const State& dydt) const;
+  // Force's normal and tangential parts alone, bit for bit (F_W left zero): what the segment diagnostics read.
+  ContactForce Load(double t, const State& y, const State& dydt) const;
   static void Project(State* y) { VertexMode::Project(y); }
   Mode mode() const { return free_.mode(); }
   int vertex() const { return free_.vertex(); }
   const VertexMode& free_mode() const { return free_; }
 
  private:
+  Eigen::Vector3d Force_B(double t, const State& y, const State& dydt) const;  // F of Force, in B
+
   VertexMode free_;
   const GroundMotion* ground_;
   bool falls_on_side_;
@@ -129,6 +134,7 @@ class GroundEdgeMode {
   double Energy(const State& y) const { return free_.Energy(y); }
   double KineticEnergy(const State& y) const { return free_.KineticEnergy(y); }
   ContactForce Force(double t, const State& y, const State& dydt) const;
+  ContactForce Load(double t, const State& y, const State& dydt) const { return Force(t, y, dydt); }
   // Normal forces on the two end vertices V_i, V_j [N] with both pinned (their sum is Force(...).normal_N).
   std::array<double, 2> EndForces(double t, const State& y) const;
   // Vertical acceleration [m/s²] of end vertex `end` (0: V_i, 1: V_j) in Vertex mode about the other end.

@@ -81,7 +81,7 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
   diagnostics->min_normal_force_N = std::numeric_limits<double>::infinity();
   diagnostics->max_friction_ratio = 0.0;
   const auto record_force = [&](double t, const State& y, const State& dydt) {
-    const ContactForce force = mode.Force(t, y, dydt);
+    const ContactForce force = mode.Load(t, y, dydt);
     diagnostics->min_normal_force_N = std::min(diagnostics->min_normal_force_N, force.normal_N);
     if (force.normal_N > 0.0) {
       diagnostics->max_friction_ratio = std::max(diagnostics->max_friction_ratio, force.tangential_N / force.normal_N);
@@ -105,7 +105,7 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
   };
   const auto emit = [&](const State& y) {
     if constexpr (ModeT::kEulerFromQuaternion) {
-      sampler.Emit(mode_label, mode.AngularVelocity_B(y), [&] { return mode.Attitude(y); });
+      sampler.Emit(mode_label, mode.AngularVelocity_B(y), [&] { return mode.SampleAttitude(y); });
     } else {
       sampler.Emit(mode_label, mode.AngularVelocity_B(y), [&] { return mode.Attitude(y); },
                    [&](const Eigen::Quaterniond& q_WB) { return mode.EulerZyx(q_WB, y); });

@@ -36,6 +36,33 @@ Eigen::Matrix3d EdgeImpactAttitude(const Block& block, int pivot, int landing, d
 ImpactOutcome EdgeImpact(const Block& block, const Eigen::Matrix3d& R_WB, int pivot, int landing,
                          const Eigen::Vector3d& w_minus_W, const EdgeImpactParameters& params);
 
+// The edge map (18)–(20) in the body frame, for one pivot, landing vertex and (λ, τ). Θ and the lever arms of V_b,
+// V_a and R (19) are fixed in B, so both matrices of (18) are too: with A = Θ − m R_R R_a and N = Θ − m R_R R_b in B,
+// ω⁺_B = A⁻¹N ω⁻_B + τ A⁻¹ up_B, where up_B = R_WBᵀ u_z. (18) in W is the same system turned by R_WB, so an impact
+// costs two products with 3×3 matrices made once per edge of a run instead of building and solving the system in W.
+struct EdgeImpactOperators {
+  int pivot = 0;    // V_b, wrapped to 1..4
+  int landing = 0;  // V_a, wrapped to 1..4
+  EdgeImpactParameters params;
+  // False: A is singular to working precision (kImpactMinReciprocalCondition, tested on A in B), and every impact
+  // with these operators has status kSingular.
+  bool solvable = false;
+  Eigen::Matrix3d w_plus_from_w_minus_B = Eigen::Matrix3d::Zero();  // A⁻¹N
+  Eigen::Matrix3d w_plus_from_up_B = Eigen::Matrix3d::Zero();       // A⁻¹ (times τ up_B)
+  Eigen::Matrix3d inertia_b_B = Eigen::Matrix3d::Zero();  // Θ + m R_bᵀR_b: the kinetic energy about V_b (Sect. 4.8)
+  Eigen::Matrix3d inertia_a_B = Eigen::Matrix3d::Zero();  // Θ + m R_aᵀR_a: about V_a
+  Eigen::Vector3d p_ab_B = Eigen::Vector3d::Zero();       // from V_a to V_b
+};
+// Throws InvalidArgument if pivot and landing are not neighbours or λ or τ is not finite.
+EdgeImpactOperators MakeEdgeImpactOperators(const Block& block, int pivot, int landing,
+                                            const EdgeImpactParameters& params);
+// EdgeImpact at attitude R_WB (a rotation: not checked here) with ω⁻ in B, from `operators`: the same outcome to
+// round-off, except that the conditioning test of (18) reads A in B (the 1-norm is not invariant under rotation,
+// so a matrix within a small factor of the threshold may be judged differently). Throws InvalidArgument if ω⁻ is
+// not finite.
+ImpactOutcome EdgeImpact(const EdgeImpactOperators& operators, const Eigen::Matrix3d& R_WB,
+                         const Eigen::Vector3d& w_minus_B);
+
 // The λ at which Θ − m R_R R_a of the edge map is singular: the real roots, ascending, of its determinant,
 // a polynomial in λ of degree ≤ 3 (R_R is affine in λ; the cubic term vanishes because R_a − R_b has
 // rank 2). The roots do not depend on the attitude (the determinant is invariant under rotations).

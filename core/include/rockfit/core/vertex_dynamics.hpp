@@ -38,6 +38,19 @@ class VertexDynamics {
   // Normalised q_WB. (Eigen's normalisation divides each component by the norm; one reciprocal times each would be
   // cheaper but differs by round-off, which the chatter of response runs amplifies into different impacts.)
   static Eigen::Quaterniond Attitude(const State& y) { return Eigen::Quaterniond(y[0], y[1], y[2], y[3]).normalized(); }
+  // Attitude(y) for an output sample, where the state's quaternion is of unit norm to within kNearUnitNormTol (it
+  // is renormalised after every step, and the dense output between keeps it so): scaled by 1 − (|q|² − 1)/2, the
+  // first-order term of 1/|q|, whose remainder (3/8)(|q|² − 1)² is below round-off there — one product where the
+  // exact normalisation takes a square root and four divisions. Beyond it, Attitude(y). Samples only: the state of
+  // the motion (the impacts' attitude) keeps Attitude(y), so the runs' events stay bit for bit.
+  static Eigen::Quaterniond SampleAttitude(const State& y) {
+    const double excess = y.head<4>().squaredNorm() - 1.0;
+    if (!(std::abs(excess) <= kNearUnitNormTol)) return Attitude(y);
+    const double scale = 1.0 - 0.5 * excess;
+    return Eigen::Quaterniond(scale * y[0], scale * y[1], scale * y[2], scale * y[3]);
+  }
+  // |q|² − 1 up to which SampleAttitude's first-order scaling is exact to round-off: (3/8)·1e-16 < 2⁻⁵³.
+  static constexpr double kNearUnitNormTol = 1e-8;
   static Eigen::Vector3d AngularVelocity(const State& y) { return y.tail<3>(); }
   // R_WBᵀ e_z: the world vertical in B, from a possibly non-unit quaternion (the third row of R(q) for
   // q = (w, x, y, z), scaled by 2/|q|² so that a non-unit q still gives a rotation).
@@ -77,8 +90,13 @@ class VertexDynamics {
   Eigen::Vector3d AngularMomentum_W(const State& y) const;
   // F = m a_C + m g e_z with a_C = ẇ × c + w × (w × c); `dydt` is the right-hand side at y.
   ContactForce Force(const State& y, const State& dydt) const;
+  // Force's normal_N and tangential_N alone, bit for bit (F_W left zero: no attitude to normalise and turn F by),
+  // all that the segments' load diagnostics read.
+  ContactForce Load(const State& y, const State& dydt) const;
 
  private:
+  Eigen::Vector3d Force_B(const State& y, const State& dydt) const;  // F of Force, in B
+
   double mass_kg_;
   double weight_N_;
   Eigen::Vector3d p_BP_B_;
