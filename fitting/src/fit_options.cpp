@@ -172,11 +172,7 @@ void FitOptions::Validate() const {
   model_error.Validate();
   lateral_rescan.Validate();
   RequireAtLeast(num_threads, 0, FitOption("num_threads"));
-  if (gyro_scale != GyroScaleMode::kOff && ceres.exact_jacobian) {
-    throw InvalidArgument("fit options: a gyro scale estimate needs the differenced Jacobian (ceres.exact_jacobian = "
-                          "false): the exact derivatives of the model do not include the scale's dependence on the "
-                          "parameters");
-  }
+  RequirePositive(auto_soft_l1_fraction, FitOption("auto_soft_l1_fraction"));
   if (!(at_bound_fraction >= 0.0 && at_bound_fraction < 0.5)) {
     throw InvalidArgument(fmt::format("fit option at_bound_fraction must lie in [0, 0.5), got {}", at_bound_fraction));
   }

@@ -34,6 +34,8 @@ struct LocalResult {
   TerminationType termination_type = TerminationType::kFailure;
   std::string termination;     // "nlopt: xtol reached", "ceres: CONVERGENCE: …", "nlopt: roundoff limited", …
   std::int64_t evaluations = 0;  // objective evaluations (model runs plus points rejected before a run)
+  // Ceres: every Jacobian of the search was the model's exact one (CeresOptions::exact_jacobian), none differenced.
+  bool exact_derivatives = false;
   double wall_time_s = 0.0;
 };
 
