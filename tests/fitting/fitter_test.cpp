@@ -103,7 +103,8 @@ TEST(Fit, AutoFallsBackToNelderMeadWhereTheModelGivesNoExactDerivatives) {
   FitOptions options;
   options.global.enabled = false;
   options.intervals.method = IntervalMethod::kNone;
-  ASSERT_TRUE(options.ceres.exact_jacobian && options.auto_exact_ceres_first);
+  options.ceres.exact_jacobian = true;
+  options.auto_exact_ceres_first = true;
   const FitSummary s = FitFromNearbyStart(options);
   EXPECT_EQ(StageNames(s), (std::vector<std::string>{"start", "ceres", "nelder-mead"})) << s.FullReport();
 }
@@ -114,6 +115,8 @@ TEST(Fit, AutoUnderAGyroScaleEstimateRunsNelderMeadThenTheDifferencedCeres) {
   options.global.enabled = false;
   options.intervals.method = IntervalMethod::kNone;
   options.gyro_scale = GyroScaleMode::kCommon;
+  options.ceres.exact_jacobian = true;
+  options.auto_exact_ceres_first = true;
   EXPECT_NO_THROW(options.Validate());
   const FitSummary s = FitFromNearbyStart(options);
   EXPECT_EQ(StageNames(s), (std::vector<std::string>{"start", "nelder-mead", "ceres"})) << s.FullReport();

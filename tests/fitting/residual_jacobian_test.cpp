@@ -311,6 +311,8 @@ TEST(ResidualJacobian, AutoWithExactDerivativesEndsWithCeresAloneAndFitsNoWorseT
   exact_first.intervals.method = IntervalMethod::kNone;
   FitOptions reference = exact_first;
   reference.ceres.exact_jacobian = false;
+  exact_first.ceres.exact_jacobian = true;
+  exact_first.auto_exact_ceres_first = true;
   const FitSummary a = Fit(objective, start, exact_first);
   const FitSummary b = Fit(objective, start, reference);
   ASSERT_TRUE(a.feasible && b.feasible) << a.FullReport() << b.FullReport();

@@ -37,6 +37,9 @@ struct NelderMeadOptions {
   void Validate() const;
 };
 
+// The default of CeresOptions::exact_jacobian (fit_options.cpp).
+extern const bool kDefaultExactJacobian;
+
 // Ceres trust-region least squares on per-sample residuals (see fitting/README.md, "Ceres back end").
 struct CeresOptions {
   int max_iterations = 40;
@@ -53,7 +56,7 @@ struct CeresOptions {
   // Use the model's exact derivatives (residual_jacobian.hpp) wherever it gives them, in the search and in the
   // covariance; the differences above elsewhere (and throughout under a gyro scale estimate, whose dependence on
   // the parameters the model's derivatives do not include).
-  bool exact_jacobian = true;
+  bool exact_jacobian = kDefaultExactJacobian;
   void Validate() const;
 };
 
@@ -189,7 +192,7 @@ struct FitOptions {
   // kAuto with ceres.exact_jacobian: the exact Ceres stage runs first from the global stage's point, and the local
   // Nelder–Mead only where Ceres had no exact derivatives throughout, failed, or ended above its start (then from
   // the better of the two points). false: Nelder–Mead, then the Ceres polish, as without exact derivatives.
-  bool auto_exact_ceres_first = true;
+  bool auto_exact_ceres_first = false;
   // That Ceres stage's soft-L1 scale c as this fraction of the global stage's ε (at most ceres.soft_l1_scale_rad_s):
   // residuals well above c count linearly, so the Ceres cost approaches c·T_ref·(28). With c = 0.02 rad/s (mostly
   // quadratic at ε of 5 mrad/s) it ended above the global point, by 0.01–0.1 %, on 13 of the 16 sample trials.
