@@ -72,6 +72,9 @@ class ResidualEvaluator {
   std::size_t num_slots() const { return num_slots_; }
   std::int64_t evaluations() const { return evaluations_; }
   std::int64_t exact_jacobians() const { return exact_jacobians_; }
+  // Whether some residual block was differentiated numerically (no exact Jacobian at its point).
+  bool differenced() const { return differenced_; }
+  void NoteDifferenced() { differenced_ = true; }
   double nominal_dt_s() const { return nominal_dt_s_; }
   std::size_t num_nodes_at(const double* x) {
     return Lookup(x) ? last_num_nodes_ : 0;
@@ -178,6 +181,7 @@ class ResidualEvaluator {
   std::size_t last_num_nodes_ = 0;
   std::int64_t evaluations_ = 0;
   std::int64_t exact_jacobians_ = 0;
+  bool differenced_ = false;
   std::vector<Entry> cache_;  // reserved to capacity_: entries never move, so last_entry_ stays valid
   Entry* last_entry_ = nullptr;
   ErrorNodes nodes_;
@@ -206,6 +210,7 @@ class SlotCost final : public ceres::CostFunction {
       std::copy(exact + 3 * slot_ * n, exact + 3 * (slot_ + 1) * n, jacobians[0]);
       return true;
     }
+    evaluator_->NoteDifferenced();
     std::vector<double> xp(x, x + n), xm(x, x + n);
     for (std::size_t j = 0; j < n; ++j) {
       const auto k = static_cast<Eigen::Index>(j);
@@ -332,6 +337,7 @@ class CeresLeastSquares final : public LocalOptimizer {
       result.termination_type = TerminationType::kFailure;
     }
     result.evaluations = evaluator.evaluations() + 1;
+    result.exact_derivatives = evaluator.exact_jacobians() > 0 && !evaluator.differenced();
     result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
   }

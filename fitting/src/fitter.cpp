@@ -104,17 +104,40 @@ std::vector<std::pair<Eigen::VectorXd, double>> RunStages(const Objective& objec
     if (Better(c, candidates.front())) x_current = c.x;
     candidates.push_back(c);
   }
-  if (options.method == FitMethod::kNelderMead || options.method == FitMethod::kAuto) {
+  auto run_nelder_mead = [&] {
     const LocalResult r = MakeNelderMead(options.nelder_mead)->Minimize(objective, x_current);
     summary->stages.push_back({"nelder-mead", r.epsilon_rad_s, r.evaluations, r.wall_time_s, r.termination_type, r.termination});
-    const Candidate c = FromLocal("nelder-mead", r);
     if (r.feasible) x_current = r.x;
-    candidates.push_back(c);
-  }
-  if (options.method == FitMethod::kCeres || options.method == FitMethod::kAuto) {
-    const LocalResult r = MakeCeres(options.ceres)->Minimize(objective, x_current);
+    candidates.push_back(FromLocal("nelder-mead", r));
+  };
+  auto run_ceres = [&](const CeresOptions& ceres_options) {
+    const LocalResult r = MakeCeres(ceres_options)->Minimize(objective, x_current);
     summary->stages.push_back({"ceres", r.epsilon_rad_s, r.evaluations, r.wall_time_s, r.termination_type, r.termination});
     candidates.push_back(FromLocal("ceres", r));
+    return r;
+  };
+  if (options.method == FitMethod::kAuto && options.auto_exact_ceres_first && options.ceres.exact_jacobian) {
+    // The exact Ceres stage first; Nelder–Mead (from the better of the two points) only where Ceres could not
+    // use exact derivatives throughout, failed, or ended above the point it started from.
+    const Candidate before = *std::min_element(candidates.begin(), candidates.end(),
+                                               [](const Candidate& a, const Candidate& b) { return Better(a, b); });
+    // Its soft-L1 scale well below the residuals at the start: the Ceres cost is then nearly c·T_ref·(28) and its
+    // minimum that of (28), not of the sum of squares (fitting/README.md, "The back ends").
+    CeresOptions exact_options = options.ceres;
+    if (before.feasible && before.epsilon_rad_s > 0.0) {
+      exact_options.soft_l1_scale_rad_s =
+          std::min(exact_options.soft_l1_scale_rad_s, options.auto_soft_l1_fraction * before.epsilon_rad_s);
+    }
+    const LocalResult r = run_ceres(exact_options);
+    const bool ceres_enough = r.exact_derivatives && r.feasible && r.termination_type != TerminationType::kFailure &&
+                              r.epsilon_rad_s <= before.epsilon_rad_s;
+    if (!ceres_enough) {
+      if (r.feasible && r.epsilon_rad_s < before.epsilon_rad_s) x_current = r.x;
+      run_nelder_mead();
+    }
+  } else {
+    if (options.method == FitMethod::kNelderMead || options.method == FitMethod::kAuto) run_nelder_mead();
+    if (options.method == FitMethod::kCeres || options.method == FitMethod::kAuto) run_ceres(options.ceres);
   }
 
   // Keep the best point by (28), whatever the back end optimised.
@@ -407,8 +430,12 @@ void AddPoorFitAndConvergenceWarnings(const Objective& objective, FitSummary* su
 
 }  // namespace
 
-FitSummary Fit(const Objective& given, const ParameterSet& start_in, const FitOptions& options) {
-  options.Validate();
+FitSummary Fit(const Objective& given, const ParameterSet& start_in, const FitOptions& given_options) {
+  given_options.Validate();
+  // The model's exact derivatives do not include a projected gyro scale's dependence on the parameters: under a
+  // scale estimate every Jacobian is differenced (and `auto` runs Nelder–Mead, then Ceres).
+  FitOptions options = given_options;
+  if (options.gyro_scale != GyroScaleMode::kOff) options.ceres.exact_jacobian = false;
   // Every stage evaluates the objective with the gyro scale of the options projected out (or none).
   const Objective objective =
       given.options().gyro_scale == options.gyro_scale ? given : given.WithGyroScale(options.gyro_scale);

@@ -89,11 +89,12 @@ void FitOneTrial(benchmark::State& state, fitting::FitMethod method,
   options.intervals.method = intervals;
   options.num_threads = 1;  // one core
   double simulations = 0.0, epsilon = 0.0, rate = 0.0, interval_simulations = 0.0;
+  fitting::FitSummary summary;
   for (auto _ : state) {
     // Everything `rockfit fit` does after reading the files: data estimate, bias, window, fit.
     const fitting::TrialProblem problem =
         fitting::PrepareTrialProblem(trial.signal, trial.block, fitting::ParameterSet::Defaults());
-    const fitting::FitSummary summary = fitting::Fit(problem.objective, problem.start, options);
+    summary = fitting::Fit(problem.objective, problem.start, options);
     simulations = static_cast<double>(summary.simulations);
     epsilon = summary.epsilon_rad_s;
     rate = summary.simulations_per_second;
@@ -101,6 +102,10 @@ void FitOneTrial(benchmark::State& state, fitting::FitMethod method,
     benchmark::ClobberMemory();
   }
   state.counters["simulations"] = simulations;
+  // Where the simulations go: the runs of each stage of the last fit.
+  for (const fitting::StageReport& stage : summary.stages) {
+    state.counters["sims_" + stage.name] += static_cast<double>(stage.evaluations);
+  }
   state.counters["interval_simulations"] = interval_simulations;
   state.counters["sims_per_s"] = rate;
   // In mrad/s: this Google Benchmark prints counters below 1 wrongly.
@@ -293,6 +298,7 @@ void BM_ExactJacobianQuality(benchmark::State& state) {
       fitting::FitOptions options;
       options.num_threads = 1;
       options.intervals.method = fitting::IntervalMethod::kNone;
+      options.ceres.exact_jacobian = false;  // the differences: Nelder–Mead, then the Ceres polish
       // Process CPU time of each whole fit (one thread; the machine is shared, so wall time is not the measure).
       const std::clock_t c0 = std::clock();
       const fitting::FitSummary off = fitting::Fit(problem.objective, problem.start, options);

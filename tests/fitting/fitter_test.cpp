@@ -3,6 +3,8 @@
 #include "rockfit/fitting/fitter.hpp"
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -78,6 +80,53 @@ INSTANTIATE_TEST_SUITE_P(AllMethods, FitMethods,
                          [](const auto& info) { return std::string(info.param == FitMethod::kNelderMead ? "NelderMead"
                                                                    : info.param == FitMethod::kCeres  ? "Ceres"
                                                                                                       : "Auto"); });
+
+std::vector<std::string> StageNames(const FitSummary& s) {
+  std::vector<std::string> names;
+  for (const StageReport& stage : s.stages) names.push_back(stage.name);
+  return names;
+}
+
+// A start a few resolutions off the truth of an analytic trial, fitted without the global stage.
+FitSummary FitFromNearbyStart(const FitOptions& options) {
+  const auto trial = MakeAnalyticTrial(0.19, 1.2, 1.5, 0.9, RealisticDisturbances(3));
+  const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
+  ParameterSet start = trial.truth;
+  start[ParameterId::kT0].value += 0.001;
+  start[ParameterId::kAlpha].value -= 0.001;
+  start[ParameterId::kLambdaLon].value += 0.02;
+  return Fit(objective, start, options);
+}
+
+TEST(Fit, AutoFallsBackToNelderMeadWhereTheModelGivesNoExactDerivatives) {
+  // The analytic test model gives no derivatives: the Ceres stage differences them, so Nelder–Mead follows it.
+  FitOptions options;
+  options.global.enabled = false;
+  options.intervals.method = IntervalMethod::kNone;
+  options.ceres.exact_jacobian = true;
+  options.auto_exact_ceres_first = true;
+  const FitSummary s = FitFromNearbyStart(options);
+  EXPECT_EQ(StageNames(s), (std::vector<std::string>{"start", "ceres", "nelder-mead"})) << s.FullReport();
+}
+
+TEST(Fit, AutoUnderAGyroScaleEstimateRunsNelderMeadThenTheDifferencedCeres) {
+  // The model's derivatives leave out the projected scale: no exact Jacobian, and `auto` as without one.
+  FitOptions options;
+  options.global.enabled = false;
+  options.intervals.method = IntervalMethod::kNone;
+  options.gyro_scale = GyroScaleMode::kCommon;
+  options.ceres.exact_jacobian = true;
+  options.auto_exact_ceres_first = true;
+  EXPECT_NO_THROW(options.Validate());
+  const FitSummary s = FitFromNearbyStart(options);
+  EXPECT_EQ(StageNames(s), (std::vector<std::string>{"start", "nelder-mead", "ceres"})) << s.FullReport();
+}
+
+TEST(Fit, SoftL1FractionOfTheExactCeresStageMustBePositive) {
+  FitOptions options;
+  options.auto_soft_l1_fraction = 0.0;
+  EXPECT_THROW(options.Validate(), InvalidArgument);
+}
 
 TEST(Fit, TheoreticalBoundsRecoverParametersInsideThem) {
   const auto trial = MakeAnalyticTrial(0.2, 0.7, -0.8, 0.5, RealisticDisturbances(5));

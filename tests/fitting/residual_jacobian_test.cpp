@@ -8,10 +8,12 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "rockfit/fitting/fitter.hpp"
 #include "rockfit/fitting/local_optimizer.hpp"
 #include "rockfit/fitting/simulator_model.hpp"
 #include "simulation_cases.hpp"
@@ -279,6 +281,7 @@ TEST(ResidualJacobian, CeresWithTheExactJacobianFindsThePlanarTruthWithFewerMode
   Eigen::VectorXd x0(4);
   x0 << kTrueT0_s + 0.0021, 0.146, 1.0, 0.63;
   CeresOptions differences;
+  differences.exact_jacobian = false;
   CeresOptions exact;
   exact.exact_jacobian = true;
   const LocalResult a = MakeCeres(differences)->Minimize(objective, x0);
@@ -291,6 +294,35 @@ TEST(ResidualJacobian, CeresWithTheExactJacobianFindsThePlanarTruthWithFewerMode
   // No worse a fit, from fewer runs of the simulator (one per iteration instead of 2n + 1).
   EXPECT_LE(b.epsilon_rad_s, a.epsilon_rad_s * (1.0 + 1e-3));
   EXPECT_LT(b.evaluations, a.evaluations);
+}
+
+TEST(ResidualJacobian, AutoWithExactDerivativesEndsWithCeresAloneAndFitsNoWorseThanNelderMeadThenCeres) {
+  // A noisy planar trial from a start off the truth, without the global stage: with exact derivatives `auto` runs
+  // the Ceres stage at a soft-L1 scale below the residuals and skips Nelder–Mead; the old order (Nelder–Mead, then
+  // the differenced Ceres polish) is the reference.
+  const MeasuredSignal signal = PlanarRecording(0.15, 0.6, 13);
+  const Objective objective = PlanarObjective(signal);
+  ParameterSet start = objective.parameters();
+  start[ParameterId::kT0].value = kTrueT0_s + 0.0015;
+  start[ParameterId::kAlpha].value = 0.147;
+  start[ParameterId::kLambdaLon].value = 0.62;
+  FitOptions exact_first;
+  exact_first.global.enabled = false;
+  exact_first.intervals.method = IntervalMethod::kNone;
+  FitOptions reference = exact_first;
+  reference.ceres.exact_jacobian = false;
+  exact_first.ceres.exact_jacobian = true;
+  exact_first.auto_exact_ceres_first = true;
+  const FitSummary a = Fit(objective, start, exact_first);
+  const FitSummary b = Fit(objective, start, reference);
+  ASSERT_TRUE(a.feasible && b.feasible) << a.FullReport() << b.FullReport();
+  ASSERT_EQ(a.stages.size(), 2u) << a.FullReport();
+  EXPECT_EQ(a.stages[1].name, "ceres");
+  EXPECT_EQ(a.kept_stage, "ceres");
+  // The criterion for the fit's stages: ε at most 0.1 % above the reference's.
+  constexpr double kAllowedRise = 1e-3;
+  EXPECT_LE(a.epsilon_rad_s, b.epsilon_rad_s * (1.0 + kAllowedRise)) << a.FullReport() << b.FullReport();
+  EXPECT_LT(a.simulations, b.simulations);
 }
 
 }  // namespace

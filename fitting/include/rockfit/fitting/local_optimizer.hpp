@@ -34,6 +34,8 @@ struct LocalResult {
   TerminationType termination_type = TerminationType::kFailure;
   std::string termination;     // "nlopt: xtol reached", "ceres: CONVERGENCE: …", "nlopt: roundoff limited", …
   std::int64_t evaluations = 0;  // objective evaluations (model runs plus points rejected before a run)
+  // Ceres: every Jacobian of the search was the model's exact one (CeresOptions::exact_jacobian), none differenced.
+  bool exact_derivatives = false;
   double wall_time_s = 0.0;
 };
 
@@ -51,8 +53,9 @@ std::unique_ptr<LocalOptimizer> MakeCeres(const CeresOptions& options);
 // Standard errors of the free parameters of `objective` at x from the Gauss–Newton covariance
 // κ·s²·(JᵀJ)⁻¹ of the residuals √w_k·(ω_m − ω_s) (ceres::Covariance, dense SVD), with
 // s² = Σ w_k‖ω_m − ω_s‖² / (3·nodes − free parameters) and κ = (1 + ρ)/(1 − ρ) for the lag-1 autocorrelation ρ
-// of the residuals (an AR(1) correction for correlated errors). J uses the limited differences of the Ceres
-// back end: the jumps of residuals where a simulated impact crosses a sample time are not differentiated.
+// of the residuals (an AR(1) correction for correlated errors). J is the model's exact one where it gives it and
+// options.exact_jacobian asks for it, otherwise the limited differences of the Ceres back end: the jumps of
+// residuals where a simulated impact crosses a sample time are not differentiated.
 // These are local, linearised uncertainties; see fitting/README.md for where they fail.
 // `std_error` holds NaN where the covariance is not defined (rank-deficient Jacobian); `message` says why.
 struct StandardErrors {
@@ -61,7 +64,7 @@ struct StandardErrors {
   // the covariance is κ·s²·(JᵀJ)⁻¹. Intervals (uncertainty.hpp) use it with their own noise level.
   Eigen::MatrixXd inverse_normal_matrix;
   // The residuals √w_k·(ω_m − ω_s) in time order (3 per slot: the t0 node, every sample that can be a node,
-  // the t_end node; 0 before t0) and their Jacobian (limited differences), for the correlated-noise sandwich.
+  // the t_end node; 0 before t0) and their Jacobian (as J above), for the correlated-noise sandwich.
   Eigen::VectorXd residuals;
   Eigen::MatrixXd jacobian;
   // What the noise level s² = lag1_factor·Σr²/dof counted: the residuals of the nodes with weight (clipped samples
