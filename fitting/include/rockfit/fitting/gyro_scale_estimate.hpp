@@ -44,7 +44,8 @@ struct GyroScaleEstimate {
 };
 
 // The estimate at `fitted` of an objective that projects the scale out (objective.options().gyro_scale), with
-// the other parameters' final 95 % intervals in `u` and the model-error widening factor they carry. Returns an
+// the other parameters' uncertainty in `u` (which are closed at 95 %, their linearised σ's and correlation) and
+// the model-error widening factor their intervals carry. Returns an
 // estimate with available = false for kOff or where the model fails at `fitted`.
 GyroScaleEstimate EstimateGyroScale(const Objective& objective, const ParameterSet& fitted, const UncertaintySummary& u,
                                     double widening_factor, const FitOptions& options);
