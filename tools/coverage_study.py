@@ -323,12 +323,13 @@ def coverage_failures(rows, min_coverage_95, min_epsilon_fraction, band_68=None)
 
 def gyro_scale_lines(mine):
     """The estimated gyro scale per axis (`--estimate-gyro-scale`): median, how often the 95 % interval holds the
-    truth (1, or the gyro-scale family's drawn scale) and the median width, over the fits that estimated it."""
+    truth (1, or the gyro-scale family's drawn scale) and the median width, over the fits that estimated it, and
+    the 95 % quantile of |error| / half-width (1 for an interval exactly as wide as 95 % coverage needs)."""
     est = [r for r in mine if (r["fit"].get("gyro_scale") or {}).get("available")]
     if not est:
         return []
     lines = ["", f"gyro scale ({est[0]['fit']['gyro_scale']['mode']}), {len(est)} fits: axis, median estimate, "
-                 "95 % holds the truth, median 95 % width, median |error|"]
+                 "95 % holds the truth, median 95 % width, median |error|, 95 % quantile of |error| / half-width"]
     for a, axis in enumerate("xyz"):
         cells = []
         for r in est:
@@ -339,10 +340,13 @@ def gyro_scale_lines(mine):
         closed = [c for c in cells if c[2] is not None]
         held = sum(c[2][0] <= c[1] <= c[2][1] for c in closed)
         widths = [c[2][1] - c[2][0] for c in closed]
+        relative = sorted(abs(c[0] - c[1]) / (0.5 * (c[2][1] - c[2][0])) for c in closed if c[2][1] > c[2][0])
+        # the nearest-rank 95 % quantile
+        q95 = relative[min(len(relative) - 1, math.ceil(0.95 * len(relative)) - 1)] if relative else float("nan")
         lines.append(f"  s_{axis}: {statistics.median(c[0] for c in cells):.4f}, {held}/{len(closed)} "
                      f"({100.0 * held / len(closed) if closed else 0:.0f} %), "
                      f"{statistics.median(widths) if widths else float('nan'):.4f}, "
-                     f"{statistics.median(abs(c[0] - c[1]) for c in cells):.4f}")
+                     f"{statistics.median(abs(c[0] - c[1]) for c in cells):.4f}, {q95:.2f}")
     return lines
 
 

@@ -26,6 +26,7 @@
 #include <fmt/format.h>
 #include <glog/logging.h>
 
+#include "rockfit/fitting/censored_noise_level.hpp"
 #include "rockfit/fitting/local_optimizer.hpp"
 #include "rockfit/fitting/residual_jacobian.hpp"
 #include "rockfit/fitting/uncertainty.hpp"
@@ -429,7 +430,10 @@ StandardErrors ComputeStandardErrors(const Objective& objective, const Eigen::Ve
     result.message = "ceres::Covariance could not return the block";
     return result;
   }
-  const double s2 = inflation * sum_sq / dof;
+  // With censored components the noise level of the censored likelihood (censored_noise_level.hpp); exactly
+  // inflation·S/dof without them.
+  const double noise_dof = dof / CensoredNoiseFactorAt(objective, objective.WithFree(x), static_cast<std::size_t>(n));
+  const double s2 = inflation * sum_sq / noise_dof;
   result.inverse_normal_matrix = cov;
   for (Eigen::Index i = 0; i < n; ++i) {
     result.std_error[i] = cov(i, i) >= 0.0 ? std::sqrt(s2 * cov(i, i)) : std::numeric_limits<double>::quiet_NaN();

@@ -122,6 +122,8 @@ std::string FitSummary::ToJson(const std::string& trial) const {
                       {"statements", uncertainty.statements},
                       {"simulations", uncertainty.evaluations},
                       {"wall_s", uncertainty.wall_time_s}};
+  // Only with clipped samples (censored_noise_level.hpp): the documents of other fits keep their keys.
+  if (uncertainty.censored_noise_factor != 1.0) j["uncertainty"]["censored_noise_factor"] = uncertainty.censored_noise_factor;
   j["lateral_motion"] = nlohmann::json::parse(LateralMotionJson(lateral_motion));
   j["model_error"] = nlohmann::json::parse(ModelErrorJson(model_error));
   // Only when estimated: the documents of fits without it keep their keys.

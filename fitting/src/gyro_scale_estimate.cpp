@@ -81,14 +81,18 @@ GyroScaleEstimate EstimateGyroScale(const Objective& objective, const ParameterS
     }
   }
 
-  // G·Cov(θ)·Gᵀ: the other parameters' uncertainty carried into the scale.
+  // G·Cov(θ)·Gᵀ: the other parameters' uncertainty carried into the scale. Cov(θ) is the linearised one of the
+  // 95 % level (σ_j and the correlation of the same M) times the widening factor², not one made of the final
+  // interval ends: those are widened unequally (t0's floor, the hull with the profile, other basins), and with
+  // t0 and α correlated by −0.99 or more a t0 σ from its floored interval no longer cancels along the ridge
+  // t0 + T(α) — the scale's interval came out several times wider than its errors (fitting/README.md).
   std::vector<ParameterId> ids;
   std::vector<double> sigma;
   std::vector<Eigen::Vector3d> gradient;
   for (ParameterId id : objective.free_ids()) {
     const std::size_t j = static_cast<std::size_t>(id);
     const Interval& i95 = u.interval_95[j];
-    if (!(std::isfinite(i95[0]) && std::isfinite(i95[1]))) continue;
+    if (!(std::isfinite(i95[0]) && std::isfinite(i95[1])) || !std::isfinite(u.linearised_sigma_95[j])) continue;
     const Parameter& p = fitted[id];
     const double h = options.ceres.difference_step[j];
     ParameterSet plus = fitted, minus = fitted;
@@ -99,7 +103,7 @@ GyroScaleEstimate EstimateGyroScale(const Objective& objective, const ParameterS
       continue;
     }
     ids.push_back(id);
-    sigma.push_back((i95[1] - i95[0]) / (2.0 * kZ95));
+    sigma.push_back(widening_factor * u.linearised_sigma_95[j]);
     gradient.push_back((s_plus - s_minus) / (plus.value(id) - minus.value(id)));
   }
   Eigen::Vector3d var_parameters = Eigen::Vector3d::Zero();
@@ -135,7 +139,11 @@ std::string GyroScaleJson(const GyroScaleEstimate& e) {
                         {"available", e.available},
                         {"value", {number(e.value[0]), number(e.value[1]), number(e.value[2])}},
                         {"interval_95", intervals},
-                        {"determined", {e.determined[0], e.determined[1], e.determined[2]}}}
+                        {"determined", {e.determined[0], e.determined[1], e.determined[2]}},
+                        {"half_width_noise", {number(e.half_width_noise[0]), number(e.half_width_noise[1]),
+                                              number(e.half_width_noise[2])}},
+                        {"half_width_parameters", {number(e.half_width_parameters[0]), number(e.half_width_parameters[1]),
+                                                   number(e.half_width_parameters[2])}}}
       .dump();
 }
 

@@ -13,6 +13,7 @@
 #include <nlopt.hpp>
 
 #include "parallel_for.hpp"
+#include "rockfit/fitting/censored_noise_level.hpp"
 #include "rockfit/core/enum_names.hpp"
 
 namespace rockfit::fitting {
@@ -414,6 +415,7 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
   u.method = options.method;
   for (auto& i : u.interval_68) i = {kNaN, kNaN};
   for (auto& i : u.interval_95) i = {kNaN, kNaN};
+  u.linearised_sigma_95.fill(kNaN);
   const auto P = static_cast<Eigen::Index>(kNumParameters);
   u.correlation = Eigen::MatrixXd::Constant(P, P, kNaN);
   const auto n_cov = static_cast<Eigen::Index>(covariance_ids.size());
@@ -495,6 +497,12 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
     u.description = "not available: fewer residuals than free parameters";
     return u;
   }
+  // The noise level s² = S / noise_dof: with censored components (a clipped gyro) the maximum-likelihood σ² of
+  // the censored normal model at the fit over S/dof scales it (censored_noise_level.hpp); without them
+  // noise_dof is dof itself, so every expression below is the one before, to the last digit.
+  const double censored_factor = CensoredNoiseFactorAt(ls, base, profiled.size());
+  const double noise_dof = dof / censored_factor;
+  u.censored_noise_factor = censored_factor;
 
   // Linearised σ with the effective noise level (the fast intervals; the profile's step sizes).
   PerParameter sigma;
@@ -508,8 +516,9 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
   };
 
   if (options.method == IntervalMethod::kFast) {
-    u.noise_rms_rad_s = std::sqrt(sum_sq_fit / dof / dt_s);
-    linearised_sigma(sum_sq_fit / dof);
+    u.noise_rms_rad_s = std::sqrt(sum_sq_fit / noise_dof / dt_s);
+    linearised_sigma(sum_sq_fit / noise_dof);
+    u.linearised_sigma_95 = sigma;
     for (ParameterId id : profiled) {
       const std::size_t k = static_cast<std::size_t>(id);
       const Parameter& p = objective.parameters()[id];
@@ -527,7 +536,7 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
   } else {
     // The least-squares optimum the profiles start from (close to the optimum of (28)).
     PerParameter refit_step = kFallbackStep;
-    linearised_sigma(sum_sq_fit / dof);
+    linearised_sigma(sum_sq_fit / noise_dof);
     for (ParameterId id : kAllParameters) {
       const std::size_t k = static_cast<std::size_t>(id);
       if (std::isfinite(sigma[k])) refit_step[k] = std::clamp(sigma[k], options.min_step[k], kFallbackStep[k]);
@@ -536,7 +545,7 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
     const ParameterSet centre = MinimizeSumOfSquares(ls, base, refit_step, options.centre_evaluations, &centre_value,
                                                      &best_epsilon, &evaluations);
     const double sum_sq_centre = centre_value.sum_sq;
-    const double s2_centre = sum_sq_centre / dof;
+    const double s2_centre = sum_sq_centre / noise_dof;
     linearised_sigma(s2_centre);
 
     // Both sides of every profiled parameter, in parallel (independent: deterministic in any thread count).
@@ -561,16 +570,17 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
         if (pt.feasible) sum_sq_min = std::min(sum_sq_min, pt.sum_sq);
       }
     }
-    u.noise_rms_rad_s = std::sqrt(sum_sq_min / dof / dt_s);
-    linearised_sigma(sum_sq_min / dof);
+    u.noise_rms_rad_s = std::sqrt(sum_sq_min / noise_dof / dt_s);
+    linearised_sigma(sum_sq_min / noise_dof);
     const PerParameter linear_sigma = sigma;
+    u.linearised_sigma_95 = sigma;
     for (std::size_t j = 0; j < profiled.size(); ++j) {
       const ParameterId id = profiled[j];
       const std::size_t k = static_cast<std::size_t>(id);
       const Parameter& p = objective.parameters()[id];
       const double c = centre.value(id), v = fitted.value(id);
       auto ends = [&](double z, double inflation) {
-        const double s2_eff = inflation * sum_sq_min / dof;
+        const double s2_eff = inflation * sum_sq_min / noise_dof;
         const double centre_rho = std::sqrt(std::max(0.0, sum_sq_centre - sum_sq_min) / s2_eff);
         Interval i = {ProfileCrossing(c, centre_rho, points[2 * j], sum_sq_min, s2_eff, z),
                       ProfileCrossing(c, centre_rho, points[2 * j + 1], sum_sq_min, s2_eff, z)};
@@ -630,7 +640,7 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
       bool within_all = true;
       for (ParameterId id : profiled) {
         const std::size_t k = static_cast<std::size_t>(id);
-        auto rise = [&](double inflation) { return std::sqrt(std::max(0.0, v.sum_sq - sum_sq_ref) / (inflation * sum_sq_ref / dof)); };
+        auto rise = [&](double inflation) { return std::sqrt(std::max(0.0, v.sum_sq - sum_sq_ref) / (inflation * sum_sq_ref / noise_dof)); };
         const double rho = rise(kappa[k]);
         const double x = set.value(id);
         for (auto [z, level_rho, interval] :

@@ -10,8 +10,11 @@
 // V_a / D_a², D_a = Σ w_k ω_s,a,k², V_a the Newey–West long-run variance (Bartlett window of
 // IntervalOptions::noise_correlation_window_s) of the score terms w_k ω_s,a,k (ω_m − S ω_s)_a,k, times the
 // model-error allowance and the model-error widening factor² of the other 95 % intervals; G_a by central
-// differences (CeresOptions::difference_step), Cov(θ) from the other parameters' final 95 % intervals
-// (half-width / 1.96) and their linearised correlation. The 95 % interval is s_a ± 1.96·√Var s_a.
+// differences (CeresOptions::difference_step), Cov(θ) the linearised covariance of the 95 % level
+// (UncertaintySummary::linearised_sigma_95 and the correlation of the same matrix) times the widening factor²,
+// over the parameters whose final 95 % interval is closed. Not the final interval ends: t0's floor and the
+// hull widen them unequally, which breaks the cancellation along the t0–α ridge that the correlation expects.
+// The 95 % interval is s_a ± 1.96·√Var s_a.
 #pragma once
 
 #include <array>
@@ -41,13 +44,15 @@ struct GyroScaleEstimate {
 };
 
 // The estimate at `fitted` of an objective that projects the scale out (objective.options().gyro_scale), with
-// the other parameters' final 95 % intervals in `u` and the model-error widening factor they carry. Returns an
+// the other parameters' uncertainty in `u` (which are closed at 95 %, their linearised σ's and correlation) and
+// the model-error widening factor their intervals carry. Returns an
 // estimate with available = false for kOff or where the model fails at `fitted`.
 GyroScaleEstimate EstimateGyroScale(const Objective& objective, const ParameterSet& fitted, const UncertaintySummary& u,
                                     double widening_factor, const FitOptions& options);
 
 // {"mode": …, "available": …, "value": [s_x, s_y, s_z], "interval_95": [[lo, hi] or null × 3],
-// "determined": [bool × 3]}; null when the mode is off.
+// "determined": [bool × 3], "half_width_noise": [× 3], "half_width_parameters": [× 3]} (the two parts of the
+// 95 % half-width, which add in quadrature; null where not estimated); null when the mode is off.
 std::string GyroScaleJson(const GyroScaleEstimate& e);
 // One line for the fit's table.
 std::string GyroScaleText(const GyroScaleEstimate& e);

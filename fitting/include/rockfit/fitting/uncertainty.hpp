@@ -65,6 +65,12 @@ struct UncertaintySummary {
   double correlation_factor = 1.0; // the largest κ_j (the model-error allowance for white residuals)
   PerParameter noise_inflation{};  // κ_j per parameter (NaN where not computed)
   double bulk_inflation = std::numeric_limits<double>::quiet_NaN();  // the 68 % level's factor (NaN: κ_j as at 95 %)
+  // The linearised σ_j of the 95 % level, √(κ_j·s²·M_jj) (NaN where not computed): with `correlation` the
+  // covariance of the parameters at the level of the 95 % intervals before the hull, the other basins and the
+  // model-error widening — consistent across parameters, as the interval ends are not.
+  PerParameter linearised_sigma_95{};
+  // s² of the censored likelihood over S/dof at the fit (censored_noise_level.hpp): 1 without clipped samples.
+  double censored_noise_factor = 1.0;
   // Sentences: what the data fix ("t0 and alpha: only t0 + T(α) is fixed (correlation −0.998)", …).
   std::vector<std::string> statements;
   std::int64_t evaluations = 0;
