@@ -106,6 +106,21 @@ void WriteGyroScale(const io::hdf5::Group& g, const GyroScaleEstimate& e) {
               {e.determined[0] ? 1 : 0, e.determined[1] ? 1 : 0, e.determined[2] ? 1 : 0}, "1");
 }
 
+// Whether the release roll was fitted and why (release_roll_choice.hpp), only when the problem was prepared from the
+// recording: release_roll_mode (off/auto/on), release_roll_fitted (0/1), the roll seen in the fall, its noise and the
+// start (NaN where not measured or not fitted), release_roll_choice (the sentence).
+void WriteReleaseRollChoice(const io::hdf5::Group& g, const std::optional<ReleaseRollChoice>& choice) {
+  if (!choice) return;
+  const double nan = std::nan("");
+  const ReleaseRollChoice& c = *choice;
+  g.SetString("release_roll_mode", ToString(c.mode));
+  g.SetInt("release_roll_fitted", c.fitted ? 1 : 0);
+  g.SetDouble("release_roll_seen_rad", c.judged ? c.roll_seen_rad : nan);
+  g.SetDouble("release_roll_noise_rad", c.judged ? c.roll_noise_rad : nan);
+  g.SetDouble("release_roll_start_rad", c.fitted ? c.start_rad : nan);
+  g.SetString("release_roll_choice", c.reason);
+}
+
 void WriteFitAttributes(const io::hdf5::Group& g, const std::string& settings, const FitSummary& s) {
   g.SetDouble("epsilon_rad_s", s.epsilon_rad_s);
   g.SetDouble("epsilon_initial_rad_s", s.epsilon_initial_rad_s);
@@ -122,6 +137,7 @@ void WriteFitAttributes(const io::hdf5::Group& g, const std::string& settings, c
   g.SetInt("feasible", s.feasible ? 1 : 0);
   WriteModelErrorAttributes(g, s.model_error);
   WriteGyroScale(g, s.gyro_scale);
+  WriteReleaseRollChoice(g, s.release_roll_choice);
   g.SetString("settings", settings);
   g.SetString("settings_hash", SettingsHash(settings));
   g.SetString("model", s.model_description);
