@@ -81,8 +81,10 @@ def coverage(pairs, c, q, names):
         held = total = held_yes = yes = 0
         widths = []
         for fit, truth in pairs:
+            if name not in fit["parameters"] or name not in truth:  # the roll: reported only where it was fitted
+                continue
             p = fit["parameters"][name]
-            if p.get("fixed") or p.get("interval_95") is None or name not in truth:
+            if p.get("fixed") or p.get("interval_95") is None:
                 continue
             m = fit.get("model_error", {})
             i = widened(p, m.get("ratio") if m.get("available") else None, c, q, name)
@@ -102,7 +104,7 @@ def label(path):
 
 
 def names_of(pairs):
-    return [n for n in PARAMETERS if pairs and n in pairs[0][1]]
+    return [n for n in PARAMETERS if any(n in truth for _, truth in pairs)]
 
 
 def table(paths, c, q):

@@ -23,8 +23,9 @@ namespace {
 #ifdef ROCKFIT_HAVE_MUJOCO
 
 // A rolled release fitted with its roll: ε within this many noise floors (without the roll 12–33 in the study,
-// with it 3.4–6.5 (quartiles); MuJoCo's stiff contact alone, released in the plane, gives 1.2) …
-constexpr double kRolledEpsilonOverNoiseFloor = 7.0;
+// with it, started from the data's roll, 3.2–6.0 (quartiles), 7.0 at the 90th percentile; MuJoCo's stiff contact
+// alone, released in the plane, gives 1.2) …
+constexpr double kRolledEpsilonOverNoiseFloor = 9.0;
 // … and the roll found to within this [rad] (a fifth of the studies' largest roll).
 constexpr double kRollTolerance_rad = 0.002;
 
@@ -120,7 +121,7 @@ TEST(MujocoTrial, ReleaseWithARollIsFlaggedWhereTheIntervalsMissTheTruth) {
 TEST(MujocoTrial, ARolledReleaseFittedWithItsRollHasTheTruthInTheIntervalsAndLessModelError) {
   // The same releases as above with the release roll fitted: the model can now stand the block on the corner
   // MuJoCo stood it on. t0 and α hold the truth, the roll is found, and ε comes down towards the noise floor
-  // (here 7.4 → 5.9 and 24 → 3.5 noise floors for rolls of 0.001 and 0.01 rad); it does not reach it: the rest is
+  // (here from 7.4 and 24 noise floors for rolls of 0.001 and 0.01 rad); it does not reach it: the rest is
   // MuJoCo's soft corner and edge contact, which is not the paper's impact map.
   ROCKFIT_REQUIRE_OPTIMISED_BUILD();
   for (double roll : {0.001, 0.01}) {
