@@ -163,7 +163,9 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   // v9: clipped gyro samples censored in (28).
   // v10: on clipped recordings, the censored components the model satisfies count in no degree of freedom (the
   // intervals change; recordings without a rail do not); the projected gyro scale minimises (28) itself.
-  std::string settings = fmt::format("rockfit-fit v10; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
+  // v11: the release roll fitted when the fall shows one (release_roll=auto, the default) and started from the data;
+  // the model-error widening's default 1.1.
+  std::string settings = fmt::format("rockfit-fit v11; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
                                      "global={}; keep_bias={}; block=({:.17g},{:.17g},{:.17g},{:.17g})",
                                      fitting::ToString(fitting::ParseFitMethod(args.method)),
                                      fitting::ToString(fitting::ParseIntervalMethod(args.intervals)), args.bounds,
