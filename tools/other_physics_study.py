@@ -154,6 +154,10 @@ def metrics_report(rows):
 def report(trials):
     fitted = [t for t in trials if t.get("fit")]
     lines = [f"{len(fitted)} of {len(trials)} trials fitted"]
+    choices = [t["fit"]["release_roll_choice"] for t in fitted if "release_roll_choice" in t["fit"]]
+    if choices:  # rockfit's choice of the release roll (--release-roll-mode)
+        lines.append(f"release roll fitted in {sum(bool(c['fitted']) for c in choices)} of {len(choices)} "
+                     f"(mode {choices[0]['mode']})")
     if not fitted:
         return "\n".join(lines)
     def table(subset, label):

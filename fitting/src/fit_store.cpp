@@ -205,7 +205,7 @@ struct PerTrialColumns {
   std::map<std::string, std::vector<std::string>> determined;
   std::vector<double> epsilon_rad_s, wall_s, mounting_x_deg, mounting_y_deg, mounting_z_deg;
   std::vector<double> noise_floor_rad_s, model_error_rad_s, noise_share;
-  std::vector<std::int64_t> simulations, model_error_dominates;
+  std::vector<std::int64_t> simulations, model_error_dominates, release_roll_fitted;
 };
 
 void AppendParameters(const StoredParameters& stored, PerTrialColumns* c) {
@@ -234,6 +234,7 @@ void AppendTrial(const std::string& id, const io::hdf5::Group& g, PerTrialColumn
   c->model_error_rad_s.push_back(labels.model_error_rad_s);
   c->noise_share.push_back(labels.noise_share);
   c->model_error_dominates.push_back(labels.model_error_dominates);
+  c->release_roll_fitted.push_back(g.GetInt("release_roll_fitted").value_or(-1));
   c->mounting.push_back(labels.mounting);
   const std::vector<double> angles =
       g.Exists("mounting_angles_deg") ? g.ReadDoubles("mounting_angles_deg") : std::vector<double>{};
@@ -271,6 +272,7 @@ void WritePerTrialTable(const io::hdf5::Group& root, PerTrialColumns& c) {
   t.WriteDoubles("model_error_rad_s", c.model_error_rad_s, "rad/s; NaN: not measured");
   t.WriteDoubles("noise_share", c.noise_share, "1; NaN: not measured");
   t.WriteInts("model_error_dominates", c.model_error_dominates, "1; -1: not measured");
+  t.WriteInts("release_roll_fitted", c.release_roll_fitted, "1; -1: not recorded");
   t.WriteStrings("mounting", c.mounting);
   t.WriteDoubles("mounting_angle_x_deg", c.mounting_x_deg, "deg");
   t.WriteDoubles("mounting_angle_y_deg", c.mounting_y_deg, "deg");
