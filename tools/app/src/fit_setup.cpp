@@ -183,12 +183,12 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   }
   settings += fmt::format("; model_error_widening={:.17g}; t0_floor_samples={:.17g}", args.model_error_widening,
                           args.t0_floor_samples);
-  // Only when estimated, so that the settings (and hashes) of fits without it stay those of v8.
-  const fitting::GyroScaleMode gyro_scale = fitting::ParseGyroScaleMode(args.estimate_gyro_scale);
-  if (gyro_scale != fitting::GyroScaleMode::kOff) settings += fmt::format("; gyro_scale={}", fitting::ToString(gyro_scale));
   // The automatic choice of the release roll depends on the recording: a fit made before it (β held at 0) is not
   // one made with it. (on: the parameter list above says release_roll:free; off: as before the choice.)
   if (ReleaseRollModeOf(args) == fitting::ReleaseRollMode::kAuto) settings += "; release_roll=auto";
+  // Only when estimated, so that the settings (and hashes) of fits without it stay those of v8.
+  const fitting::GyroScaleMode gyro_scale = fitting::ParseGyroScaleMode(args.estimate_gyro_scale);
+  if (gyro_scale != fitting::GyroScaleMode::kOff) settings += fmt::format("; gyro_scale={}", fitting::ToString(gyro_scale));
   return settings;
 }
 
