@@ -73,7 +73,8 @@ def run_trial(args, trial, out_dir):
                    check=True, capture_output=True)
     fit = subprocess.run([args.rockfit, "fit", prefix, "--rate", "256", "--b1", repr(B1), "--b2", repr(trial["b2"]),
                           "--h", repr(H), "--density", repr(DENSITY), "--threads", "1", "--json"] + widening_args(args)
-                         + (["--fit-release-roll"] if args.fit_release_roll else []),
+                         + (["--fit-release-roll"] if args.fit_release_roll else [])
+                         + (["--release-roll-mode", args.release_roll_mode] if args.release_roll_mode else []),
                          capture_output=True, text=True)
     trial["exit_code"] = fit.returncode
     trial["fit"] = json.loads(fit.stdout) if fit.stdout.strip() else None
@@ -153,6 +154,10 @@ def metrics_report(rows):
 def report(trials):
     fitted = [t for t in trials if t.get("fit")]
     lines = [f"{len(fitted)} of {len(trials)} trials fitted"]
+    choices = [t["fit"]["release_roll_choice"] for t in fitted if "release_roll_choice" in t["fit"]]
+    if choices:  # rockfit's choice of the release roll (--release-roll-mode)
+        lines.append(f"release roll fitted in {sum(bool(c['fitted']) for c in choices)} of {len(choices)} "
+                     f"(mode {choices[0]['mode']})")
     if not fitted:
         return "\n".join(lines)
     def table(subset, label):
@@ -169,7 +174,7 @@ def report(trials):
             out.append(f"  {name:6} 95 % holds {c95}/{len(subset)} ({100 * c95 / len(subset):.0f} %), 68 % holds "
                        f"{c68}/{len(subset)}; median 95 % width {w95:.3g} {unit}; median |error| {err:.3g} {unit}")
         rolled = [t for t in subset if "release_roll" in t["fit"]["parameters"]]
-        if rolled:  # fitted with --fit-release-roll: the roll MuJoCo was given is its truth
+        if rolled:  # fitted with the release roll: the roll MuJoCo was given is its truth
             p = [t["fit"]["parameters"]["release_roll"] for t in rolled]
             c95 = sum(holds(q["interval_95"], t["roll"]) for q, t in zip(p, rolled))
             err = statistics.median(abs(q["value"] - t["roll"]) for q, t in zip(p, rolled)) * 1e3
@@ -214,6 +219,9 @@ def main():
     parser.add_argument("--fit-release-roll", action="store_true",
                         help="rockfit fit --fit-release-roll: estimate the release roll (and synthesise the fitted "
                              "model's metrics with it)")
+    parser.add_argument("--release-roll-mode", default=None, choices=["off", "auto", "on"],
+                        help="rockfit fit --release-roll-mode MODE (default: not given, rockfit's auto: the roll fitted "
+                             "when the fall shows one); off gives the fits of the program before the choice")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--first", type=int, default=0,
                         help="run only trials FIRST..TRIALS-1 of the seed (the earlier ones are drawn, not run): "
@@ -238,7 +246,8 @@ def main():
                 print(f"[{i + 1}/{args.trials}]", file=sys.stderr)
     trials = [json.loads(line) for line in open(path)]
     text = (f"family {args.family}, seed {args.seed}, widening {args.model_error_widening}, t0 floor "
-            f"{args.t0_floor_samples} (None: rockfit's defaults), release roll fitted: {args.fit_release_roll}\n"
+            f"{args.t0_floor_samples} (None: rockfit's defaults), release roll fitted: "
+            f"{'on' if args.fit_release_roll else args.release_roll_mode or 'auto (rockfit default)'}\n"
             + report(trials))
     if args.metrics:
         metrics_path = os.path.join(args.out, "metrics.jsonl")

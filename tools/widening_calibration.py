@@ -27,12 +27,13 @@ import statistics
 import sys
 
 RATE_HZ = 256.0  # the studies' sample rate
-PARAMETERS = ["t0", "alpha", "lambda", "lambda_lat", "lambda_lon"]
+PARAMETERS = ["t0", "alpha", "lambda", "lambda_lat", "lambda_lon", "release_roll"]
 UNDETERMINED_RANGE_FRACTION = 0.5  # IntervalOptions::undetermined_range_fraction
 
 
 def load(path):
-    """(fit, truth) pairs of one study; truth has t0 and α, and the λ's for coverage_study.py's trials."""
+    """(fit, truth) pairs of one study; truth has t0 and α, the λ's for coverage_study.py's trials and the
+    release roll for other_physics_study.py's trials fitted with the roll."""
     pairs = []
     with open(path) as f:
         for line in f:
@@ -40,6 +41,9 @@ def load(path):
             if not row.get("fit"):
                 continue
             truth = row["trial"] if isinstance(row.get("trial"), dict) and "t0" in row["trial"] else row
+            if "roll" in truth and "release_roll" in row["fit"]["parameters"]:
+                # other_physics_study.py --fit-release-roll: the roll MuJoCo was given is the fitted roll's truth
+                truth = dict(truth, release_roll=truth["roll"])
             pairs.append((row["fit"], truth))
     return pairs
 
@@ -77,8 +81,10 @@ def coverage(pairs, c, q, names):
         held = total = held_yes = yes = 0
         widths = []
         for fit, truth in pairs:
+            if name not in fit["parameters"] or name not in truth:  # the roll: reported only where it was fitted
+                continue
             p = fit["parameters"][name]
-            if p.get("fixed") or p.get("interval_95") is None or name not in truth:
+            if p.get("fixed") or p.get("interval_95") is None:
                 continue
             m = fit.get("model_error", {})
             i = widened(p, m.get("ratio") if m.get("available") else None, c, q, name)
@@ -98,12 +104,12 @@ def label(path):
 
 
 def names_of(pairs):
-    return [n for n in PARAMETERS if pairs and n in pairs[0][1]]
+    return [n for n in PARAMETERS if any(n in truth for _, truth in pairs)]
 
 
 def table(paths, c, q):
     lines = [f"c = {c:g}, t0 floor q = {q:g} samples",
-             "| study | fits | " + " | ".join(PARAMETERS) + " | median 95 % widths t0 / α / λ / λ_lat / λ_lon |",
+             "| study | fits | " + " | ".join(PARAMETERS) + " | median 95 % widths t0 / α / λ / λ_lat / λ_lon / roll |",
              "|---|---|" + "---|" * len(PARAMETERS) + "---|"]
     for path in paths:
         pairs = load(path)
@@ -117,7 +123,7 @@ def table(paths, c, q):
             held, total, held_yes, yes, w = cov[name]
             cells.append(f"{100 * held / total:.0f} % ({100 * held_yes / yes:.0f} % of {yes})" if yes else
                          f"{100 * held / total:.0f} %")
-            widths.append(f"{w * 1e3:.3g} ms" if name == "t0" else f"{w * 1e3:.3g} mrad" if name == "alpha" else f"{w:.2g}")
+            widths.append(f"{w * 1e3:.3g} ms" if name == "t0" else f"{w * 1e3:.3g} mrad" if name in ("alpha", "release_roll") else f"{w:.2g}")
         lines.append(f"| {label(path)} | {len(pairs)} | " + " | ".join(cells) + " | " + " / ".join(widths) + " |")
     return "\n".join(lines)
 
@@ -125,9 +131,9 @@ def table(paths, c, q):
 def compare(paths, c, q):
     """One row per study: coverage over every fit and median width, widening off → (c, q)."""
     lines = [f"widening off → c = {c:g}, q = {q:g}",
-             "| study | fits | " + " | ".join(PARAMETERS) + " | median 95 % widths t0 / α / λ / λ_lat / λ_lon |",
+             "| study | fits | " + " | ".join(PARAMETERS) + " | median 95 % widths t0 / α / λ / λ_lat / λ_lon / roll |",
              "|---|---|" + "---|" * len(PARAMETERS) + "---|"]
-    fmt_w = lambda name, w: (f"{w * 1e3:.3g} ms" if name == "t0" else f"{w * 1e3:.3g} mrad" if name == "alpha"
+    fmt_w = lambda name, w: (f"{w * 1e3:.3g} ms" if name == "t0" else f"{w * 1e3:.3g} mrad" if name in ("alpha", "release_roll")
                              else f"{w:.2g}")
     for path in paths:
         pairs = load(path)

@@ -55,7 +55,8 @@ void FitOne(CampaignRun& run, const CampaignTrial& trial, TrialOutcome& o) {
     return;
   }
   const PreparedTrial prepared = trial.prepare();
-  const FitSummary summary = Fit(prepared.objective, prepared.start, prepared.options);
+  FitSummary summary = Fit(prepared.objective, prepared.start, prepared.options);
+  summary.release_roll_choice = prepared.release_roll_choice;
   o.epsilon_rad_s = summary.epsilon_rad_s;
   o.fit_wall_s = summary.wall_time_s;
   o.model_error = summary.model_error;

@@ -12,9 +12,11 @@ namespace rockfit::fitting {
 
 // Calibrated on the tuning families of the coverage studies, 100 trials each (fitting/README.md, "Intervals under
 // model error"): with q = 0.5 (half a sample period, the resolution of an impact time on the sample grid),
-// c = 0.75 is the smallest c (step 0.05) with which the 95 % intervals of t0, α and the λ's hold the truth in
-// at least 90 % of the `synth`, rolled-MuJoCo and gyro-scale trials (α of gyro-scale binds: 89 % at 0.7).
-const double kDefaultModelErrorWidening = 0.75;
+// c = 1.1 is the smallest c (step 0.05) with which the 95 % intervals of t0, α, the λ's and the release roll
+// hold the truth in at least 90 % of the `synth`, rolled-MuJoCo (fitted without and, as by default, with the
+// release roll) and gyro-scale trials. The rolled MuJoCo releases fitted with their roll bind (the roll: 89 %
+// at 1.05): MuJoCo's soft corner contact biases the roll and α low. Without that family it was 0.75.
+const double kDefaultModelErrorWidening = 1.1;
 const double kDefaultT0FloorSamples = 0.5;
 
 // The model's exact derivatives in the Ceres stage and in the standard errors and intervals: off, because with them

@@ -106,6 +106,21 @@ void WriteGyroScale(const io::hdf5::Group& g, const GyroScaleEstimate& e) {
               {e.determined[0] ? 1 : 0, e.determined[1] ? 1 : 0, e.determined[2] ? 1 : 0}, "1");
 }
 
+// Whether the release roll was fitted and why (release_roll_choice.hpp), only when the problem was prepared from the
+// recording: release_roll_mode (off/auto/on), release_roll_fitted (0/1), the roll seen in the fall, its noise and the
+// start (NaN where not measured or not fitted), release_roll_choice (the sentence).
+void WriteReleaseRollChoice(const io::hdf5::Group& g, const std::optional<ReleaseRollChoice>& choice) {
+  if (!choice) return;
+  const double nan = std::nan("");
+  const ReleaseRollChoice& c = *choice;
+  g.SetString("release_roll_mode", ToString(c.mode));
+  g.SetInt("release_roll_fitted", c.fitted ? 1 : 0);
+  g.SetDouble("release_roll_seen_rad", c.judged ? c.roll_seen_rad : nan);
+  g.SetDouble("release_roll_noise_rad", c.judged ? c.roll_noise_rad : nan);
+  g.SetDouble("release_roll_start_rad", c.fitted ? c.start_rad : nan);
+  g.SetString("release_roll_choice", c.reason);
+}
+
 void WriteFitAttributes(const io::hdf5::Group& g, const std::string& settings, const FitSummary& s) {
   g.SetDouble("epsilon_rad_s", s.epsilon_rad_s);
   g.SetDouble("epsilon_initial_rad_s", s.epsilon_initial_rad_s);
@@ -122,6 +137,7 @@ void WriteFitAttributes(const io::hdf5::Group& g, const std::string& settings, c
   g.SetInt("feasible", s.feasible ? 1 : 0);
   WriteModelErrorAttributes(g, s.model_error);
   WriteGyroScale(g, s.gyro_scale);
+  WriteReleaseRollChoice(g, s.release_roll_choice);
   g.SetString("settings", settings);
   g.SetString("settings_hash", SettingsHash(settings));
   g.SetString("model", s.model_description);
@@ -189,7 +205,7 @@ struct PerTrialColumns {
   std::map<std::string, std::vector<std::string>> determined;
   std::vector<double> epsilon_rad_s, wall_s, mounting_x_deg, mounting_y_deg, mounting_z_deg;
   std::vector<double> noise_floor_rad_s, model_error_rad_s, noise_share;
-  std::vector<std::int64_t> simulations, model_error_dominates;
+  std::vector<std::int64_t> simulations, model_error_dominates, release_roll_fitted;
 };
 
 void AppendParameters(const StoredParameters& stored, PerTrialColumns* c) {
@@ -218,6 +234,7 @@ void AppendTrial(const std::string& id, const io::hdf5::Group& g, PerTrialColumn
   c->model_error_rad_s.push_back(labels.model_error_rad_s);
   c->noise_share.push_back(labels.noise_share);
   c->model_error_dominates.push_back(labels.model_error_dominates);
+  c->release_roll_fitted.push_back(g.GetInt("release_roll_fitted").value_or(-1));
   c->mounting.push_back(labels.mounting);
   const std::vector<double> angles =
       g.Exists("mounting_angles_deg") ? g.ReadDoubles("mounting_angles_deg") : std::vector<double>{};
@@ -255,6 +272,7 @@ void WritePerTrialTable(const io::hdf5::Group& root, PerTrialColumns& c) {
   t.WriteDoubles("model_error_rad_s", c.model_error_rad_s, "rad/s; NaN: not measured");
   t.WriteDoubles("noise_share", c.noise_share, "1; NaN: not measured");
   t.WriteInts("model_error_dominates", c.model_error_dominates, "1; -1: not measured");
+  t.WriteInts("release_roll_fitted", c.release_roll_fitted, "1; -1: not recorded");
   t.WriteStrings("mounting", c.mounting);
   t.WriteDoubles("mounting_angle_x_deg", c.mounting_x_deg, "deg");
   t.WriteDoubles("mounting_angle_y_deg", c.mounting_y_deg, "deg");

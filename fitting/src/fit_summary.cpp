@@ -75,6 +75,7 @@ std::string FitSummary::FullReport() const {
                      epsilon_rad_s, epsilon_initial_rad_s, t_end_s);
   out << "model error " << ModelErrorText(model_error) << "\n";
   if (gyro_scale.mode != GyroScaleMode::kOff) out << "gyro scale  " << GyroScaleText(gyro_scale) << "\n";
+  if (release_roll_choice) out << "release roll " << ReleaseRollChoiceText(*release_roll_choice) << "\n";
   out << fmt::format("effort      {} simulations in {:.3f} s ({:.0f} per second), method {}\n", simulations,
                      wall_time_s, simulations_per_second, ToString(method));
   for (const StageReport& s : stages) {
@@ -128,6 +129,7 @@ std::string FitSummary::ToJson(const std::string& trial) const {
   j["model_error"] = nlohmann::json::parse(ModelErrorJson(model_error));
   // Only when estimated: the documents of fits without it keep their keys.
   if (gyro_scale.mode != GyroScaleMode::kOff) j["gyro_scale"] = nlohmann::json::parse(GyroScaleJson(gyro_scale));
+  if (release_roll_choice) j["release_roll_choice"] = nlohmann::json::parse(ReleaseRollChoiceJson(*release_roll_choice));
   j["epsilon"] = epsilon_rad_s;
   j["epsilon_initial"] = epsilon_initial_rad_s;
   j["feasible"] = feasible;

@@ -52,7 +52,9 @@ double MeanOfOthers(const std::vector<OwnFit>& fits, std::size_t left_out, Param
   return n > 0 ? sum / n : kNaN;
 }
 
-// t0 and α of the left-out trial with the impact parameters held; the better of two Nelder–Mead starts.
+// t0 and α of the left-out trial with the impact parameters held; the better of two Nelder–Mead starts. The
+// release roll is the trial's own, like t0 and α: fitted again where its problem fits it (release_roll_choice.hpp),
+// started from the trial's own fit or the data.
 void FitReleaseOnly(const PreparedTrial& problem, const OwnFit& own, const PredictiveCheckOptions& options,
                     TrialPrediction* p) {
   ParameterSet held = problem.objective.parameters();
@@ -71,8 +73,8 @@ void FitReleaseOnly(const PreparedTrial& problem, const OwnFit& own, const Predi
   bool have = false;
   for (const ParameterSet* start : {&own.values, &problem.start}) {
     ParameterSet s = held;
-    for (ParameterId id : {ParameterId::kT0, ParameterId::kAlpha}) {
-      s[id].value = std::clamp(start->value(id), s[id].lower, s[id].upper);
+    for (ParameterId id : {ParameterId::kT0, ParameterId::kAlpha, ParameterId::kReleaseRoll}) {
+      if (!s[id].fixed) s[id].value = std::clamp(start->value(id), s[id].lower, s[id].upper);
     }
     const LocalResult r = optimizer->Minimize(objective, objective.FreeValues(s));
     if (!have || (r.feasible && (!best.feasible || r.epsilon_rad_s < best.epsilon_rad_s))) {

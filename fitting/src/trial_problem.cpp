@@ -13,6 +13,7 @@ namespace rockfit::fitting {
 void TrialProblemOptions::Validate() const {
   guess.Validate();
   clipping.Validate();
+  release_roll.Validate();
   for (double v : {rest_margin_s, rest_min_duration_s, window_end_margin_s}) {
     if (!(std::isfinite(v) && v >= 0.0)) {
       throw InvalidArgument(fmt::format("trial problem options: durations must be non-negative seconds, got {}", v));
@@ -61,6 +62,18 @@ TrialProblem PrepareTrialProblem(const MeasuredSignal& recorded, const core::Blo
   notes.insert(notes.begin(), guess.notes.begin(), guess.notes.end());
 
   ParameterSet start = guess.parameters;
+  // The release roll: fitted when asked (freed by the caller) or, in auto, when the fall shows one.
+  const Parameter& given_roll = parameters[ParameterId::kReleaseRoll];
+  ReleaseRollChoiceOptions roll_options = options.release_roll;
+  if (!given_roll.fixed) roll_options.mode = ReleaseRollMode::kOn;
+  else if (given_roll.value != 0.0) roll_options.mode = ReleaseRollMode::kOff;
+  const ReleaseRollChoice roll = ChooseReleaseRoll(signal, guess.parameters.value(ParameterId::kT0),
+                                                   guess.t_first_impact_s, roll_options);
+  if (roll.fitted) {
+    Parameter& beta = start[ParameterId::kReleaseRoll];
+    beta.fixed = false;
+    if (given_roll.fixed || given_roll.value == 0.0) beta.value = std::clamp(roll.start_rad, beta.lower, beta.upper);
+  }
   Parameter& t0 = start[ParameterId::kT0];
   if (!std::isfinite(t0.lower)) t0.lower = signal.t_s.front();
   if (!std::isfinite(t0.upper)) t0.upper = guess.t_first_impact_s;
@@ -82,7 +95,7 @@ TrialProblem PrepareTrialProblem(const MeasuredSignal& recorded, const core::Blo
   if (!model) model = std::make_shared<SimulatorModel>(block);
   Objective objective(std::move(signal), t_end, std::move(model), start);
   return TrialProblem{std::move(objective), std::move(start), std::move(guess), bias, subtracted, std::move(clipping),
-                      std::move(notes)};
+                      roll, std::move(notes)};
 }
 
 }  // namespace rockfit::fitting

@@ -193,6 +193,7 @@ FitOutcome RunFit(const std::string& trial, const io::Recording& recording, cons
   o.prepared = std::make_unique<app::PreparedFit>(app::PrepareFit(recording, block, args));
   const fitting::Objective objective = Interruptible(o.prepared->objective, interrupted);
   o.summary = fitting::Fit(objective, o.prepared->start, o.prepared->options);
+  o.summary.release_roll_choice = o.prepared->release_roll_choice;
   // The nodes of (28) and the model at the result, for plots (one more simulation).
   o.prepared->objective.EvaluateDetailed(o.summary.parameters, &o.nodes, &o.output);
   return o;
@@ -396,7 +397,9 @@ constexpr const char* kProblemArgs =
     "estimate_gyro_scale: 'off', 'common' or 'per-axis': a gyro scale factor estimated in the fit (the result's\n"
     "  gyro_scale: mode, value, interval_95), as `rockfit fit --estimate-gyro-scale`.\n"
     "fit_release_roll=True: estimate the release roll release_roll [rad] (the block released on one corner of its\n"
-    "  release edge), as `rockfit fit --fit-release-roll` (the same as free='release_roll').\n";
+    "  release edge), as `rockfit fit --fit-release-roll` (the same as free='release_roll'). Without it the roll is\n"
+    "  fitted when the fall before the first impact shows one (`rockfit fit`'s --release-roll-mode auto; the\n"
+    "  result's release_roll_choice says whether and why); fix={'release_roll': 0} holds it at 0.\n";
 
 }  // namespace
 

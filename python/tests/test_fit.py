@@ -77,6 +77,13 @@ def test_a_fit_without_the_release_roll_does_not_report_it(default_fit):
     assert "release_roll" not in default_fit.parameters and "release_roll" not in default_fit.values
 
 
+def test_the_release_roll_choice_says_why_a_planar_release_keeps_it_off(default_fit):
+    choice = as_plain(default_fit["release_roll_choice"])
+    assert choice["mode"] == "auto" and choice["judged"] and not choice["fitted"]
+    assert choice["roll_seen_rad"] < 8 * choice["roll_noise_rad"]
+    assert choice["start_rad"] is None and "not fitted" in choice["reason"]
+
+
 def test_fit_recovers_the_truth_of_the_synthetic_trial(default_fit):
     truth = json.loads((SAMPLES / "recordings" / f"{SAMPLE_TRIAL}_truth.json").read_text())
     assert truth["command"].find("--alpha 0.197") > 0  # made with the paper's Fig. 14 values, t0 = 2.33 s

@@ -41,7 +41,7 @@ inline fitting::CampaignTrial QuickCampaignTrial(const std::string& id, const st
   t.prepare = [seed, prepared] {
     if (prepared) ++*prepared;
     fitting::TrialProblem problem = QuickProblem(seed);
-    return fitting::PreparedTrial{std::move(problem.objective), std::move(problem.start), QuickFitOptions(), nullptr};
+    return fitting::PreparedTrial{std::move(problem.objective), std::move(problem.start), QuickFitOptions(), nullptr, problem.release_roll};
   };
   return t;
 }

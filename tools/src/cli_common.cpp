@@ -50,7 +50,13 @@ void AddFitOptions(CLI::App& app, FitArgs& args) {
       ->check(CLI::IsMember({"off", "common", "per-axis"}));
   app.add_flag("--fit-release-roll", args.fit_release_roll,
                "Estimate the release roll release_roll [rad] (the block released on one corner of its release edge, "
-               "tilted alpha about the edge and rolled about the edge's inward axis), as --free release_roll");
+               "tilted alpha about the edge and rolled about the edge's inward axis), as --free release_roll or "
+               "--release-roll-mode on");
+  app.add_option("--release-roll-mode", args.release_roll_mode,
+                 "Fit the release roll: off (held at 0), on, or auto (fitted when the gyro sees a roll in the fall "
+                 "before the first impact, 8 times its noise at rest; started from the roll seen)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"off", "auto", "on"}));
 }
 
 void AddMetricsOptions(CLI::App& app, MetricsArgs& args) {

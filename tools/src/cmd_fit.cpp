@@ -27,7 +27,7 @@ struct FitCommand {
   std::string plot;
   bool json = false;
   bool evaluate = false;
-  std::optional<double> t0_s, alpha_rad, lambda, lambda_lat, lambda_lon;
+  std::optional<double> t0_s, alpha_rad, lambda, lambda_lat, lambda_lon, release_roll_rad;
 };
 
 core::Block BlockFor(const FitCommand& cmd, const TrialInput& input) {
@@ -42,10 +42,22 @@ core::Block BlockFor(const FitCommand& cmd, const TrialInput& input) {
 
 int RunEvaluate(const FitCommand& cmd, const TrialInput& input, const PreparedFit& prepared) {
   fitting::ParameterSet values = prepared.start;
-  const std::pair<fitting::ParameterId, std::optional<double>> given[] = {
+  std::vector<std::pair<fitting::ParameterId, std::optional<double>>> given = {
       {fitting::ParameterId::kT0, cmd.t0_s},           {fitting::ParameterId::kAlpha, cmd.alpha_rad},
       {fitting::ParameterId::kLambda, cmd.lambda},      {fitting::ParameterId::kLambdaLat, cmd.lambda_lat},
       {fitting::ParameterId::kLambdaLon, cmd.lambda_lon}};
+  // The release roll: given, or the data estimate where the fit would fit it (release_roll_choice.hpp); a planar
+  // fall evaluates at β = 0 and does not show the row.
+  if (cmd.release_roll_rad) {
+    const fitting::Parameter& beta = values[fitting::ParameterId::kReleaseRoll];
+    if (!(beta.lower <= *cmd.release_roll_rad && *cmd.release_roll_rad <= beta.upper)) {
+      throw InvalidArgument(fmt::format("--release-roll {:g}: the roll must lie within its bounds [{:g}, {:g}] rad",
+                                        *cmd.release_roll_rad, beta.lower, beta.upper));
+    }
+  }
+  if (cmd.release_roll_rad || !values[fitting::ParameterId::kReleaseRoll].fixed) {
+    given.push_back({fitting::ParameterId::kReleaseRoll, cmd.release_roll_rad});
+  }
   nlohmann::json params = nlohmann::json::object();
   for (const auto& [id, v] : given) {
     if (v) values[id].value = *v;
@@ -88,7 +100,8 @@ int RunFit(const FitCommand& cmd) {
   const PreparedFit prepared = PrepareFit(input.recording, block, cmd.fit);
   if (cmd.evaluate) return RunEvaluate(cmd, input, prepared);
 
-  const fitting::FitSummary summary = fitting::Fit(prepared.objective, prepared.start, prepared.options);
+  fitting::FitSummary summary = fitting::Fit(prepared.objective, prepared.start, prepared.options);
+  summary.release_roll_choice = prepared.release_roll_choice;
   const std::string trial = TrialNameFrom(input.trial_id);
   if (!cmd.output.empty()) {
     io::hdf5::Transaction tx(cmd.output, {"/fits/" + trial});
@@ -158,12 +171,15 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   app->add_option("--plot", cmd->plot, "Picture of the fit (.png or .svg): measured dots, simulated lines, impacts");
   app->add_flag("--json", cmd->json, "Print one JSON object");
   app->add_flag("--evaluate", cmd->evaluate,
-                "Print ε (28) at --t0 --alpha --lambda --lambda-lat --lambda-lon (others: data estimate); no fit");
+                "Print ε (28) at --t0 --alpha --lambda --lambda-lat --lambda-lon --release-roll (others: data estimate); no fit");
   app->add_option("--t0", cmd->t0_s, "With --evaluate: release time [s]");
   app->add_option("--alpha", cmd->alpha_rad, "With --evaluate: release tilt [rad]");
   app->add_option("--lambda", cmd->lambda, "With --evaluate: λ of edge impacts (19)");
   app->add_option("--lambda-lat", cmd->lambda_lat, "With --evaluate: λ_lat of facet impacts (21)");
   app->add_option("--lambda-lon", cmd->lambda_lon, "With --evaluate: λ_lon of facet impacts (21)");
+  app->add_option("--release-roll", cmd->release_roll_rad,
+                  "With --evaluate: the release roll β [rad] (default: the data estimate where the fall shows a roll, "
+                  "else 0)");
   app->callback([cmd] { SetExitCode(RunFit(*cmd)); });
 });
 

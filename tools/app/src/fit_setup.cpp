@@ -70,10 +70,25 @@ std::vector<FixEntry> ParseFixEntries(const FitArgs& args) {
   return entries;
 }
 
+fitting::ReleaseRollMode ReleaseRollModeOf(const FitArgs& args) {
+  fitting::ReleaseRollMode mode = fitting::ReleaseRollMode::kAuto;
+  if (!fitting::FromString(args.release_roll_mode, &mode)) {
+    throw InvalidArgument(fmt::format("--release-roll-mode '{}': expected off, auto or on", args.release_roll_mode));
+  }
+  if (args.fit_release_roll) mode = fitting::ReleaseRollMode::kOn;
+  for (const std::string& name : SplitList(args.free)) {
+    if (fitting::ParseParameterName(name) == fitting::ParameterId::kReleaseRoll) mode = fitting::ReleaseRollMode::kOn;
+  }
+  for (const FixEntry& fix : ParseFixEntries(args)) {
+    if (fix.id == fitting::ParameterId::kReleaseRoll && fix.value) mode = fitting::ReleaseRollMode::kOff;
+  }
+  return mode;
+}
+
 fitting::ParameterSet MakeParameterSet(const FitArgs& args) {
   fitting::ParameterSet set = fitting::ParameterSet::Defaults(fitting::ParseBoundsSet(args.bounds));
   for (const std::string& name : SplitList(args.free)) set[fitting::ParseParameterName(name)].fixed = false;
-  if (args.fit_release_roll) set[fitting::ParameterId::kReleaseRoll].fixed = false;
+  if (ReleaseRollModeOf(args) == fitting::ReleaseRollMode::kOn) set[fitting::ParameterId::kReleaseRoll].fixed = false;
   for (const FixEntry& fix : ParseFixEntries(args)) {
     fitting::Parameter& p = set[fix.id];
     if (fix.value) {
@@ -114,6 +129,7 @@ PreparedFit PrepareFit(const io::Recording& recording, const core::Block& block,
   fitting::TrialProblemOptions problem_options;
   problem_options.t_end_s = args.t_end_s;
   problem_options.subtract_rest_bias = !args.keep_bias;
+  problem_options.release_roll.mode = ReleaseRollModeOf(args);
   fitting::TrialProblem problem = fitting::PrepareTrialProblem(signal, block, set, problem_options);
   // --fix NAME without a value: held at the data estimate.
   bool fixed_at_estimate = false;
@@ -131,7 +147,7 @@ PreparedFit PrepareFit(const io::Recording& recording, const core::Block& block,
   problem.objective = problem.objective.WithGyroScale(options.gyro_scale);
   std::string settings = FitSettingsText(block, args);
   return PreparedFit{std::move(problem.objective), std::move(problem.start), options, std::move(problem.guess),
-                     settings, std::move(problem.notes)};
+                     settings, std::move(problem.notes), problem.release_roll};
 }
 
 std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
@@ -147,7 +163,9 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   // v9: clipped gyro samples censored in (28).
   // v10: on clipped recordings, the censored components the model satisfies count in no degree of freedom (the
   // intervals change; recordings without a rail do not); the projected gyro scale minimises (28) itself.
-  std::string settings = fmt::format("rockfit-fit v10; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
+  // v11: the release roll fitted when the fall shows one (release_roll=auto, the default) and started from the data;
+  // the model-error widening's default 1.1.
+  std::string settings = fmt::format("rockfit-fit v11; method={}; intervals={}; bounds={}; t_end={}; max_evaluations={}; "
                                      "global={}; keep_bias={}; block=({:.17g},{:.17g},{:.17g},{:.17g})",
                                      fitting::ToString(fitting::ParseFitMethod(args.method)),
                                      fitting::ToString(fitting::ParseIntervalMethod(args.intervals)), args.bounds,
@@ -165,6 +183,9 @@ std::string FitSettingsText(const core::Block& block, const FitArgs& args) {
   }
   settings += fmt::format("; model_error_widening={:.17g}; t0_floor_samples={:.17g}", args.model_error_widening,
                           args.t0_floor_samples);
+  // The automatic choice of the release roll depends on the recording: a fit made before it (β held at 0) is not
+  // one made with it. (on: the parameter list above says release_roll:free; off: as before the choice.)
+  if (ReleaseRollModeOf(args) == fitting::ReleaseRollMode::kAuto) settings += "; release_roll=auto";
   // Only when estimated, so that the settings (and hashes) of fits without it stay those of v8.
   const fitting::GyroScaleMode gyro_scale = fitting::ParseGyroScaleMode(args.estimate_gyro_scale);
   if (gyro_scale != fitting::GyroScaleMode::kOff) settings += fmt::format("; gyro_scale={}", fitting::ToString(gyro_scale));
@@ -186,7 +207,7 @@ fitting::CampaignTrial MakeCampaignTrial(const io::Manifest& manifest, const io:
     if (on_loaded) on_loaded(*recording);
     PreparedFit prepared = PrepareFit(*recording, block, fit_args);
     return fitting::PreparedTrial{std::move(prepared.objective), std::move(prepared.start), prepared.options,
-                                  std::move(recording)};
+                                  std::move(recording), prepared.release_roll_choice};
   };
   return trial;
 }
@@ -195,7 +216,7 @@ nlohmann::json FitResultJson(const std::string& trial, const fitting::FitSummary
   // The fit's own JSON (FitSummary::ToJson), narrowed to the keys `fit --json` documents (fitting/README.md,
   // "rockfit fit"): one JSON writer for the library, the command line and Python.
   static const char* const kKeys[] = {"trial", "parameters", "correlation", "uncertainty_method", "uncertainty",
-                                      "lateral_motion", "model_error", "gyro_scale", "epsilon", "epsilon_initial", "t_end", "simulations",
+                                      "lateral_motion", "model_error", "gyro_scale", "release_roll_choice", "epsilon", "epsilon_initial", "t_end", "simulations",
                                       "wall_s", "termination", "warnings"};
   static const char* const kParameterKeys[] = {"value",       "lower",       "upper",      "fixed",
                                                "std_error",   "interval_68", "interval_95", "determined"};
@@ -234,6 +255,7 @@ std::string FitResultTable(const std::string& trial, const fitting::FitSummary& 
                      s.epsilon_initial_rad_s, s.t_end_s);
   out += "model error  " + fitting::ModelErrorText(s.model_error) + "\n";
   if (s.gyro_scale.mode != fitting::GyroScaleMode::kOff) out += "gyro scale  " + fitting::GyroScaleText(s.gyro_scale) + "\n";
+  if (s.release_roll_choice) out += "release roll " + fitting::ReleaseRollChoiceText(*s.release_roll_choice) + "\n";
   out += fmt::format("effort       {} simulations in {:.2f} s; {}\n", s.simulations, s.wall_time_s, s.termination);
   out += fmt::format("intervals    {} ({} of the simulations, {:.2f} s)\n", s.uncertainty.description,
                      s.uncertainty.evaluations, s.uncertainty.wall_time_s);

@@ -17,6 +17,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,7 @@
 #include "rockfit/fitting/model_error.hpp"
 #include "rockfit/fitting/objective.hpp"
 #include "rockfit/fitting/parameters.hpp"
+#include "rockfit/fitting/release_roll_choice.hpp"
 #include "rockfit/io/campaign_hdf5.hpp"
 #include "rockfit/io/recording.hpp"
 
@@ -44,6 +46,8 @@ struct PreparedTrial {
   FitOptions options;
   // The recording fitted; its mounting is stored with the fit (io::WriteMountingHdf5). May be null.
   std::shared_ptr<const io::Recording> recording;
+  // Whether the release roll is fitted and why (trial_problem.hpp), stored with the fit. May be empty.
+  std::optional<ReleaseRollChoice> release_roll_choice;
 };
 
 // One trial of a campaign. `settings` and `prepare` run on a worker thread; an exception from either (or from the

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "rockfit/fitting/parameters.hpp"
 #include "rockfit/fitting/lateral_motion_check.hpp"
 #include "rockfit/fitting/model_error.hpp"
+#include "rockfit/fitting/release_roll_choice.hpp"
 #include "rockfit/fitting/uncertainty.hpp"
 
 namespace rockfit::fitting {
@@ -72,6 +74,9 @@ struct FitSummary {
   // The gyro scale projected out of the fit, with its 95 % interval (gyro_scale_estimate.hpp); mode kOff when
   // FitOptions::gyro_scale is off.
   GyroScaleEstimate gyro_scale;
+  // Whether the release roll was fitted and why (release_roll_choice.hpp): set by whoever prepared the problem
+  // from the recording (trial_problem.hpp); empty for a fit of an objective made otherwise.
+  std::optional<ReleaseRollChoice> release_roll_choice;
 
   double epsilon_initial_rad_s = 0.0;  // (28) at `start`
   double epsilon_rad_s = 0.0;          // (28) at `parameters`

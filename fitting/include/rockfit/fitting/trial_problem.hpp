@@ -14,6 +14,7 @@
 #include "rockfit/fitting/gyro_clipping.hpp"
 #include "rockfit/fitting/initial_guess.hpp"
 #include "rockfit/fitting/objective.hpp"
+#include "rockfit/fitting/release_roll_choice.hpp"
 #include "rockfit/fitting/simulator_model.hpp"
 #include "rockfit/fitting/trajectory_model.hpp"
 
@@ -34,6 +35,10 @@ struct TrialProblemOptions {
   // Samples at the gyro's full scale enter (28) as censored (or are left out, `censored` false); the noise floor
   // and the phase-1 estimate pass over them.
   GyroClippingOptions clipping;
+  // Whether the release roll β is fitted (release_roll_choice.hpp): `auto` frees it when the fall shows a roll,
+  // when `parameters` holds it fixed at 0. A β that `parameters` frees is fitted (mode on) and, when its value is 0,
+  // started from the data; a β fixed at another value stays as given (mode off).
+  ReleaseRollChoiceOptions release_roll;
   void Validate() const;          // throws InvalidArgument
 };
 
@@ -44,6 +49,7 @@ struct TrialProblem {
   Eigen::Vector3d rest_bias_rad_s = Eigen::Vector3d::Zero();
   bool bias_subtracted = false;
   GyroClipping clipping;        // the samples at the gyro's full scale, marked excluded in the objective's signal
+  ReleaseRollChoice release_roll;  // whether β is fitted, why, and its start
   std::vector<std::string> notes;  // the guess's notes and the bias
 };
 

@@ -17,6 +17,7 @@
 #include "rockfit/fitting/fit_summary.hpp"
 #include "rockfit/fitting/initial_guess.hpp"
 #include "rockfit/fitting/objective.hpp"
+#include "rockfit/fitting/release_roll_choice.hpp"
 #include "rockfit/fitting/trial_problem.hpp"
 #include "rockfit/io/manifest.hpp"
 #include "rockfit/io/recording.hpp"
@@ -39,13 +40,20 @@ struct FitArgs {
   double model_error_widening = fitting::kDefaultModelErrorWidening;  // fitting::IntervalOptions (0: off)
   double t0_floor_samples = fitting::kDefaultT0FloorSamples;          // fitting::IntervalOptions (0: off)
   std::string estimate_gyro_scale = "off";  // off | common | per-axis (fitting::GyroScaleMode)
-  // Estimate the release roll β (core/rolled_release.hpp) as a parameter: the same as --free release_roll.
+  // Estimate the release roll β (core/rolled_release.hpp) as a parameter: the same as --free release_roll or
+  // --release-roll-mode on.
   bool fit_release_roll = false;
+  // off | auto | on (fitting::ReleaseRollMode): auto fits β when the fall before the first impact shows a roll
+  // (fitting/release_roll_choice.hpp). --fit-release-roll or --free release_roll make it on, --fix release_roll off.
+  std::string release_roll_mode = "auto";
 };
 
+// The release-roll mode that `args` ask for (the rule above); InvalidArgument for an unknown --release-roll-mode.
+fitting::ReleaseRollMode ReleaseRollModeOf(const FitArgs& args);
+
 // --method, --bounds, --free, --fix, --lower, --upper, --t-end, --max-evaluations, --no-global, --keep-bias,
-// --threads, --intervals, --model-error-widening, --t0-floor-samples, --estimate-gyro-scale, --fit-release-roll
-// (declared by tools/src/cli_common.cpp).
+// --threads, --intervals, --model-error-widening, --t0-floor-samples, --estimate-gyro-scale, --fit-release-roll,
+// --release-roll-mode (declared by tools/src/cli_common.cpp).
 
 struct PreparedFit {
   fitting::Objective objective;
@@ -54,6 +62,7 @@ struct PreparedFit {
   fitting::InitialGuess guess;
   std::string settings;  // canonical text of every setting that changes the result (for --resume)
   std::vector<std::string> notes;  // how the start and the window were found, the gyro bias
+  fitting::ReleaseRollChoice release_roll_choice;  // whether the release roll is fitted and why
 };
 
 // One --fix entry: NAME (held at the data estimate) or NAME=VALUE.
