@@ -171,6 +171,7 @@ void FitOptions::Validate() const {
   lateral_motion.Validate();
   model_error.Validate();
   lateral_rescan.Validate();
+  window_extension.Validate();
   RequireAtLeast(num_threads, 0, FitOption("num_threads"));
   if (gyro_scale != GyroScaleMode::kOff && ceres.exact_jacobian) {
     throw InvalidArgument("fit options: a gyro scale estimate needs the differenced Jacobian (ceres.exact_jacobian = "

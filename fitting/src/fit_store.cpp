@@ -110,6 +110,9 @@ void WriteFitAttributes(const io::hdf5::Group& g, const std::string& settings, c
   g.SetDouble("epsilon_rad_s", s.epsilon_rad_s);
   g.SetDouble("epsilon_initial_rad_s", s.epsilon_initial_rad_s);
   g.SetDouble("t_end_s", s.t_end_s);
+  g.SetDouble("window_first_t_end_s", s.window.first_t_end_s);
+  g.SetInt("window_extensions", s.window.extensions);
+  g.SetString("window_end_reason", s.window.reason);
   g.SetInt("simulations", s.simulations);
   g.SetDouble("wall_s", s.wall_time_s);
   g.SetString("termination", s.termination);

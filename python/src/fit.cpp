@@ -61,7 +61,8 @@ fitting::Objective Interruptible(const fitting::Objective& objective, const Flag
   auto owner = std::make_shared<const fitting::Objective>(objective);
   return fitting::Objective(objective.signal(), objective.t_end_s(),
                             std::make_shared<InterruptibleModel>(owner, interrupted), objective.parameters(),
-                            objective.options());
+                            objective.options())
+      .WithLaterWindowEnds(objective.later_window_ends_s());
 }
 
 // Runs `work` on a worker thread while this thread, without the GIL, waits for it and looks for Ctrl-C. On
