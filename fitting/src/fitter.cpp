@@ -20,6 +20,7 @@
 #include "rockfit/fitting/model_error.hpp"
 #include "rockfit/fitting/model_error_widening.hpp"
 #include "rockfit/fitting/uncertainty.hpp"
+#include "rockfit/fitting/window_extension.hpp"
 
 namespace rockfit::fitting {
 namespace {
@@ -476,7 +477,8 @@ FitSummary ExtendWindowWhileLambdaLatUndetermined(const Objective& objective, co
   const std::size_t tries = std::min(later.size(), static_cast<std::size_t>(options.window_extension.max_extensions));
   for (std::size_t n = 0; n < tries; ++n) {
     const Objective longer = objective.WithWindowEnd(later[n]);
-    const Eigen::VectorXd x_from = longer.FreeValues(from).cwiseMax(longer.FreeLower()).cwiseMin(longer.FreeUpper());
+    const ParameterSet start = StartOnLongerWindow(longer, from, options.window_extension);
+    const Eigen::VectorXd x_from = longer.FreeValues(start).cwiseMax(longer.FreeLower()).cwiseMin(longer.FreeUpper());
     FitSummary extended = FitOnWindow(longer, x_from, options, true);
     simulations += extended.simulations;
     wall_time_s += extended.wall_time_s;

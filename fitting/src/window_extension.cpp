@@ -1,5 +1,8 @@
 #include "rockfit/fitting/window_extension.hpp"
 
+#include <algorithm>
+#include <limits>
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -9,6 +12,32 @@ namespace rockfit::fitting {
 
 void WindowExtensionOptions::Validate() const {
   RequireAtLeast(max_extensions, 0, "fit option window_extension.max_extensions");
+  RequireAtLeast(lambda_lon_scan_points, 0, "fit option window_extension.lambda_lon_scan_points");
+}
+
+ParameterSet StartOnLongerWindow(const Objective& longer, const ParameterSet& previous,
+                                 const WindowExtensionOptions& options) {
+  if (options.lambda_lon_scan_points == 0 || !longer.IsFree(ParameterId::kLambdaLon)) return previous;
+  ParameterSet best = previous;
+  const Evaluation at_previous = longer.Evaluate(previous);
+  double best_epsilon = at_previous.feasible ? at_previous.epsilon_rad_s : std::numeric_limits<double>::infinity();
+  ParameterSet trial = previous;
+  if (longer.IsFree(ParameterId::kLambdaLat)) {
+    const Parameter& lat = trial[ParameterId::kLambdaLat];
+    trial[ParameterId::kLambdaLat].value = std::clamp(0.0, lat.lower, lat.upper);
+  }
+  const Parameter& lon = previous[ParameterId::kLambdaLon];
+  const int n = options.lambda_lon_scan_points;
+  for (int i = 0; i < n; ++i) {
+    trial[ParameterId::kLambdaLon].value =
+        n == 1 ? 0.5 * (lon.lower + lon.upper) : lon.lower + (lon.upper - lon.lower) * i / (n - 1);
+    const Evaluation e = longer.Evaluate(trial);
+    if (e.feasible && e.epsilon_rad_s < best_epsilon) {
+      best_epsilon = e.epsilon_rad_s;
+      best = trial;
+    }
+  }
+  return best;
 }
 
 std::string WindowReportJson(const WindowReport& report) {

@@ -13,6 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "rockfit/fitting/objective.hpp"
+#include "rockfit/fitting/parameters.hpp"
+
 namespace rockfit::fitting {
 
 struct WindowExtensionOptions {
@@ -20,6 +23,11 @@ struct WindowExtensionOptions {
   // At most this many later return impacts: each extension is a whole fit (global stage, intervals), and beyond
   // a few rocking cycles the model error of a real block accumulates in the phase of the motion.
   int max_extensions = 3;
+  // λ_lat and λ_lon act at facet impacts only, so the window that left λ_lat undetermined left their values
+  // arbitrary; a longer window's fit also starts from λ_lat = 0 with λ_lon the best of this many values evenly
+  // over its bounds (the other parameters held), when (28) is lower there than at the previous fit's point
+  // (0: not). 61 points step 0.05 over the empirical bounds [−0.5, 2.5].
+  int lambda_lon_scan_points = 61;
   void Validate() const;  // throws InvalidArgument
 };
 
@@ -35,6 +43,12 @@ struct WindowReport {
   // determined by any extension", "no later return impact", "extension off"
   std::string reason;
 };
+
+// The start of the fit on a longer window: `previous` (the last fit's point), or — when λ_lon is free and
+// options.lambda_lon_scan_points > 0 — the same with λ_lat = 0 (clamped to its bounds, if free) and λ_lon scanned
+// over its bounds, whichever has the lower (28) on `longer`'s window. Never throws for numerical trouble.
+ParameterSet StartOnLongerWindow(const Objective& longer, const ParameterSet& previous,
+                                 const WindowExtensionOptions& options);
 
 // {"first_t_end", "t_end", "extensions", "extensions_tried", "tried_t_end", "reason"} for the fit JSON.
 std::string WindowReportJson(const WindowReport& report);
