@@ -442,6 +442,9 @@ FitSummary FitOnWindow(const Objective& objective, const Eigen::VectorXd& x_star
   return summary;
 }
 
+// The release: what the fall before the first impact fixes.
+constexpr ParameterId kReleaseParameters[] = {ParameterId::kT0, ParameterId::kAlpha, ParameterId::kReleaseRoll};
+
 bool LambdaLatDetermined(const FitSummary& summary) {
   const auto& d = summary.uncertainty.determined[static_cast<std::size_t>(ParameterId::kLambdaLat)];
   return summary.feasible && d && *d == Determination::kYes;
@@ -475,8 +478,19 @@ FitSummary ExtendWindowWhileLambdaLatUndetermined(const Objective& objective, co
   double wall_time_s = first.wall_time_s;
   ParameterSet from = first.parameters;
   const std::size_t tries = std::min(later.size(), static_cast<std::size_t>(options.window_extension.max_extensions));
+  // The release (t0, α, the roll) is fixed by the fall, which the first window holds; over a longer window the
+  // model error of a real block (its contact, its corners) would pull them and narrow their intervals around the
+  // pulled values. The longer windows fit the impact parameters with the release held at the first fit's values,
+  // and the kept fit reports the release as the first fit did.
+  ParameterSet held = objective.parameters();
+  for (ParameterId id : kReleaseParameters) {
+    if (!held[id].fixed) {
+      held[id].value = first.parameters.value(id);
+      held[id].fixed = true;
+    }
+  }
   for (std::size_t n = 0; n < tries; ++n) {
-    const Objective longer = objective.WithWindowEnd(later[n]);
+    const Objective longer = objective.WithWindowEnd(later[n]).WithParameters(held);
     const ParameterSet start = StartOnLongerWindow(longer, from, options.window_extension);
     const Eigen::VectorXd x_from = longer.FreeValues(start).cwiseMax(longer.FreeLower()).cwiseMin(longer.FreeUpper());
     FitSummary extended = FitOnWindow(longer, x_from, options, true);
@@ -490,6 +504,18 @@ FitSummary ExtendWindowWhileLambdaLatUndetermined(const Objective& objective, co
     report.extensions_tried = static_cast<int>(n + 1);
     report.tried_t_end_s.push_back(later[n]);
     if (determined) {
+      for (ParameterId id : kReleaseParameters) {
+        if (!objective.IsFree(id)) continue;
+        const std::size_t k = static_cast<std::size_t>(id);
+        extended.parameters[id] = first.parameters[id];
+        extended.std_error[k] = first.std_error[k];
+        extended.identifiable[k] = first.identifiable[k];
+        extended.at_bound[k] = first.at_bound[k];
+        extended.uncertainty.interval_68[k] = first.uncertainty.interval_68[k];
+        extended.uncertainty.interval_95[k] = first.uncertainty.interval_95[k];
+        extended.uncertainty.determined[k] = first.uncertainty.determined[k];
+      }
+      extended.uncertainty.statements = DescribeUncertainty(extended.uncertainty, extended.parameters);
       stages.insert(stages.end(), extended.stages.begin(), extended.stages.end());
       extended.stages = std::move(stages);
       // The kept fit started from the data estimate, through the first window's fit.

@@ -30,11 +30,15 @@ TEST(CliFit, JsonHasTheDocumentedKeysAndEpsilonNotAboveTheStart) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   for (const char* key : {"trial", "parameters", "correlation", "uncertainty_method", "uncertainty", "epsilon",
-                          "epsilon_initial", "t_end", "simulations", "wall_s", "termination", "warnings", "mounting",
-                          "lateral_motion", "model_error"}) {
+                          "epsilon_initial", "t_end", "window", "simulations", "wall_s", "termination", "warnings",
+                          "mounting", "lateral_motion", "model_error"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
-  EXPECT_EQ(j.size(), 15u) << "only the documented keys";
+  EXPECT_EQ(j.size(), 16u) << "only the documented keys";
+  // The window's report: the sample trial's release is on the edge, so λ_lat is determined by the first window.
+  EXPECT_EQ(j["window"]["t_end"], j["t_end"]);
+  EXPECT_EQ(j["window"]["first_t_end"], j["t_end"]);
+  EXPECT_EQ(j["window"]["extensions"], 0);
   // The model-error statement of the sample trial: its rest before the release is 2.3 s long.
   EXPECT_TRUE(j["model_error"]["available"].get<bool>());
   EXPECT_NEAR(j["model_error"]["noise_share"].get<double>() + j["model_error"]["model_error_share"].get<double>(), 1.0,
