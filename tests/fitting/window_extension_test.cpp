@@ -135,6 +135,13 @@ TEST(WindowExtension, AWindowWithoutAFacetImpactIsExtendedUntilLambdaLatIsDeterm
   EXPECT_EQ(*d, Determination::kYes) << s.FullReport();
   EXPECT_NEAR(s.parameters.value(ParameterId::kLambdaLat), lambda_lat, kLambdaLatTolerance) << s.FullReport();
   EXPECT_TRUE(testing::IntervalHolds(s.uncertainty.interval_95[kLambdaLatIndex], lambda_lat)) << s.FullReport();
+  // The release is held at the first window's fit, with its intervals.
+  for (ParameterId id : {ParameterId::kT0, ParameterId::kAlpha, ParameterId::kReleaseRoll}) {
+    const std::size_t k = static_cast<std::size_t>(id);
+    EXPECT_EQ(s.parameters.value(id), first.parameters.value(id)) << Name(id);
+    EXPECT_FALSE(s.parameters[id].fixed) << Name(id);
+    EXPECT_EQ(s.uncertainty.interval_95[k], first.uncertainty.interval_95[k]) << Name(id);
+  }
   EXPECT_NEAR(s.parameters.value(ParameterId::kT0), r.trial.truth.value(ParameterId::kT0), testing::kT0Tolerance_s);
   EXPECT_NEAR(s.parameters.value(ParameterId::kAlpha), r.trial.truth.value(ParameterId::kAlpha),
               testing::kAlphaTolerance_rad);
