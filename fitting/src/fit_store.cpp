@@ -139,9 +139,10 @@ void WriteFitAttributes(const io::hdf5::Group& g, const std::string& settings, c
 void WriteFittedTrajectory(const io::hdf5::Group& g, const Objective& given, const FitSummary& s) {
   ErrorNodes nodes;
   ModelOutput output;
-  // The model as fitted: scaled by the gyro scale when the fit estimated one.
+  // The model as fitted: scaled by the gyro scale when the fit estimated one, on the fit's window (extended or not).
+  const Objective on_window = given.t_end_s() == s.t_end_s ? given : given.WithWindowEnd(s.t_end_s);
   const Objective objective =
-      given.options().gyro_scale == s.gyro_scale.mode ? given : given.WithGyroScale(s.gyro_scale.mode);
+      on_window.options().gyro_scale == s.gyro_scale.mode ? on_window : on_window.WithGyroScale(s.gyro_scale.mode);
   objective.EvaluateDetailed(s.parameters, &nodes, &output);
   g.WriteDoubles("time_s", nodes.t_s, "s");
   g.WriteVectors("w_B_measured", nodes.w_m_B, "rad/s");

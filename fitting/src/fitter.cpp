@@ -460,6 +460,12 @@ FitSummary ExtendWindowWhileLambdaLatUndetermined(const Objective& objective, co
     report.reason = "extension off";
     return first;
   }
+  // A search of its own, judged by the intervals: not with --no-global (a local search from the estimate only was
+  // asked for) nor without intervals (no determination to judge).
+  if (!options.global.enabled || options.intervals.method == IntervalMethod::kNone) {
+    report.reason = "extension off";
+    return first;
+  }
   if (!objective.IsFree(ParameterId::kLambdaLat)) {
     report.reason = "lambda_lat fixed";
     return first;

@@ -195,7 +195,8 @@ FitOutcome RunFit(const std::string& trial, const io::Recording& recording, cons
   const fitting::Objective objective = Interruptible(o.prepared->objective, interrupted);
   o.summary = fitting::Fit(objective, o.prepared->start, o.prepared->options);
   // The nodes of (28) and the model at the result, for plots (one more simulation).
-  o.prepared->objective.EvaluateDetailed(o.summary.parameters, &o.nodes, &o.output);
+  // On the fit's window, which the fit may have extended (fitting/README.md, "End of the fitting window").
+  o.prepared->objective.WithWindowEnd(o.summary.t_end_s).EvaluateDetailed(o.summary.parameters, &o.nodes, &o.output);
   return o;
 }
 
