@@ -411,8 +411,10 @@ void AddPoorFitAndConvergenceWarnings(const Objective& objective, FitSummary* su
 
 // The whole fit on the objective's window: the stages, the rescan, the kept point's assessment and warnings.
 // `extended_window`: the window was extended for λ_lat (the lateral rescan then always runs).
+// `rest_reference`: the same window with the data estimate's t0 as its start value, where the model-error
+// statement's rest ends (a longer window holds t0 at a fitted value that model error can have moved far).
 FitSummary FitOnWindow(const Objective& objective, const Eigen::VectorXd& x_start, const FitOptions& options,
-                       bool extended_window) {
+                       bool extended_window, const Objective& rest_reference) {
   const auto clock_start = std::chrono::steady_clock::now();
   const std::int64_t runs_before = objective.counters().runs();
   const auto failures_before = objective.counters().failures_by_reason();
@@ -428,7 +430,7 @@ FitSummary FitOnWindow(const Objective& objective, const Eigen::VectorXd& x_star
   AssessKeptPoint(objective, options, global_candidates, &summary);
   AddSecondSolutionWarning(objective, &summary);
   ApplyLateralMotionCheck(objective, options, &summary);
-  AddModelErrorStatement(objective, options, &summary);
+  AddModelErrorStatement(rest_reference, options, &summary);
   WidenForModelError(objective, options, &summary);
   AddGyroScaleEstimate(objective, options, &summary);
   AddNotDeterminedWarnings(objective, &summary);
@@ -499,7 +501,7 @@ FitSummary ExtendWindowWhileLambdaLatUndetermined(const Objective& objective, co
     const Objective longer = objective.WithWindowEnd(later[n]).WithParameters(held);
     const ParameterSet start = StartOnLongerWindow(longer, from, options.window_extension);
     const Eigen::VectorXd x_from = longer.FreeValues(start).cwiseMax(longer.FreeLower()).cwiseMin(longer.FreeUpper());
-    FitSummary extended = FitOnWindow(longer, x_from, options, true);
+    FitSummary extended = FitOnWindow(longer, x_from, options, true, objective.WithWindowEnd(later[n]));
     simulations += extended.simulations;
     wall_time_s += extended.wall_time_s;
     const bool determined = LambdaLatDetermined(extended);
@@ -562,7 +564,7 @@ FitSummary Fit(const Objective& given, const ParameterSet& start_in, const FitOp
   }
   const Eigen::VectorXd x_start =
       objective.FreeValues(start_in).cwiseMax(objective.FreeLower()).cwiseMin(objective.FreeUpper());
-  FitSummary summary = ExtendWindowWhileLambdaLatUndetermined(objective, options, FitOnWindow(objective, x_start, options, false));
+  FitSummary summary = ExtendWindowWhileLambdaLatUndetermined(objective, options, FitOnWindow(objective, x_start, options, false, objective));
   summary.simulations_per_second =
       summary.wall_time_s > 0.0 ? static_cast<double>(summary.simulations) / summary.wall_time_s : 0.0;
   return summary;
