@@ -125,6 +125,9 @@ void WriteFitAttributes(const io::hdf5::Group& g, const std::string& settings, c
   g.SetDouble("epsilon_rad_s", s.epsilon_rad_s);
   g.SetDouble("epsilon_initial_rad_s", s.epsilon_initial_rad_s);
   g.SetDouble("t_end_s", s.t_end_s);
+  g.SetDouble("window_first_t_end_s", s.window.first_t_end_s);
+  g.SetInt("window_extensions", s.window.extensions);
+  g.SetString("window_end_reason", s.window.reason);
   g.SetInt("simulations", s.simulations);
   g.SetDouble("wall_s", s.wall_time_s);
   g.SetString("termination", s.termination);
@@ -152,9 +155,10 @@ void WriteFitAttributes(const io::hdf5::Group& g, const std::string& settings, c
 void WriteFittedTrajectory(const io::hdf5::Group& g, const Objective& given, const FitSummary& s) {
   ErrorNodes nodes;
   ModelOutput output;
-  // The model as fitted: scaled by the gyro scale when the fit estimated one.
+  // The model as fitted: scaled by the gyro scale when the fit estimated one, on the fit's window (extended or not).
+  const Objective on_window = given.t_end_s() == s.t_end_s ? given : given.WithWindowEnd(s.t_end_s);
   const Objective objective =
-      given.options().gyro_scale == s.gyro_scale.mode ? given : given.WithGyroScale(s.gyro_scale.mode);
+      on_window.options().gyro_scale == s.gyro_scale.mode ? on_window : on_window.WithGyroScale(s.gyro_scale.mode);
   objective.EvaluateDetailed(s.parameters, &nodes, &output);
   g.WriteDoubles("time_s", nodes.t_s, "s");
   g.WriteVectors("w_B_measured", nodes.w_m_B, "rad/s");

@@ -28,13 +28,14 @@ const char* ToString(WarningKind kind) {
     case WarningKind::kMovedByIntervals: return "moved_by_intervals";
     case WarningKind::kLateralMotionUnexplained: return "lateral_motion_unexplained";
     case WarningKind::kMovedByLateralRescan: return "moved_by_lateral_rescan";
+    case WarningKind::kWindowExtended: return "window_extended";
     case WarningKind::kModelErrorDominates: return "model_error_dominates";
   }
   return "?";
 }
 
 bool FromString(std::string_view text, WarningKind* value) {
-  static constexpr WarningKind kAll[] = {WarningKind::kAtBound, WarningKind::kNotIdentifiable, WarningKind::kSimulationFailures, WarningKind::kNotConverged, WarningKind::kStdErrorUnavailable, WarningKind::kInfeasible, WarningKind::kPoorFit, WarningKind::kSecondBasin, WarningKind::kNotDetermined, WarningKind::kMovedByIntervals, WarningKind::kLateralMotionUnexplained, WarningKind::kMovedByLateralRescan, WarningKind::kModelErrorDominates};
+  static constexpr WarningKind kAll[] = {WarningKind::kAtBound, WarningKind::kNotIdentifiable, WarningKind::kSimulationFailures, WarningKind::kNotConverged, WarningKind::kStdErrorUnavailable, WarningKind::kInfeasible, WarningKind::kPoorFit, WarningKind::kSecondBasin, WarningKind::kNotDetermined, WarningKind::kMovedByIntervals, WarningKind::kLateralMotionUnexplained, WarningKind::kMovedByLateralRescan, WarningKind::kModelErrorDominates, WarningKind::kWindowExtended};
   return core::FromStringAmong(text, kAll, value);
 }
 
@@ -73,6 +74,7 @@ std::string FitSummary::FullReport() const {
   }
   out << fmt::format("ε (28)      {:.6g} rad/s (at the start {:.6g} rad/s), window ends at t_end = {:.4f} s\n",
                      epsilon_rad_s, epsilon_initial_rad_s, t_end_s);
+  out << "window      " << WindowReportText(window) << "\n";
   out << "model error " << ModelErrorText(model_error) << "\n";
   if (gyro_scale.mode != GyroScaleMode::kOff) out << "gyro scale  " << GyroScaleText(gyro_scale) << "\n";
   if (release_roll_choice) out << "release roll " << ReleaseRollChoiceText(*release_roll_choice) << "\n";
@@ -134,6 +136,7 @@ std::string FitSummary::ToJson(const std::string& trial) const {
   j["epsilon_initial"] = epsilon_initial_rad_s;
   j["feasible"] = feasible;
   j["t_end"] = t_end_s;
+  j["window"] = nlohmann::json::parse(WindowReportJson(window));
   j["simulations"] = simulations;
   j["simulations_per_second"] = simulations_per_second;
   j["wall_s"] = wall_time_s;

@@ -20,6 +20,7 @@
 #include "rockfit/fitting/model_error.hpp"
 #include "rockfit/fitting/model_error_widening.hpp"
 #include "rockfit/fitting/uncertainty.hpp"
+#include "rockfit/fitting/window_extension.hpp"
 
 namespace rockfit::fitting {
 namespace {
@@ -166,8 +167,10 @@ std::vector<std::pair<Eigen::VectorXd, double>> RunStages(const Objective& objec
 // λ_lat is rescanned over growing windows (lateral_rescan.hpp) and polished by Nelder–Mead on the full window;
 // the fit moves there when (28) is lower. The point it leaves stays among the candidates (the intervals and the
 // second-solution check see it).
-void RescanUnexplainedLateralMotion(const Objective& objective, const FitOptions& options, FitSummary* summary,
-                                    std::vector<std::pair<Eigen::VectorXd, double>>* candidates) {
+// On an extended window (window_extension.hpp) the rescan runs whatever the check says: the window was extended
+// because λ_lat was not determined, and the facet impacts it now holds make λ_lat's basin a needle again.
+void RescanUnexplainedLateralMotion(const Objective& objective, const FitOptions& options, bool extended_window,
+                                    FitSummary* summary, std::vector<std::pair<Eigen::VectorXd, double>>* candidates) {
   // A search of its own: not with --no-global (a local search from the estimate only was asked for).
   if (!options.lateral_rescan.enabled || !options.global.enabled || !summary->feasible) return;
   const LateralMotionCheck check = CheckLateralMotion(objective, summary->parameters, options.lateral_motion);
@@ -175,7 +178,7 @@ void RescanUnexplainedLateralMotion(const Objective& objective, const FitOptions
   // Weak lateral motion whose out-of-plane signal is too close to the noise for the check to judge.
   const double lambda_lat = summary->parameters.value(ParameterId::kLambdaLat);
   const bool weak_unjudged = std::abs(lambda_lat) < options.lateral_rescan.below_abs_lambda_lat && !check.judged;
-  if (!unexplained && !weak_unjudged) return;
+  if (!unexplained && !weak_unjudged && !extended_window) return;
   const LateralRescanResult rescan =
       RunLateralRescan(objective, summary->parameters, options.lateral_rescan, options.nelder_mead, options.num_threads);
   if (!rescan.ran || !rescan.feasible) return;
@@ -198,8 +201,9 @@ void RescanUnexplainedLateralMotion(const Objective& objective, const FitOptions
       {WarningKind::kMovedByLateralRescan, "",
        fmt::format("{}; a rescan of λ_lat over growing windows found a lower (28): ε {:.6g} → {:.6g} rad/s, λ_lat "
                    "{:.5g} → {:.5g}; the fit moved there",
-                   unexplained ? "the search's result left the recorded out-of-plane motion unexplained"
-                               : fmt::format("the search's result had weak lateral motion (|λ_lat| < {:g}) with an "
+                   unexplained      ? "the search's result left the recorded out-of-plane motion unexplained"
+                   : !weak_unjudged ? "the window was extended for λ_lat"
+                                    : fmt::format("the search's result had weak lateral motion (|λ_lat| < {:g}) with an "
                                              "out-of-plane signal too close to the noise for the lateral-motion check",
                                              options.lateral_rescan.below_abs_lambda_lat),
                    summary->epsilon_rad_s, polish.epsilon_rad_s, summary->parameters.value(ParameterId::kLambdaLat),
@@ -428,6 +432,149 @@ void AddPoorFitAndConvergenceWarnings(const Objective& objective, FitSummary* su
 
 }
 
+// The whole fit on the objective's window: the stages, the rescan, the kept point's assessment and warnings.
+// `extended_window`: the window was extended for λ_lat (the lateral rescan then always runs).
+// `rest_reference`: the same window with the data estimate's t0 as its start value, where the model-error
+// statement's rest ends (a longer window holds t0 at a fitted value that model error can have moved far).
+FitSummary FitOnWindow(const Objective& objective, const Eigen::VectorXd& x_start, const FitOptions& options,
+                       bool extended_window, const Objective& rest_reference) {
+  const auto clock_start = std::chrono::steady_clock::now();
+  const std::int64_t runs_before = objective.counters().runs();
+  const auto failures_before = objective.counters().failures_by_reason();
+
+  FitSummary summary;
+  summary.method = options.method;
+  summary.t_end_s = objective.t_end_s();
+  summary.model_description = objective.model().Describe();
+  summary.start = objective.WithFree(x_start);
+
+  auto global_candidates = RunStages(objective, x_start, options, &summary);
+  RescanUnexplainedLateralMotion(objective, options, extended_window, &summary, &global_candidates);
+  AssessKeptPoint(objective, options, global_candidates, &summary);
+  AddSecondSolutionWarning(objective, &summary);
+  ApplyLateralMotionCheck(objective, options, &summary);
+  AddModelErrorStatement(rest_reference, options, &summary);
+  WidenForModelError(objective, options, &summary);
+  AddGyroScaleEstimate(objective, options, &summary);
+  AddNotDeterminedWarnings(objective, &summary);
+  AddFailureWarning(objective, failures_before, &summary);
+  AddPoorFitAndConvergenceWarnings(objective, &summary);
+
+  summary.simulations = objective.counters().runs() - runs_before;
+  summary.wall_time_s = SecondsSince(clock_start);
+  summary.window.first_t_end_s = summary.t_end_s;
+  summary.window.t_end_s = summary.t_end_s;
+  return summary;
+}
+
+// The release: what the fall before the first impact fixes.
+constexpr ParameterId kReleaseParameters[] = {ParameterId::kT0, ParameterId::kAlpha, ParameterId::kReleaseRoll};
+
+bool LambdaLatDetermined(const FitSummary& summary) {
+  const auto& d = summary.uncertainty.determined[static_cast<std::size_t>(ParameterId::kLambdaLat)];
+  return summary.feasible && d && *d == Determination::kYes;
+}
+
+// A window that leaves λ_lat undetermined holds no facet impact that fixes it (window_extension.hpp): the fit is
+// made again on windows ending before the next return impacts, each from the previous fit's point, and the first
+// that determines λ_lat is kept with its stages after the earlier fits'. When none does, the first window's fit
+// stays. A fit whose λ_lat the first window determines is returned unchanged.
+FitSummary ExtendWindowWhileLambdaLatUndetermined(const Objective& objective, const FitOptions& options, FitSummary first) {
+  WindowReport& report = first.window;
+  if (!options.window_extension.enabled) {
+    report.reason = "extension off";
+    return first;
+  }
+  // A search of its own, judged by the intervals: not with --no-global (a local search from the estimate only was
+  // asked for) nor without intervals (no determination to judge).
+  if (!options.global.enabled || options.intervals.method == IntervalMethod::kNone) {
+    report.reason = "extension off";
+    return first;
+  }
+  if (!objective.IsFree(ParameterId::kLambdaLat)) {
+    report.reason = "lambda_lat fixed";
+    return first;
+  }
+  if (LambdaLatDetermined(first)) {
+    report.reason = "lambda_lat determined";
+    return first;
+  }
+  const std::vector<double>& later = objective.later_window_ends_s();
+  if (later.empty() || options.window_extension.max_extensions == 0) {
+    report.reason = "no later return impact";
+    return first;
+  }
+  std::vector<StageReport> stages = first.stages;
+  std::int64_t simulations = first.simulations;
+  double wall_time_s = first.wall_time_s;
+  ParameterSet from = first.parameters;
+  const std::size_t tries = std::min(later.size(), static_cast<std::size_t>(options.window_extension.max_extensions));
+  // The release (t0, α, the roll) is fixed by the fall, which the first window holds; over a longer window the
+  // model error of a real block (its contact, its corners) would pull them and narrow their intervals around the
+  // pulled values. The longer windows fit the impact parameters with the release held at the first fit's values,
+  // and the kept fit reports the release as the first fit did.
+  ParameterSet held = objective.parameters();
+  for (ParameterId id : kReleaseParameters) {
+    if (!held[id].fixed) {
+      held[id].value = first.parameters.value(id);
+      held[id].fixed = true;
+    }
+  }
+  for (std::size_t n = 0; n < tries; ++n) {
+    const Objective longer = objective.WithWindowEnd(later[n]).WithParameters(held);
+    const ParameterSet start = StartOnLongerWindow(longer, from, options.window_extension);
+    const Eigen::VectorXd x_from = longer.FreeValues(start).cwiseMax(longer.FreeLower()).cwiseMin(longer.FreeUpper());
+    FitSummary extended = FitOnWindow(longer, x_from, options, true, objective.WithWindowEnd(later[n]));
+    simulations += extended.simulations;
+    wall_time_s += extended.wall_time_s;
+    const bool determined = LambdaLatDetermined(extended);
+    stages.push_back({"window-extension", extended.epsilon_rad_s, extended.simulations, extended.wall_time_s,
+                      extended.termination_type,
+                      fmt::format("window extended to {:.4f} s ({} later return impact(s)): λ_lat {}", later[n], n + 1,
+                                  determined ? "determined" : "not determined")});
+    report.extensions_tried = static_cast<int>(n + 1);
+    report.tried_t_end_s.push_back(later[n]);
+    if (determined) {
+      for (ParameterId id : kReleaseParameters) {
+        if (!objective.IsFree(id)) continue;
+        const std::size_t k = static_cast<std::size_t>(id);
+        extended.parameters[id] = first.parameters[id];
+        extended.std_error[k] = first.std_error[k];
+        extended.identifiable[k] = first.identifiable[k];
+        extended.at_bound[k] = first.at_bound[k];
+        extended.uncertainty.interval_68[k] = first.uncertainty.interval_68[k];
+        extended.uncertainty.interval_95[k] = first.uncertainty.interval_95[k];
+        extended.uncertainty.determined[k] = first.uncertainty.determined[k];
+      }
+      extended.uncertainty.statements = DescribeUncertainty(extended.uncertainty, extended.parameters);
+      stages.insert(stages.end(), extended.stages.begin(), extended.stages.end());
+      extended.stages = std::move(stages);
+      // The kept fit started from the data estimate, through the first window's fit.
+      extended.start = first.start;
+      extended.epsilon_initial_rad_s = longer.Evaluate(first.start).epsilon_rad_s;
+      extended.simulations = simulations;
+      extended.wall_time_s = wall_time_s;
+      extended.window = report;
+      extended.window.t_end_s = later[n];
+      extended.window.extensions = static_cast<int>(n + 1);
+      extended.window.reason = "lambda_lat determined by the extension";
+      extended.warnings.push_back(
+          {WarningKind::kWindowExtended, "",
+           fmt::format("the window ending at {:.4f} s left λ_lat undetermined (no facet impact fixes it there); "
+                       "extended to {:.4f} s ({} later return impact(s)), where it is determined",
+                       report.first_t_end_s, later[n], n + 1)});
+      return extended;
+    }
+    if (!extended.feasible) break;
+    from = extended.parameters;
+  }
+  first.stages = std::move(stages);
+  first.simulations = simulations;
+  first.wall_time_s = wall_time_s;
+  report.reason = "lambda_lat not determined by any extension";
+  return first;
+}
+
 }  // namespace
 
 FitSummary Fit(const Objective& given, const ParameterSet& start_in, const FitOptions& given_options) {
@@ -442,32 +589,9 @@ FitSummary Fit(const Objective& given, const ParameterSet& start_in, const FitOp
   if (objective.num_free() == 0) {
     throw InvalidArgument("every parameter is fixed: free at least one (e.g. --free alpha) or use --evaluate");
   }
-  const auto clock_start = std::chrono::steady_clock::now();
-  const std::int64_t runs_before = objective.counters().runs();
-  const auto failures_before = objective.counters().failures_by_reason();
-
-  FitSummary summary;
-  summary.method = options.method;
-  summary.t_end_s = objective.t_end_s();
-  summary.model_description = objective.model().Describe();
   const Eigen::VectorXd x_start =
       objective.FreeValues(start_in).cwiseMax(objective.FreeLower()).cwiseMin(objective.FreeUpper());
-  summary.start = objective.WithFree(x_start);
-
-  auto global_candidates = RunStages(objective, x_start, options, &summary);
-  RescanUnexplainedLateralMotion(objective, options, &summary, &global_candidates);
-  AssessKeptPoint(objective, options, global_candidates, &summary);
-  AddSecondSolutionWarning(objective, &summary);
-  ApplyLateralMotionCheck(objective, options, &summary);
-  AddModelErrorStatement(objective, options, &summary);
-  WidenForModelError(objective, options, &summary);
-  AddGyroScaleEstimate(objective, options, &summary);
-  AddNotDeterminedWarnings(objective, &summary);
-  AddFailureWarning(objective, failures_before, &summary);
-  AddPoorFitAndConvergenceWarnings(objective, &summary);
-
-  summary.simulations = objective.counters().runs() - runs_before;
-  summary.wall_time_s = SecondsSince(clock_start);
+  FitSummary summary = ExtendWindowWhileLambdaLatUndetermined(objective, options, FitOnWindow(objective, x_start, options, false, objective));
   summary.simulations_per_second =
       summary.wall_time_s > 0.0 ? static_cast<double>(summary.simulations) / summary.wall_time_s : 0.0;
   return summary;

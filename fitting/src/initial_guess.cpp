@@ -399,6 +399,7 @@ InitialGuess EstimateInitialGuess(const MeasuredSignal& signal, const core::Bloc
   guess.t_first_impact_s = impacts.front();
   const std::size_t n_end = static_cast<std::size_t>(options.window_end_impact);
   guess.t_end_s = impacts.size() >= n_end ? impacts[n_end - 1] : signal.t_s.back();
+  if (impacts.size() > n_end) guess.later_impacts_s.assign(impacts.begin() + static_cast<std::ptrdiff_t>(n_end), impacts.end());
 
   const std::size_t k_peak = static_cast<std::size_t>(
       std::lower_bound(signal.t_s.begin(), signal.t_s.end(), guess.t_first_impact_s) - signal.t_s.begin());

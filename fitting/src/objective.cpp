@@ -1,5 +1,6 @@
 #include "rockfit/fitting/objective.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -67,6 +68,23 @@ Objective Objective::WithWindowEnd(double t_end_s) const {
   }
   Objective copy = *this;
   copy.t_end_s_ = t_end_s;
+  auto& later = copy.later_window_ends_s_;
+  later.erase(later.begin(), std::upper_bound(later.begin(), later.end(), t_end_s));
+  return copy;
+}
+
+Objective Objective::WithLaterWindowEnds(std::vector<double> later_t_end_s) const {
+  double previous = t_end_s_;
+  for (double t : later_t_end_s) {
+    if (!(std::isfinite(t) && t > previous && t <= signal_->t_s.back())) {
+      throw InvalidArgument(fmt::format("a later window end {} s must lie after the previous end ({} s) and inside "
+                                        "the recording (ends at {} s)",
+                                        t, previous, signal_->t_s.back()));
+    }
+    previous = t;
+  }
+  Objective copy = *this;
+  copy.later_window_ends_s_ = std::move(later_t_end_s);
   return copy;
 }
 

@@ -93,7 +93,16 @@ TrialProblem PrepareTrialProblem(const MeasuredSignal& recorded, const core::Blo
                                       t_end, start.value(ParameterId::kT0), signal.t_s.back()));
   }
   if (!model) model = std::make_shared<SimulatorModel>(block);
-  Objective objective(std::move(signal), t_end, std::move(model), start);
+  // The later window ends, each the margin before a later return impact; a given window is not extended.
+  std::vector<double> later_ends;
+  if (!options.t_end_s) {
+    for (double t_impact : guess.later_impacts_s) {
+      const double t = std::min(t_impact - options.window_end_margin_s, signal.t_s.back());
+      if (t > (later_ends.empty() ? t_end : later_ends.back())) later_ends.push_back(t);
+    }
+  }
+  Objective objective =
+      Objective(std::move(signal), t_end, std::move(model), start).WithLaterWindowEnds(std::move(later_ends));
   return TrialProblem{std::move(objective), std::move(start), std::move(guess), bias, subtracted, std::move(clipping),
                       roll, std::move(notes)};
 }

@@ -61,7 +61,8 @@ fitting::Objective Interruptible(const fitting::Objective& objective, const Flag
   auto owner = std::make_shared<const fitting::Objective>(objective);
   return fitting::Objective(objective.signal(), objective.t_end_s(),
                             std::make_shared<InterruptibleModel>(owner, interrupted), objective.parameters(),
-                            objective.options());
+                            objective.options())
+      .WithLaterWindowEnds(objective.later_window_ends_s());
 }
 
 // Runs `work` on a worker thread while this thread, without the GIL, waits for it and looks for Ctrl-C. On
@@ -195,7 +196,8 @@ FitOutcome RunFit(const std::string& trial, const io::Recording& recording, cons
   o.summary = fitting::Fit(objective, o.prepared->start, o.prepared->options);
   o.summary.release_roll_choice = o.prepared->release_roll_choice;
   // The nodes of (28) and the model at the result, for plots (one more simulation).
-  o.prepared->objective.EvaluateDetailed(o.summary.parameters, &o.nodes, &o.output);
+  // On the fit's window, which the fit may have extended (fitting/README.md, "End of the fitting window").
+  o.prepared->objective.WithWindowEnd(o.summary.t_end_s).EvaluateDetailed(o.summary.parameters, &o.nodes, &o.output);
   return o;
 }
 

@@ -30,16 +30,20 @@ TEST(CliFit, JsonHasTheDocumentedKeysAndEpsilonNotAboveTheStart) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   for (const char* key : {"trial", "parameters", "correlation", "uncertainty_method", "uncertainty", "epsilon",
-                          "epsilon_initial", "t_end", "simulations", "wall_s", "termination", "warnings", "mounting",
-                          "lateral_motion", "model_error", "release_roll_choice"}) {
+                          "epsilon_initial", "t_end", "window", "simulations", "wall_s", "termination", "warnings",
+                          "mounting", "lateral_motion", "model_error", "release_roll_choice"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
-  EXPECT_EQ(j.size(), 16u) << "only the documented keys";
+  EXPECT_EQ(j.size(), 17u) << "only the documented keys";
   // The sample trial was released on its edge: the fall shows no roll, and the roll is not fitted.
   EXPECT_EQ(j["release_roll_choice"]["mode"], "auto");
   EXPECT_TRUE(j["release_roll_choice"]["judged"].get<bool>());
   EXPECT_FALSE(j["release_roll_choice"]["fitted"].get<bool>());
   EXPECT_FALSE(j["parameters"].contains("release_roll"));
+  // The window's report: the release is on the edge, so λ_lat is determined by the first window.
+  EXPECT_EQ(j["window"]["t_end"], j["t_end"]);
+  EXPECT_EQ(j["window"]["first_t_end"], j["t_end"]);
+  EXPECT_EQ(j["window"]["extensions"], 0);
   // The model-error statement of the sample trial: its rest before the release is 2.3 s long.
   EXPECT_TRUE(j["model_error"]["available"].get<bool>());
   EXPECT_NEAR(j["model_error"]["noise_share"].get<double>() + j["model_error"]["model_error_share"].get<double>(), 1.0,

@@ -116,7 +116,7 @@ int RunFit(const FitCommand& cmd) {
     data.epsilon_rad_s = summary.epsilon_rad_s;
     fitting::ErrorNodes nodes;
     fitting::ModelOutput output;
-    prepared.objective.EvaluateDetailed(summary.parameters, &nodes, &output);
+    prepared.objective.WithWindowEnd(summary.t_end_s).EvaluateDetailed(summary.parameters, &nodes, &output);
     data.t_s = nodes.t_s;
     data.w_measured_B = nodes.w_m_B;
     if (output.ok()) data.w_simulated_B = output.w_B;

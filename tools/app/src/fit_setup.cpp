@@ -216,7 +216,7 @@ nlohmann::json FitResultJson(const std::string& trial, const fitting::FitSummary
   // The fit's own JSON (FitSummary::ToJson), narrowed to the keys `fit --json` documents (fitting/README.md,
   // "rockfit fit"): one JSON writer for the library, the command line and Python.
   static const char* const kKeys[] = {"trial", "parameters", "correlation", "uncertainty_method", "uncertainty",
-                                      "lateral_motion", "model_error", "gyro_scale", "release_roll_choice", "epsilon", "epsilon_initial", "t_end", "simulations",
+                                      "lateral_motion", "model_error", "gyro_scale", "release_roll_choice", "epsilon", "epsilon_initial", "t_end", "window", "simulations",
                                       "wall_s", "termination", "warnings"};
   static const char* const kParameterKeys[] = {"value",       "lower",       "upper",      "fixed",
                                                "std_error",   "interval_68", "interval_95", "determined"};
@@ -253,6 +253,7 @@ std::string FitResultTable(const std::string& trial, const fitting::FitSummary& 
   }
   out += fmt::format("ε (28)       {:.6g} rad/s (start {:.6g} rad/s), window ends at {:.4f} s\n", s.epsilon_rad_s,
                      s.epsilon_initial_rad_s, s.t_end_s);
+  out += "window       " + fitting::WindowReportText(s.window) + "\n";
   out += "model error  " + fitting::ModelErrorText(s.model_error) + "\n";
   if (s.gyro_scale.mode != fitting::GyroScaleMode::kOff) out += "gyro scale  " + fitting::GyroScaleText(s.gyro_scale) + "\n";
   if (s.release_roll_choice) out += "release roll " + fitting::ReleaseRollChoiceText(*s.release_roll_choice) + "\n";

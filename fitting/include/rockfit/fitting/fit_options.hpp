@@ -12,6 +12,7 @@
 #include "rockfit/fitting/lateral_rescan.hpp"
 #include "rockfit/fitting/model_error.hpp"
 #include "rockfit/fitting/parameters.hpp"
+#include "rockfit/fitting/window_extension.hpp"
 
 namespace rockfit::fitting {
 
@@ -214,6 +215,9 @@ struct FitOptions {
   LateralRescanOptions lateral_rescan;
   // How much of ε the noise at rest explains, and a warning when model error dominates (model_error.hpp).
   ModelErrorOptions model_error;
+  // When the window leaves λ_lat undetermined: fits on windows ending at the next return impacts
+  // (window_extension.hpp).
+  WindowExtensionOptions window_extension;
   // A gyro scale factor estimated in the fit by variable projection (gyro_scale.hpp, gyro_scale_estimate.hpp):
   // off by default (fitting/README.md, "A gyro scale in the fit", says why). Fit() evaluates the objective with
   // this mode whatever the objective's own.

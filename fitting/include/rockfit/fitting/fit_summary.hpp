@@ -19,6 +19,7 @@
 #include "rockfit/fitting/model_error.hpp"
 #include "rockfit/fitting/release_roll_choice.hpp"
 #include "rockfit/fitting/uncertainty.hpp"
+#include "rockfit/fitting/window_extension.hpp"
 
 namespace rockfit::fitting {
 
@@ -37,6 +38,7 @@ enum class WarningKind {
   kLateralMotionUnexplained,   // "lateral_motion_unexplained"
   kMovedByLateralRescan,       // "moved_by_lateral_rescan"
   kModelErrorDominates,        // "model_error_dominates"
+  kWindowExtended,             // "window_extended"
 };
 const char* ToString(WarningKind kind);
 bool FromString(std::string_view text, WarningKind* value);  // the inverse of ToString
@@ -82,6 +84,8 @@ struct FitSummary {
   double epsilon_rad_s = 0.0;          // (28) at `parameters`
   bool feasible = false;               // the model runs at `parameters`
   double t_end_s = 0.0;                // end of the fitting window (recording time)
+  // Where the first window ended, whether and why it was extended (window_extension.hpp); window.t_end_s = t_end_s.
+  WindowReport window;
 
   std::int64_t simulations = 0;  // model runs of the whole fit
   double simulations_per_second = 0.0;

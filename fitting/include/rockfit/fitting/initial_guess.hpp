@@ -52,6 +52,9 @@ struct InitialGuess {
   ParameterSet parameters;        // the input set with t0, α, λ, λ_lat, λ_lon values replaced (clamped to bounds)
   double t_first_impact_s = 0.0;  // sample time of the first impact peak
   double t_end_s = 0.0;           // end of the fitting window (recording time)
+  // The base impacts after the one that ends the window (the later return impacts), for a longer window
+  // (window_extension.hpp); empty when the window ends at the end of the recording.
+  std::vector<double> later_impacts_s;
   double landing_rate_rad_s = 0.0;  // ω_y just before the first impact (planar fit)
   double jump_ratio = 0.0;        // r = ω_y⁺/ω_y⁻ at the first impact
   std::vector<std::string> notes;  // how each value was found, for summaries

@@ -65,7 +65,12 @@ class Objective {
   // The same problem (signal, window, model, shared counters) with other fixed flags, values or bounds.
   Objective WithParameters(ParameterSet parameters) const;
   // The same problem with the window ending at another t_end (inside the recording, InvalidArgument otherwise).
+  // The later window ends after it are kept.
   Objective WithWindowEnd(double t_end_s) const;
+  // The same problem with later ends that the window may be extended to (window_extension.hpp): increasing,
+  // after t_end and inside the recording (InvalidArgument otherwise). A prepared trial gives the times just
+  // before the return impacts after the one that ends its window; a given t_end gives none.
+  Objective WithLaterWindowEnds(std::vector<double> later_t_end_s) const;
   // The same problem (and shared counters) with another trajectory model, e.g. one at a looser tolerance.
   Objective WithModel(std::shared_ptr<const TrajectoryModel> model) const;
   // The same problem (and shared counters) with the gyro scale projected out as `mode` says (gyro_scale.hpp).
@@ -73,6 +78,7 @@ class Objective {
 
   const MeasuredSignal& signal() const { return *signal_; }
   double t_end_s() const { return t_end_s_; }
+  const std::vector<double>& later_window_ends_s() const { return later_window_ends_s_; }
   const TrajectoryModel& model() const { return *model_; }
   const ParameterSet& parameters() const { return parameters_; }
   const std::vector<ParameterId>& free_ids() const { return free_ids_; }
@@ -103,6 +109,7 @@ class Objective {
  private:
   std::shared_ptr<const MeasuredSignal> signal_;
   double t_end_s_;
+  std::vector<double> later_window_ends_s_;
   std::shared_ptr<const TrajectoryModel> model_;
   ParameterSet parameters_;
   std::vector<ParameterId> free_ids_;

@@ -29,7 +29,8 @@ struct TrialProblemOptions {
   double rest_margin_s = 0.05;
   double rest_min_duration_s = 0.1;
   // A detected window ends this long before the impact that ends it (a simulated impact right at t_end moves in
-  // and out of the window with the parameters and makes ε jump). Not applied to a given t_end.
+  // and out of the window with the parameters and makes ε jump). Not applied to a given t_end. The later window
+  // ends (window_extension.hpp) end this long before the later return impacts.
   double window_end_margin_s = 0.012;
   std::optional<double> t_end_s;  // given end of the window (recording time)
   // Samples at the gyro's full scale enter (28) as censored (or are left out, `censored` false); the noise floor
@@ -53,6 +54,7 @@ struct TrialProblem {
   std::vector<std::string> notes;  // the guess's notes and the bias
 };
 
+// The objective carries the later window ends, just before the later return impacts (none for a given t_end).
 // `model` defaults to the hybrid simulator for `block`. t0 bounds left open in `parameters` are narrowed to
 // [start of the recording, first impact]. Throws BadInput when the recording shows no release, InvalidArgument
 // for a given t_end outside (t0, end of the recording].

@@ -95,7 +95,7 @@ fitting::CampaignTrial MakeCampaignTrial(const io::Manifest& manifest, const io:
 
 // The documented JSON of one fit: trial, parameters (value, lower, upper, fixed, std_error, interval_68,
 // interval_95, determined), correlation, uncertainty_method, uncertainty, lateral_motion, model_error, gyro_scale
-// (only when estimated), epsilon, epsilon_initial, t_end, simulations, wall_s, termination, warnings.
+// (only when estimated), epsilon, epsilon_initial, t_end, window, simulations, wall_s, termination, warnings.
 nlohmann::json FitResultJson(const std::string& trial, const fitting::FitSummary& summary);
 
 // A table for terminals.
