@@ -13,29 +13,6 @@
 namespace rockfit::fitting {
 namespace {
 
-// A `synth` recording (noise, bias, quantisation, ringing after impacts) of a release rolled `roll_rad` off the
-// rocking plane (0: on the edge).
-testing::SynthTrial MakeTrial(double roll_rad, std::uint64_t seed, double alpha_rad = 0.2) {
-  testing::SynthTrial trial;
-  trial.truth[ParameterId::kT0].value = 1.0;
-  trial.truth[ParameterId::kAlpha].value = alpha_rad;
-  trial.truth[ParameterId::kLambda].value = 0.9;
-  trial.truth[ParameterId::kLambdaLat].value = 0.5;
-  trial.truth[ParameterId::kLambdaLon].value = 0.8;
-  trial.truth[ParameterId::kReleaseRoll].value = roll_rad;
-  io::SynthRecordingOptions options;
-  options.t0_s = 1.0;
-  options.duration_s = 2.5;
-  options.measurement.seed = seed;
-  options.files.rotation_matrix_file = false;
-  const io::SynthRecording rec = io::Synthesize(trial.block, trial.truth.ToModel(), options);
-  for (std::size_t n = 0; n < rec.device.size(); ++n) {
-    trial.signal.t_s.push_back(static_cast<double>(n) / rec.device.rate_hz);
-    trial.signal.w_B.push_back(rec.device.gyro_dps[n].cast<double>() * (M_PI / 180.0));
-  }
-  return trial;
-}
-
 TrialProblem Prepare(const testing::SynthTrial& trial, ReleaseRollMode mode) {
   TrialProblemOptions options;
   options.release_roll.mode = mode;
@@ -48,7 +25,7 @@ constexpr double kStartRelativeTolerance = 0.35;
 
 TEST(ReleaseRollChoice, APlanarReleaseKeepsTheRollOffAndItsProblemUnchanged) {
   for (std::uint64_t seed : {1, 2, 3, 4, 5, 6}) {
-    const testing::SynthTrial trial = MakeTrial(0.0, seed);
+    const testing::SynthTrial trial = testing::MakeRolledSynthTrial(0.2, 0.0, seed);
     const TrialProblem automatic = Prepare(trial, ReleaseRollMode::kAuto);
     const TrialProblem off = Prepare(trial, ReleaseRollMode::kOff);
     const ReleaseRollChoice& c = automatic.release_roll;
@@ -69,7 +46,7 @@ TEST(ReleaseRollChoice, APlanarReleaseKeepsTheRollOffAndItsProblemUnchanged) {
 
 TEST(ReleaseRollChoice, ARolledReleaseTurnsTheRollOnWithAStartNearIt) {
   for (double roll : {0.004, -0.008, 0.002}) {
-    const testing::SynthTrial trial = MakeTrial(roll, 7);
+    const testing::SynthTrial trial = testing::MakeRolledSynthTrial(0.2, roll, 7);
     const TrialProblem p = Prepare(trial, ReleaseRollMode::kAuto);
     const ReleaseRollChoice& c = p.release_roll;
     ASSERT_TRUE(c.judged) << "roll " << roll;
@@ -88,7 +65,7 @@ TEST(ReleaseRollChoice, ALeakOfTheRockingRateIntoTheLateralAxisDoesNotTurnItOn) 
   // apparent roll, far above the noise; the choice takes the leak out before it sums.
   const double lean_rad = 1.0 * M_PI / 180.0;
   for (std::uint64_t seed : {1, 2, 3}) {
-    testing::SynthTrial trial = MakeTrial(0.0, seed);
+    testing::SynthTrial trial = testing::MakeRolledSynthTrial(0.2, 0.0, seed);
     for (Eigen::Vector3d& w : trial.signal.w_B) w.x() += std::sin(lean_rad) * w.y();
     const ReleaseRollChoice c = Prepare(trial, ReleaseRollMode::kAuto).release_roll;
     ASSERT_TRUE(c.judged);
@@ -98,13 +75,13 @@ TEST(ReleaseRollChoice, ALeakOfTheRockingRateIntoTheLateralAxisDoesNotTurnItOn) 
 }
 
 TEST(ReleaseRollChoice, OffNeverFitsItAndOnAlwaysDoesFromTheData) {
-  const testing::SynthTrial rolled = MakeTrial(0.004, 7);
+  const testing::SynthTrial rolled = testing::MakeRolledSynthTrial(0.2, 0.004, 7);
   const TrialProblem off = Prepare(rolled, ReleaseRollMode::kOff);
   EXPECT_FALSE(off.release_roll.fitted);
   EXPECT_TRUE(off.start[ParameterId::kReleaseRoll].fixed);
   EXPECT_EQ(off.start.value(ParameterId::kReleaseRoll), 0.0);
 
-  const testing::SynthTrial planar = MakeTrial(0.0, 1);
+  const testing::SynthTrial planar = testing::MakeRolledSynthTrial(0.2, 0.0, 1);
   const TrialProblem on = Prepare(planar, ReleaseRollMode::kOn);
   EXPECT_TRUE(on.release_roll.fitted);
   EXPECT_FALSE(on.start[ParameterId::kReleaseRoll].fixed);
@@ -125,7 +102,7 @@ TEST(ReleaseRollChoice, OffNeverFitsItAndOnAlwaysDoesFromTheData) {
 }
 
 TEST(ReleaseRollChoice, WithoutARestBeforeTheReleaseAutoLeavesItOff) {
-  const testing::SynthTrial trial = MakeTrial(0.004, 7);
+  const testing::SynthTrial trial = testing::MakeRolledSynthTrial(0.2, 0.004, 7);
   const double t_release_s = 1.0, t_first_impact_s = 1.3;
   // The recording starts 0.02 s before the release: no rest segment to measure the noise on.
   MeasuredSignal late;

@@ -32,33 +32,10 @@ TEST(ReleaseRoll, IsFixedAtZeroAndNotReportedUnlessFreed) {
   EXPECT_NO_THROW(set.Validate());
 }
 
-// A `synth` recording (noise, bias, quantisation, ringing) of a release rolled `roll_rad` off the rocking plane.
-testing::SynthTrial MakeRolledTrial(double alpha_rad, double roll_rad, std::uint64_t seed) {
-  testing::SynthTrial trial;
-  trial.truth[ParameterId::kT0].value = 1.0;
-  trial.truth[ParameterId::kAlpha].value = alpha_rad;
-  trial.truth[ParameterId::kLambda].value = 0.9;
-  trial.truth[ParameterId::kLambdaLat].value = 0.5;
-  trial.truth[ParameterId::kLambdaLon].value = 0.8;
-  trial.truth[ParameterId::kReleaseRoll].value = roll_rad;
-  io::SynthRecordingOptions options;
-  options.t0_s = 1.0;
-  options.duration_s = 2.5;
-  options.measurement.seed = seed;
-  options.files.rotation_matrix_file = false;
-  const io::SynthRecording rec = io::Synthesize(trial.block, trial.truth.ToModel(), options);
-  for (std::size_t n = 0; n < rec.device.size(); ++n) {
-    trial.signal.t_s.push_back(static_cast<double>(n) / rec.device.rate_hz);
-    trial.signal.w_B.push_back(rec.device.gyro_dps[n].cast<double>() * (M_PI / 180.0));
-  }
-  trial.phase4_end_s = rec.phase4_end_s;
-  return trial;
-}
-
 TEST(ReleaseRoll, ARollIsRecoveredFromANoisySynthRecordingWithTheTruthInItsInterval) {
   ROCKFIT_REQUIRE_OPTIMISED_BUILD();
   for (double roll : {0.004, -0.008}) {
-    const testing::SynthTrial trial = MakeRolledTrial(0.2, roll, 7);
+    const testing::SynthTrial trial = testing::MakeRolledSynthTrial(0.2, roll, 7);
     ParameterSet free = ParameterSet::Defaults();
     free[ParameterId::kReleaseRoll].fixed = false;
     const TrialProblem p = PrepareTrialProblem(trial.signal, trial.block, free);

@@ -48,4 +48,29 @@ inline SynthTrial MakeSynthTrial(double alpha, double lambda, double lambda_lat,
   return trial;
 }
 
+// A `synth` recording (noise, bias, quantisation, ringing) of a release rolled `roll_rad` off the rocking plane
+// (0: on the edge), R_WB = Ry(−α)·Rx(β) at rest on one corner of the release edge.
+inline SynthTrial MakeRolledSynthTrial(double alpha_rad, double roll_rad, std::uint64_t seed) {
+  SynthTrial trial;
+  using fitting::ParameterId;
+  trial.truth[ParameterId::kT0].value = 1.0;
+  trial.truth[ParameterId::kAlpha].value = alpha_rad;
+  trial.truth[ParameterId::kLambda].value = 0.9;
+  trial.truth[ParameterId::kLambdaLat].value = 0.5;
+  trial.truth[ParameterId::kLambdaLon].value = 0.8;
+  trial.truth[ParameterId::kReleaseRoll].value = roll_rad;
+  io::SynthRecordingOptions options;
+  options.t0_s = 1.0;
+  options.duration_s = 2.5;
+  options.measurement.seed = seed;
+  options.files.rotation_matrix_file = false;
+  const io::SynthRecording rec = io::Synthesize(trial.block, trial.truth.ToModel(), options);
+  for (std::size_t n = 0; n < rec.device.size(); ++n) {
+    trial.signal.t_s.push_back(static_cast<double>(n) / rec.device.rate_hz);
+    trial.signal.w_B.push_back(rec.device.gyro_dps[n].cast<double>() * (M_PI / 180.0));
+  }
+  trial.phase4_end_s = rec.phase4_end_s;
+  return trial;
+}
+
 }  // namespace rockfit::testing
