@@ -60,19 +60,30 @@ TEST_P(FitMethods, ReachTheErrorOfTheTrueParametersFromARoughStart) {
   }
 }
 
-TEST_P(FitMethods, WithoutTheGlobalStageStillImproveFromANearbyStart) {
+// A start a few resolutions off the truth of an analytic trial, fitted without the global stage; beside it ε at
+// the truth.
+struct NearbyStartFit {
+  FitSummary summary;
+  double truth_epsilon_rad_s = 0.0;
+};
+
+NearbyStartFit FitFromNearbyStart(FitOptions options) {
   const auto trial = MakeAnalyticTrial(0.19, 1.2, 1.5, 0.9, RealisticDisturbances(3));
   const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
   ParameterSet start = trial.truth;
   start[ParameterId::kT0].value += 0.001;
   start[ParameterId::kAlpha].value -= 0.001;
   start[ParameterId::kLambdaLon].value += 0.02;
+  options.global.enabled = false;
+  return {Fit(objective, start, options), objective.Evaluate(trial.truth).epsilon_rad_s};
+}
+
+TEST_P(FitMethods, WithoutTheGlobalStageStillImproveFromANearbyStart) {
   FitOptions options;
   options.method = GetParam();
-  options.global.enabled = false;
-  const FitSummary s = Fit(objective, start, options);
-  EXPECT_LE(s.epsilon_rad_s, kEpsilonRatio * objective.Evaluate(trial.truth).epsilon_rad_s) << s.FullReport();
-  ASSERT_EQ(s.stages.size(), GetParam() == FitMethod::kAuto ? 3u : 2u);
+  const NearbyStartFit f = FitFromNearbyStart(options);
+  EXPECT_LE(f.summary.epsilon_rad_s, kEpsilonRatio * f.truth_epsilon_rad_s) << f.summary.FullReport();
+  ASSERT_EQ(f.summary.stages.size(), GetParam() == FitMethod::kAuto ? 3u : 2u);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllMethods, FitMethods,
@@ -87,38 +98,25 @@ std::vector<std::string> StageNames(const FitSummary& s) {
   return names;
 }
 
-// A start a few resolutions off the truth of an analytic trial, fitted without the global stage.
-FitSummary FitFromNearbyStart(const FitOptions& options) {
-  const auto trial = MakeAnalyticTrial(0.19, 1.2, 1.5, 0.9, RealisticDisturbances(3));
-  const Objective objective = trial.MakeObjective(trial.Bounded(BoundsSet::kEmpirical));
-  ParameterSet start = trial.truth;
-  start[ParameterId::kT0].value += 0.001;
-  start[ParameterId::kAlpha].value -= 0.001;
-  start[ParameterId::kLambdaLon].value += 0.02;
-  return Fit(objective, start, options);
-}
-
 TEST(Fit, AutoFallsBackToNelderMeadWhereTheModelGivesNoExactDerivatives) {
   // The analytic test model gives no derivatives: the Ceres stage differences them, so Nelder–Mead follows it.
   FitOptions options;
-  options.global.enabled = false;
   options.intervals.method = IntervalMethod::kNone;
   options.ceres.exact_jacobian = true;
   options.auto_exact_ceres_first = true;
-  const FitSummary s = FitFromNearbyStart(options);
+  const FitSummary s = FitFromNearbyStart(options).summary;
   EXPECT_EQ(StageNames(s), (std::vector<std::string>{"start", "ceres", "nelder-mead"})) << s.FullReport();
 }
 
 TEST(Fit, AutoUnderAGyroScaleEstimateRunsNelderMeadThenTheDifferencedCeres) {
   // The model's derivatives leave out the projected scale: no exact Jacobian, and `auto` as without one.
   FitOptions options;
-  options.global.enabled = false;
   options.intervals.method = IntervalMethod::kNone;
   options.gyro_scale = GyroScaleMode::kCommon;
   options.ceres.exact_jacobian = true;
   options.auto_exact_ceres_first = true;
   EXPECT_NO_THROW(options.Validate());
-  const FitSummary s = FitFromNearbyStart(options);
+  const FitSummary s = FitFromNearbyStart(options).summary;
   EXPECT_EQ(StageNames(s), (std::vector<std::string>{"start", "nelder-mead", "ceres"})) << s.FullReport();
 }
 
