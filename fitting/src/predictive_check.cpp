@@ -76,10 +76,10 @@ LocalResult BestOfStarts(const Objective& objective, const std::vector<Parameter
 
 // The left-out trial's release — t0, α and the release roll β where its problem fits it (release_roll_choice.hpp:
 // a roll belongs to one release, like t0 and α, and is never pooled) — with the impact parameters held; the better
-// of two Nelder–Mead starts (the own fit's values, the data estimate) on the problem's window. ε_own is over the
-// own fit's window, which the fit may have extended past the problem's (window_extension.hpp: the release fitted
-// on the first window, held on the longer ones); there the release found on the first window is refined on the
-// own fit's window, so that both ε are over the same nodes.
+// of two Nelder–Mead starts (the own fit's values, the data estimate) on the problem's window. Where the own fit
+// extended its window (window_extension.hpp) its ε is taken again over the problem's window, at the own fit's
+// values, so that ε_pred and ε_own are over the same nodes: over several return impacts the motion is so sensitive
+// to the λ's that even λ's pooled to 0.1 % of the truth would not transfer there.
 void FitReleaseOnly(const PreparedTrial& problem, const OwnFit& own, const PredictiveCheckOptions& options,
                     TrialPrediction* p) {
   ParameterSet held = problem.objective.parameters();
@@ -90,17 +90,19 @@ void FitReleaseOnly(const PreparedTrial& problem, const OwnFit& own, const Predi
   }
   held[ParameterId::kT0].fixed = held[ParameterId::kAlpha].fixed = false;
   p->release_roll_fitted = !held[ParameterId::kReleaseRoll].fixed;
-  const Objective first = problem.objective.WithParameters(held);
-  const std::int64_t runs_before = first.counters().runs();
-  LocalResult best = BestOfStarts(first, {own.values, problem.start}, options);
-  Objective objective = first;
-  if (std::isfinite(own.t_end_s) && own.t_end_s != first.t_end_s()) {
-    objective = first.WithWindowEnd(own.t_end_s);
-    std::vector<ParameterSet> starts = {own.values};
-    if (best.feasible) starts.insert(starts.begin(), first.WithFree(best.x));
-    best = BestOfStarts(objective, starts, options);
-  }
+  const Objective objective = problem.objective.WithParameters(held);
+  const std::int64_t runs_before = objective.counters().runs();
+  const LocalResult best = BestOfStarts(objective, {own.values, problem.start}, options);
   p->t_end_s = objective.t_end_s();
+  if (std::isfinite(own.t_end_s) && own.t_end_s != objective.t_end_s()) {
+    const Evaluation own_here = objective.Evaluate(own.values);
+    if (!own_here.feasible) {
+      p->simulations = objective.counters().runs() - runs_before;
+      p->message = "the own fit fails on the problem's window";
+      return;
+    }
+    p->epsilon_own_rad_s = own_here.epsilon_rad_s;
+  }
   p->simulations = objective.counters().runs() - runs_before;
   if (!best.feasible) {
     p->message = "the model fails everywhere with the pooled impact parameters";
@@ -111,7 +113,7 @@ void FitReleaseOnly(const PreparedTrial& problem, const OwnFit& own, const Predi
   p->alpha_rad = at.value(ParameterId::kAlpha);
   p->release_roll_rad = at.value(ParameterId::kReleaseRoll);
   p->epsilon_pred_rad_s = best.epsilon_rad_s;
-  p->ratio = best.epsilon_rad_s / own.epsilon_rad_s;
+  p->ratio = best.epsilon_rad_s / p->epsilon_own_rad_s;
   p->transfers = p->ratio <= options.ratio_warning;
   p->predicted = true;
 }

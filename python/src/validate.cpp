@@ -39,7 +39,7 @@ void RegisterValidate(py::module_& m) {
         py::arg("release_roll_mode") = "auto",
         "The predictive check of a campaign, as `rockfit validate MANIFEST --json`: every trial of a block and\n"
         "position left out in turn, fitted only in its release (t0, α and, where its fit takes it, the release roll)\n"
-        "with the others' pooled λ, λ_lat, λ_lon, its error (28) over its own fit's window compared with its own fit's.\n\n"
+        "with the others' pooled λ, λ_lat, λ_lon, its error (28) compared with its own fit's over the same window.\n\n"
         "fits: a file of `rockfit batch` holding every trial's own fit (default: fit them now, with method and\n"
         "intervals as `rockfit batch`); release_roll_mode: 'auto' (the release roll is fitted where the fall shows\n"
         "one), 'on' or 'off', as `--release-roll-mode`, for the own fits and the predictions; jobs: trials at once\n"

@@ -113,19 +113,23 @@ TEST(PredictiveCheck, AnInfeasibleOwnFitIsNotPredictedAndNotPooled) {
   EXPECT_EQ(s.trials[0].n_others, 1);
 }
 
-TEST(PredictiveCheck, ThePredictionIsOverTheOwnFitsWindowWhereTheFitEndedItElsewhere) {
+TEST(PredictiveCheck, WhereTheOwnFitEndedItsWindowElsewhereBothEpsilonsAreTakenOverTheProblemsWindow) {
   Campaign c = MakeCampaign({0.6, 0.6, 0.6});
   auto problem_end_s = [&c](std::size_t i) {
     return c.trials[i].MakeObjective(c.trials[i].Bounded(BoundsSet::kEmpirical)).t_end_s();
   };
-  c.fits[0].t_end_s = problem_end_s(0) - 0.1;  // as if the own fit's window had ended earlier
+  const double own_epsilon_here_rad_s = c.fits[0].epsilon_rad_s;  // at the truth over the problem's window
+  c.fits[0].t_end_s = problem_end_s(0) + 0.3;  // as if the own fit had extended its window
+  c.fits[0].epsilon_rad_s = 5.0 * own_epsilon_here_rad_s;  // and its ε over that window were larger
   const ValidationSummary s = Check(c);
   ASSERT_TRUE(s.trials[0].predicted) << s.trials[0].message;
-  EXPECT_DOUBLE_EQ(s.trials[0].t_end_s, problem_end_s(0) - 0.1);
+  EXPECT_DOUBLE_EQ(s.trials[0].t_end_s, problem_end_s(0));
+  EXPECT_NEAR(s.trials[0].epsilon_own_rad_s, own_epsilon_here_rad_s, 1e-12 * own_epsilon_here_rad_s);
+  EXPECT_LE(s.trials[0].ratio, 1.5);  // the λ's are shared: judged over the same nodes, they transfer
   EXPECT_DOUBLE_EQ(s.trials[1].t_end_s, problem_end_s(1));  // NaN own window: the problem's
   EXPECT_FALSE(s.trials[0].release_roll_fitted);          // the analytic model's β is held
   const nlohmann::json j = nlohmann::json::parse(ValidationJson(s));
-  EXPECT_DOUBLE_EQ(j["trials"][0]["t_end"].get<double>(), problem_end_s(0) - 0.1);
+  EXPECT_DOUBLE_EQ(j["trials"][0]["t_end"].get<double>(), problem_end_s(0));
   EXPECT_FALSE(j["trials"][0]["release_roll_fitted"].get<bool>());
 }
 

@@ -72,6 +72,8 @@ struct TrialPrediction {
   double release_roll_rad = 0.0;
   bool release_roll_fitted = false;
   double t_end_s = 0.0;                    // end of the window of ε_pred and ε_own (recording time)
+  // ε_own: the own fit's ε, taken again over the problem's window at the own fit's values where the own fit
+  // ended its window elsewhere (an extended window); ε_pred over the same window.
   double epsilon_own_rad_s = 0.0, epsilon_pred_rad_s = 0.0;
   double ratio = 0.0;                      // ε_pred / ε_own
   bool transfers = false;                  // ratio ≤ ratio_warning
@@ -99,8 +101,8 @@ std::vector<OwnFit> FitOwnTrials(const std::vector<CampaignTrial>& trials, int n
 
 // Runs the check over `fits`; `problem(i)` builds trial i's problem as its own fit had it (objective: signal,
 // window, model, bounds and which of t0, α, β are free; start: the data estimate), called on a worker thread only
-// for trials that are predicted. The prediction's window ends where the own fit's did (fits[i].t_end_s, a window
-// the fit extended included). An exception from `problem` fails that trial only (message).
+// for trials that are predicted. Both ε are over the problem's window: where the own fit ended its window elsewhere
+// (fits[i].t_end_s, a window the fit extended) its ε is taken again there. An exception from `problem` fails that trial only (message).
 ValidationSummary RunPredictiveCheck(const std::vector<OwnFit>& fits,
                                      const std::function<PreparedTrial(std::size_t)>& problem,
                                      const PredictiveCheckOptions& options = {});
