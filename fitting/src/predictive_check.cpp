@@ -52,9 +52,34 @@ double MeanOfOthers(const std::vector<OwnFit>& fits, std::size_t left_out, Param
   return n > 0 ? sum / n : kNaN;
 }
 
-// t0 and α of the left-out trial with the impact parameters held; the better of two Nelder–Mead starts. The
-// release roll is the trial's own, like t0 and α: fitted again where its problem fits it (release_roll_choice.hpp),
-// started from the trial's own fit or the data.
+// The best of Nelder–Mead runs of `objective` from the release (t0, α, β) of each start; held parameters stay.
+LocalResult BestOfStarts(const Objective& objective, const std::vector<ParameterSet>& starts,
+                         const PredictiveCheckOptions& options) {
+  NelderMeadOptions nm;
+  nm.max_evaluations = options.max_evaluations;
+  const auto optimizer = MakeNelderMead(nm);
+  LocalResult best;
+  bool have = false;
+  for (const ParameterSet& start : starts) {
+    ParameterSet s = objective.parameters();
+    for (ParameterId id : {ParameterId::kT0, ParameterId::kAlpha, ParameterId::kReleaseRoll}) {
+      if (!s[id].fixed) s[id].value = std::clamp(start.value(id), s[id].lower, s[id].upper);
+    }
+    const LocalResult r = optimizer->Minimize(objective, objective.FreeValues(s));
+    if (!have || (r.feasible && (!best.feasible || r.epsilon_rad_s < best.epsilon_rad_s))) {
+      best = r;
+      have = true;
+    }
+  }
+  return best;
+}
+
+// The left-out trial's release — t0, α and the release roll β where its problem fits it (release_roll_choice.hpp:
+// a roll belongs to one release, like t0 and α, and is never pooled) — with the impact parameters held; the better
+// of two Nelder–Mead starts (the own fit's values, the data estimate) on the problem's window. Where the own fit
+// extended its window (window_extension.hpp) its ε is taken again over the problem's window, at the own fit's
+// values, so that ε_pred and ε_own are over the same nodes: over several return impacts the motion is so sensitive
+// to the λ's that even λ's pooled to 0.1 % of the truth would not transfer there.
 void FitReleaseOnly(const PreparedTrial& problem, const OwnFit& own, const PredictiveCheckOptions& options,
                     TrialPrediction* p) {
   ParameterSet held = problem.objective.parameters();
@@ -64,23 +89,19 @@ void FitReleaseOnly(const PreparedTrial& problem, const OwnFit& own, const Predi
     q.fixed = true;
   }
   held[ParameterId::kT0].fixed = held[ParameterId::kAlpha].fixed = false;
+  p->release_roll_fitted = !held[ParameterId::kReleaseRoll].fixed;
   const Objective objective = problem.objective.WithParameters(held);
   const std::int64_t runs_before = objective.counters().runs();
-  NelderMeadOptions nm;
-  nm.max_evaluations = options.max_evaluations;
-  const auto optimizer = MakeNelderMead(nm);
-  LocalResult best;
-  bool have = false;
-  for (const ParameterSet* start : {&own.values, &problem.start}) {
-    ParameterSet s = held;
-    for (ParameterId id : {ParameterId::kT0, ParameterId::kAlpha, ParameterId::kReleaseRoll}) {
-      if (!s[id].fixed) s[id].value = std::clamp(start->value(id), s[id].lower, s[id].upper);
+  const LocalResult best = BestOfStarts(objective, {own.values, problem.start}, options);
+  p->t_end_s = objective.t_end_s();
+  if (std::isfinite(own.t_end_s) && own.t_end_s != objective.t_end_s()) {
+    const Evaluation own_here = objective.Evaluate(own.values);
+    if (!own_here.feasible) {
+      p->simulations = objective.counters().runs() - runs_before;
+      p->message = "the own fit fails on the problem's window";
+      return;
     }
-    const LocalResult r = optimizer->Minimize(objective, objective.FreeValues(s));
-    if (!have || (r.feasible && (!best.feasible || r.epsilon_rad_s < best.epsilon_rad_s))) {
-      best = r;
-      have = true;
-    }
+    p->epsilon_own_rad_s = own_here.epsilon_rad_s;
   }
   p->simulations = objective.counters().runs() - runs_before;
   if (!best.feasible) {
@@ -90,8 +111,9 @@ void FitReleaseOnly(const PreparedTrial& problem, const OwnFit& own, const Predi
   const ParameterSet at = objective.WithFree(best.x);
   p->t0_s = at.value(ParameterId::kT0);
   p->alpha_rad = at.value(ParameterId::kAlpha);
+  p->release_roll_rad = at.value(ParameterId::kReleaseRoll);
   p->epsilon_pred_rad_s = best.epsilon_rad_s;
-  p->ratio = best.epsilon_rad_s / own.epsilon_rad_s;
+  p->ratio = best.epsilon_rad_s / p->epsilon_own_rad_s;
   p->transfers = p->ratio <= options.ratio_warning;
   p->predicted = true;
 }
@@ -106,7 +128,7 @@ TrialPrediction PredictTrial(const std::vector<OwnFit>& fits, std::size_t i,
   p.position = own.position;
   p.epsilon_own_rad_s = own.epsilon_rad_s;
   p.pooled = PoolOthers(fits, i, &p.n_others);
-  p.ratio = p.epsilon_pred_rad_s = p.t0_s = p.alpha_rad = kNaN;
+  p.ratio = p.epsilon_pred_rad_s = p.t0_s = p.alpha_rad = p.release_roll_rad = p.t_end_s = kNaN;
   p.held.fill(kNaN);
   if (!own.feasible || !(own.epsilon_rad_s > 0.0)) {
     p.message = "no own fit: " + (own.message.empty() ? std::string("infeasible") : own.message);
@@ -167,7 +189,8 @@ nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json
 
 OwnFit OwnFitFromSummary(const std::string& trial, const std::string& block, const std::string& position,
                          const FitSummary& summary) {
-  OwnFit f{trial, block, position, summary.parameters, {}, {}, summary.epsilon_rad_s, summary.feasible, ""};
+  OwnFit f{trial, block, position, summary.parameters, {}, {}, summary.epsilon_rad_s, summary.feasible, "",
+           summary.t_end_s};
   for (std::size_t k = 0; k < kNumParameters; ++k) {
     f.interval_95[k] = summary.uncertainty.interval_95[k];
     f.determined[k] = summary.uncertainty.determined[k] && *summary.uncertainty.determined[k] == Determination::kYes;
@@ -265,6 +288,9 @@ std::string ValidationJson(const ValidationSummary& s) {
                       {"overlaps_all", t.overlaps_all},
                       {"t0", NumberOrNull(t.t0_s)},
                       {"alpha", NumberOrNull(t.alpha_rad)},
+                      {"release_roll", NumberOrNull(t.release_roll_rad)},
+                      {"release_roll_fitted", t.predicted ? nlohmann::json(t.release_roll_fitted) : nlohmann::json()},
+                      {"t_end", NumberOrNull(t.t_end_s)},
                       {"parameters", pooled}});
   }
   nlohmann::json groups = nlohmann::json::array();

@@ -55,6 +55,12 @@ void WritePerTrial(const io::hdf5::Group& v, const ValidationSummary& s) {
   DoubleColumn(t, "t0_s", rows, [](const P& p) { return p.t0_s; }, "s; fitted with the pooled impact parameters held");
   DoubleColumn(t, "alpha_rad", rows, [](const P& p) { return p.alpha_rad; },
                "rad; fitted with the pooled impact parameters held");
+  DoubleColumn(t, "release_roll_rad", rows, [](const P& p) { return p.release_roll_rad; },
+               "rad; fitted with t0 and α where release_roll_fitted, else held; NaN: not predicted");
+  IntColumn(t, "release_roll_fitted", rows, [](const P& p) { return p.predicted ? (p.release_roll_fitted ? 1 : 0) : -1; },
+            "1; the trial's problem fits its release roll (--release-roll-mode), -1: not predicted");
+  DoubleColumn(t, "t_end_s", rows, [](const P& p) { return p.t_end_s; },
+               "s; end of the window of epsilon_own and epsilon_pred (recording time), NaN: not predicted");
   for (std::size_t k = 0; k < kPooledImpactParameters.size(); ++k) {
     const std::string name = Name(kPooledImpactParameters[k]);
     DoubleColumn(t, name + "_held", rows, [k](const P& p) { return p.held[k]; },
@@ -98,6 +104,7 @@ OwnFit ReadOwnFit(const io::hdf5::Group& root, const std::string& trial) {
   f.position = labels.position;
   f.epsilon_rad_s = labels.epsilon_rad_s;
   f.feasible = labels.feasible;
+  f.t_end_s = g.GetDouble("t_end_s").value_or(std::nan(""));  // the window of ε, extended or not
   // A fit that did not estimate the release roll stores no row for it: the roll was held at 0.
   f.values[ParameterId::kReleaseRoll].fixed = true;
   for (ParameterId id : kAllParameters) {

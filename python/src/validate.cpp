@@ -10,7 +10,8 @@ namespace rockfit::python {
 namespace {
 
 py::object Validate(const std::string& manifest, const std::optional<std::string>& fits, int jobs,
-                    double ratio_warning, const std::string& method, const std::string& intervals) {
+                    double ratio_warning, const std::string& method, const std::string& intervals,
+                    const std::string& release_roll_mode) {
   app::ValidateArgs args;
   args.manifest = manifest;
   args.fits = fits.value_or("");
@@ -18,6 +19,7 @@ py::object Validate(const std::string& manifest, const std::optional<std::string
   args.ratio_warning = ratio_warning;
   args.fit.method = method;
   args.fit.intervals = intervals;
+  args.fit.release_roll_mode = release_roll_mode;
   fitting::ValidationSummary summary;
   {
     py::gil_scoped_release release;
@@ -34,15 +36,17 @@ py::object Validate(const std::string& manifest, const std::optional<std::string
 void RegisterValidate(py::module_& m) {
   m.def("validate", &Validate, py::arg("manifest"), py::kw_only(), py::arg("fits") = py::none(), py::arg("jobs") = 0,
         py::arg("ratio_warning") = 1.5, py::arg("method") = "auto", py::arg("intervals") = "thorough",
+        py::arg("release_roll_mode") = "auto",
         "The predictive check of a campaign, as `rockfit validate MANIFEST --json`: every trial of a block and\n"
-        "position left out in turn, fitted only in t0 and α with the others' pooled λ, λ_lat, λ_lon, its error (28)\n"
-        "compared with its own fit's.\n\n"
+        "position left out in turn, fitted only in its release (t0, α and, where its fit takes it, the release roll)\n"
+        "with the others' pooled λ, λ_lat, λ_lon, its error (28) compared with its own fit's over the same window.\n\n"
         "fits: a file of `rockfit batch` holding every trial's own fit (default: fit them now, with method and\n"
-        "intervals as `rockfit batch`); jobs: trials at once (0: all cores); ratio_warning: ε_pred/ε_own above it\n"
-        "is reported as not transferring.\n\n"
+        "intervals as `rockfit batch`); release_roll_mode: 'auto' (the release roll is fitted where the fall shows\n"
+        "one), 'on' or 'off', as `--release-roll-mode`, for the own fits and the predictions; jobs: trials at once\n"
+        "(0: all cores); ratio_warning: ε_pred/ε_own above it is reported as not transferring.\n\n"
         "Returns a Record 'Validation': trials (per trial: trial, block, position, predicted, message, n_others,\n"
-        "epsilon_own, epsilon_pred, ratio, transfers, overlaps_all, t0, alpha, parameters: per λ name held, pooled,\n"
-        "pooled_interval_95, n_pooled, overlaps), groups (block, position, n, n_predicted, median_ratio, max_ratio,\n"
+        "epsilon_own, epsilon_pred, ratio, transfers, overlaps_all, t0, alpha, release_roll, release_roll_fitted,\n"
+        "t_end, parameters: per λ name held, pooled, pooled_interval_95, n_pooled, overlaps), groups (block, position, n, n_predicted, median_ratio, max_ratio,\n"
         "n_transfer, n_overlap_all), ratio_warning, simulations, wall_s, manifest, fits. The GIL is released while\n"
         "it runs.");
 }

@@ -1,6 +1,6 @@
 // `rockfit validate MANIFEST`: the predictive check of a campaign (fitting/predictive_check.hpp): every trial left
-// out of its block and position in turn, fitted only in t0 and α with the others' pooled λ, λ_lat, λ_lon, and its
-// error (28) compared with its own fit's.
+// out of its block and position in turn, fitted only in its release (t0, α and, where --release-roll-mode fits it,
+// the release roll) with the others' pooled λ, λ_lat, λ_lon, and its error (28) compared with its own fit's.
 #include <iostream>
 
 #include <fmt/format.h>
@@ -60,8 +60,8 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   auto cmd = std::make_shared<ValidateCommand>();
   CLI::App* app = root.add_subcommand(
       "validate",
-      "Predictive check of a campaign: leave each trial of a block and position out, fit only its t0 and α with the "
-      "others' pooled λ, λ_lat, λ_lon, and compare its error (28) with its own fit's (ε_pred/ε_own)");
+      "Predictive check of a campaign: leave each trial of a block and position out, fit only its t0 and α (and its "
+      "release roll where --release-roll-mode fits it) with the others' pooled λ, λ_lat, λ_lon, and compare its error (28) with its own fit's (ε_pred/ε_own)");
   app->add_option("MANIFEST", cmd->args.manifest, "Campaign manifest (.toml)")->required();
   app->add_option("--fits", cmd->args.fits,
                   "HDF5 file of `rockfit batch` holding every trial's own fit (default: fit them now)");

@@ -1,5 +1,6 @@
 #include "rockfit/app/validation_run.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -45,18 +46,28 @@ fitting::ValidationSummary RunValidation(const ValidateArgs& args) {
 std::string ValidationTable(const fitting::ValidationSummary& s) {
   auto number = [](double v, const char* format) { return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : "—"; };
   auto yes_no = [](bool b) { return b ? "yes" : "no"; };
-  std::string out = fmt::format("{:<14} {:<8} {:<4} {:>11} {:>11} {:>7}  {:<8} {:<6} {:<10} {:<10} {}\n", "trial", "block",
-                                "pos", "ε_own", "ε_pred", "ratio", "overlap", "λ", "λ_lat", "λ_lon", "held λ, λ_lat, λ_lon");
+  // The left-out trial's release roll gets a column where some trial's problem fits it (refitted with t0 and α).
+  const bool any_roll = std::any_of(s.trials.begin(), s.trials.end(),
+                                    [](const fitting::TrialPrediction& t) { return t.predicted && t.release_roll_fitted; });
+  auto roll = [&](const fitting::TrialPrediction& t) {
+    if (!any_roll) return std::string();
+    return fmt::format("{:>12} ", t.release_roll_fitted ? fmt::format("{:.3f}", 1e3 * t.release_roll_rad)
+                                                         : fmt::format("held {:.3g}", 1e3 * t.release_roll_rad));
+  };
+  std::string out = fmt::format("{:<14} {:<8} {:<4} {:>11} {:>11} {:>7}  {:<8} {:<6} {:<10} {:<10} {}{}\n", "trial",
+                                "block", "pos", "ε_own", "ε_pred", "ratio", "overlap", "λ", "λ_lat", "λ_lon",
+                                any_roll ? fmt::format("{:>12} ", "β [mrad]") : "", "held λ, λ_lat, λ_lon");
   for (const fitting::TrialPrediction& t : s.trials) {
     if (!t.predicted) {
       out += fmt::format("{:<14} {:<8} {:<4} {:>11} {:>11} {:>7}  not predicted: {}\n", t.trial, t.block, t.position,
                          number(t.epsilon_own_rad_s, "{:.5g}"), "—", "—", t.message);
       continue;
     }
-    out += fmt::format("{:<14} {:<8} {:<4} {:>11.5g} {:>11.5g} {:>7.3f}{} {:<8} {:<6} {:<10} {:<10} {}, {}, {}\n", t.trial,
-                       t.block, t.position, t.epsilon_own_rad_s, t.epsilon_pred_rad_s, t.ratio, t.transfers ? " " : "!",
-                       yes_no(t.overlaps_all), yes_no(t.overlaps[0]), yes_no(t.overlaps[1]), yes_no(t.overlaps[2]),
-                       number(t.held[0], "{:.4g}"), number(t.held[1], "{:.4g}"), number(t.held[2], "{:.4g}"));
+    out += fmt::format("{:<14} {:<8} {:<4} {:>11.5g} {:>11.5g} {:>7.3f}{} {:<8} {:<6} {:<10} {:<10} {}{}, {}, {}\n",
+                       t.trial, t.block, t.position, t.epsilon_own_rad_s, t.epsilon_pred_rad_s, t.ratio,
+                       t.transfers ? " " : "!", yes_no(t.overlaps_all), yes_no(t.overlaps[0]), yes_no(t.overlaps[1]),
+                       yes_no(t.overlaps[2]), roll(t), number(t.held[0], "{:.4g}"), number(t.held[1], "{:.4g}"),
+                       number(t.held[2], "{:.4g}"));
   }
   out += fmt::format("{:<8} {:<4} {:>2} {:>9} {:>13} {:>10} {:>12} {:>14}\n", "block", "pos", "n", "predicted",
                      "median ratio", "max ratio", "ratio ≤ " + fmt::format("{:g}", s.options.ratio_warning),

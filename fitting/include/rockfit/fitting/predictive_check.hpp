@@ -4,8 +4,9 @@
 //
 // For every trial of a block and position with at least one other trial: the group's pooled λ, λ_lat, λ_lon are
 // taken from the *other* trials' own fits (PoolTrials, group_pooling.hpp; the mean of the others where none of
-// them determines the parameter), only t0 and α of the left-out trial are fitted with the impact parameters held
-// there, and the error (28) of that prediction is compared with the trial's own fit:
+// them determines the parameter), only the left-out trial's release — t0, α and, where its problem fits it
+// (release_roll_choice.hpp), its release roll β — is fitted with the impact parameters held there, over the window
+// of its own fit, and the error (28) of that prediction is compared with the trial's own fit:
 //
 //   ratio = ε_pred / ε_own  (1: the pooled parameters fit the trial as well as its own; ≫ 1: they do not transfer),
 //
@@ -17,6 +18,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -41,6 +43,7 @@ struct OwnFit {
   double epsilon_rad_s = 0.0;                          // ε (28) of the own fit
   bool feasible = true;
   std::string message;                                 // why there is no feasible own fit
+  double t_end_s = std::numeric_limits<double>::quiet_NaN();  // end of the own fit's window (NaN: the problem's)
 };
 OwnFit OwnFitFromSummary(const std::string& trial, const std::string& block, const std::string& position,
                          const FitSummary& summary);
@@ -64,6 +67,13 @@ struct TrialPrediction {
   std::array<bool, 3> overlaps{};          // own 95 % interval ∩ pooled 95 % interval ≠ ∅ (false when either is missing)
   bool overlaps_all = false;
   double t0_s = 0.0, alpha_rad = 0.0;      // fitted with the impact parameters held
+  // The release roll β of the prediction: fitted with t0 and α where the trial's problem fits it (the choice of
+  // --release-roll-mode, as for the own fit), else the value the problem holds (0 unless fixed otherwise).
+  double release_roll_rad = 0.0;
+  bool release_roll_fitted = false;
+  double t_end_s = 0.0;                    // end of the window of ε_pred and ε_own (recording time)
+  // ε_own: the own fit's ε, taken again over the problem's window at the own fit's values where the own fit
+  // ended its window elsewhere (an extended window); ε_pred over the same window.
   double epsilon_own_rad_s = 0.0, epsilon_pred_rad_s = 0.0;
   double ratio = 0.0;                      // ε_pred / ε_own
   bool transfers = false;                  // ratio ≤ ratio_warning
@@ -90,8 +100,9 @@ struct ValidationSummary {
 std::vector<OwnFit> FitOwnTrials(const std::vector<CampaignTrial>& trials, int num_threads = 0);
 
 // Runs the check over `fits`; `problem(i)` builds trial i's problem as its own fit had it (objective: signal,
-// window, model, bounds; start: the data estimate), called on a worker thread only for trials that are
-// predicted. An exception from it fails that trial only (message).
+// window, model, bounds and which of t0, α, β are free; start: the data estimate), called on a worker thread only
+// for trials that are predicted. Both ε are over the problem's window: where the own fit ended its window elsewhere
+// (fits[i].t_end_s, a window the fit extended) its ε is taken again there. An exception from `problem` fails that trial only (message).
 ValidationSummary RunPredictiveCheck(const std::vector<OwnFit>& fits,
                                      const std::function<PreparedTrial(std::size_t)>& problem,
                                      const PredictiveCheckOptions& options = {});

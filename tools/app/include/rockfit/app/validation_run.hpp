@@ -21,7 +21,8 @@ struct ValidateArgs {
 // unreadable manifest or a fits file without a trial of the manifest.
 fitting::ValidationSummary RunValidation(const ValidateArgs& args);
 
-// Per trial ε_own, ε_pred, ratio and the overlaps, then per group the median and largest ratio.
+// Per trial ε_own, ε_pred, ratio and the overlaps (and the refitted release roll β in mrad, a column only where some
+// trial fits it), then per group the median and largest ratio.
 std::string ValidationTable(const fitting::ValidationSummary& summary);
 
 }  // namespace rockfit::app
