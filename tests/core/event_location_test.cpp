@@ -271,6 +271,42 @@ TEST(FindFirstDescent, AVertexThatLiftsAndLandsWithinOneStepLandsAtTheClosedForm
   EXPECT_NEAR(*root, 0.4, 4.0 * std::numeric_limits<double>::epsilon());
 }
 
+// Newton's error bound ends the polish one evaluation early where the next step would be below round-off: over
+// random crossings of rotating heights A cos(ω t) + C within steps that turn the body by up to 0.5 rad, the crossing
+// is the closed form's to round-off, as without the bound, in fewer evaluations.
+TEST(PolishCrossing, NewtonsErrorBoundSavesTheConfirmingEvaluationAndKeepsTheRootAtRoundOff) {
+  std::mt19937 rng(20261127);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  long with_bound = 0, without_bound = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const double amplitude_m = 0.01 + 0.1 * unit(rng);
+    const double rate_rad_s = 0.5 + 20.0 * unit(rng);
+    const double crossing_rad = 0.05 + 2.9 * unit(rng);  // ω t at the crossing, where the height falls
+    const RotatingHeight g{amplitude_m, -amplitude_m * std::cos(crossing_rad), rate_rad_s};
+    const double t_cross = crossing_rad / rate_rad_s;
+    const double turn_rad = 0.5 * unit(rng) + 1e-3;
+    const double t0 = t_cross - unit(rng) * turn_rad / rate_rad_s;
+    const double t1 = t0 + turn_rad / rate_rad_s;
+    if (!(g(t0).value > 0.0 && g(t1).value < 0.0)) continue;
+    int counted_plain = 0, counted_bound = 0;
+    const auto plain = [&](double t) { ++counted_plain; return g(t); };
+    const auto bounded = [&](double t) { ++counted_bound; return g(t); };
+    const auto root_plain = PolishCrossing(plain, t0, g(t0), t1, g(t1));
+    const auto root_bound = PolishCrossing(bounded, t0, g(t0), t1, g(t1), HermiteCurvatureBound(t0, g(t0), t1, g(t1)));
+    ASSERT_TRUE(root_plain.has_value() && root_bound.has_value()) << trial;
+    // Round-off of the crossing time: a few units of round-off of the height over its rate there.
+    const double eps = std::numeric_limits<double>::epsilon();
+    const double tol_s = 8.0 * eps * std::max(1.0, t_cross) + 8.0 * eps / (rate_rad_s * std::sin(crossing_rad));
+    EXPECT_NEAR(*root_bound, t_cross, tol_s) << trial;
+    EXPECT_NEAR(*root_bound, *root_plain, tol_s) << trial;
+    EXPECT_LE(counted_bound, counted_plain) << trial;
+    with_bound += counted_bound;
+    without_bound += counted_plain;
+  }
+  std::printf("evaluations: %ld with Newton's error bound, %ld without\n", with_bound, without_bound);
+  EXPECT_LT(with_bound, without_bound);
+}
+
 TEST(HermiteDipTime, IsEmptyForAGuardThatTurnsTwiceAboveZeroAndExactForACubic) {
   // (t + 0.2)(t − 0.4)(t − 0.6) + 0.02 turns twice but stays above zero: no dip.
   const auto above = [](double t) {

@@ -45,14 +45,40 @@ class RootPolisher {
   void* solver_;  // gsl_root_fsolver*
 };
 
+// A bound of |g̈| over a step [t0, t1] for Newton's error bound (NewtonInBracket): the larger |p''| of the cubic p
+// through g and ġ at both ends of the step (Hermite) at the two ends (p'' is linear: its largest value on the step),
+// times a safety factor for the difference between the cubic and the guard.
+inline double HermiteCurvatureBound(double t0, const GuardValue& g0, double t1, const GuardValue& g1) {
+  // The cubic's curvature is the guard's to within the step's interpolation error; over a step that turns the body
+  // by at most half a radian (a vertex height A cos(ω t) + C) that is far below a factor of four.
+  constexpr double kCurvatureSafety = 4.0;
+  const double h = t1 - t0;
+  // p(s) = a s³ + b s² + c s + d on s ∈ [0, 1], t = t0 + s h: p''(0) = 2b, p''(1) = 6a + 2b.
+  const double b = 3.0 * (g1.value - g0.value) - 2.0 * h * g0.rate - h * g1.rate;
+  const double a = 2.0 * (g0.value - g1.value) + h * g0.rate + h * g1.rate;
+  return kCurvatureSafety * std::max(std::abs(2.0 * b), std::abs(6.0 * a + 2.0 * b)) / (h * h);
+}
+
 // Newton steps on g from x inside the bracket [a, b] of a crossing, where g is positive at a (`positive_at_a`) or at
 // b: the steps are kept inside the bracket, which shrinks with every evaluation; a step that leaves the bracket, or
 // that does not at least halve the one before it, becomes a bisection. It ends when a step or the bracket is
-// within round-off of t. Empty if g is not finite. The loop of PolishCrossing and LandingAfterHop.
+// within round-off of t. With a bound of |g̈| on the bracket (`curvature_bound` > 0) it also ends after a Newton
+// step whose successor would be below round-off: Newton's error after a step δ from x is at most
+// |g̈| δ² / (2 |ġ(x)|) (quadratic convergence), and where that is below round-off of t the evaluation at the new
+// point would only confirm it. The bound is raised to the difference quotient of ġ between the last two points
+// where that is larger (times the same safety factor of four). Empty if g is not finite. The loop of
+// PolishCrossing and LandingAfterHop.
 template <class Eval>
-std::optional<double> NewtonInBracket(const Eval& eval, double a, double b, bool positive_at_a, double x) {
+std::optional<double> NewtonInBracket(const Eval& eval, double a, double b, bool positive_at_a, double x,
+                                      double curvature_bound = 0.0) {
   constexpr int kMaxIterations = 200;  // bisection alone closes any bracket of a step in fewer
+  constexpr double kCurvatureSafety = 4.0;  // as HermiteCurvatureBound's
+  // Newton's error bound is used once the relative change of ġ over a step is below this (the bound's
+  // (δ + error)² ≈ δ² then holds to a few per cent, which the factor of two below covers).
+  constexpr double kQuadraticRegime = 0.1;
   double step_before = b - a;
+  double x_before = std::numeric_limits<double>::quiet_NaN();
+  double rate_before = 0.0;
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
     const GuardValue gx = eval(x);
     if (!std::isfinite(gx.value) || !std::isfinite(gx.rate)) return std::nullopt;
@@ -66,9 +92,18 @@ std::optional<double> NewtonInBracket(const Eval& eval, double a, double b, bool
     if (!(next > a && next < b) || step > 0.5 * step_before) {
       next = 0.5 * (a + b);
       step = 0.5 * (b - a);
+    } else if (curvature_bound > 0.0) {
+      double curvature = curvature_bound;
+      if (std::isfinite(x_before) && x_before != x) {
+        curvature = std::max(curvature, kCurvatureSafety * std::abs((gx.rate - rate_before) / (x - x_before)));
+      }
+      const double k = curvature / (2.0 * std::abs(gx.rate));  // error of next ≤ k · step²
+      if (k * step <= kQuadraticRegime && 2.0 * k * step * step <= floor_s) return next;
     }
     if (step <= floor_s || b - a <= floor_s) return next;
     step_before = step;
+    x_before = x;
+    rate_before = gx.rate;
     x = next;
   }
   return 0.5 * (a + b);
@@ -83,13 +118,14 @@ std::optional<double> NewtonInBracket(const Eval& eval, double a, double b, bool
 // in an event time a hundredfold within tens of impacts, and a run whose events are off by up to the tolerance
 // seeds that difference at the tolerance instead of at round-off. Empty if g is not finite.
 template <class Eval>
-std::optional<double> PolishCrossing(const Eval& eval, double a, GuardValue ga, double b, GuardValue gb) {
+std::optional<double> PolishCrossing(const Eval& eval, double a, GuardValue ga, double b, GuardValue gb,
+                                     double curvature_bound = 0.0) {
   if (ga.value == 0.0) return a;
   if (gb.value == 0.0) return b;
   if ((ga.value > 0.0) == (gb.value > 0.0)) return std::nullopt;
   double x = a - ga.value * (b - a) / (gb.value - ga.value);
   if (!(x > a && x < b)) x = 0.5 * (a + b);
-  return NewtonInBracket(eval, a, b, ga.value > 0.0, x);
+  return NewtonInBracket(eval, a, b, ga.value > 0.0, x, curvature_bound);
 }
 
 // For a guard that leaves the surface rising at t0 (g0 = 0, ġ0 > 0) and is below it at t1: the time at which the
@@ -137,7 +173,8 @@ std::optional<double> LandingAfterHop(const Eval& eval, double t0, const GuardVa
     if (last.value <= 0.0 && !(last.rate < 0.0)) one_hump = false;
     return last;
   };
-  const std::optional<double> root = NewtonInBracket(watched, t0, t1, true, *guess);
+  const std::optional<double> root =
+      NewtonInBracket(watched, t0, t1, true, *guess, HermiteCurvatureBound(t0, g0, t1, g1));
   if (!root || !one_hump || !(last.rate < 0.0) || !(*root > t0)) return std::nullopt;
   return root;
 }
@@ -315,7 +352,7 @@ std::optional<double> FindFirstDescent(const Eval& eval, double t0, const GuardV
     return root ? root : std::optional<double>(t1);
   }
   if (g1.value < 0.0) {
-    const std::optional<double> root = PolishCrossing(eval, t0, g0, t1, g1);
+    const std::optional<double> root = PolishCrossing(eval, t0, g0, t1, g1, HermiteCurvatureBound(t0, g0, t1, g1));
     return root ? root : std::optional<double>(t1);
   }
   if (g0.rate < 0.0 && g1.rate > 0.0) {
