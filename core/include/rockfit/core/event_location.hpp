@@ -4,8 +4,10 @@
 // per step; the sign of ġ at the two step ends tells whether an interior minimum exists, and that minimum is
 // bounded from below (TimeBelowZeroNearMinimum) or searched on the dense output. A guard that turns twice within
 // a step (under a moving table) is caught by the step's Hermite cubic (HermiteDipTime). A crossing is polished by
-// Newton's method on g and ġ inside its bracket (PolishCrossing); the maximum of a guard that rose and fell back
-// within a step, which needs only ġ, by GSL's Brent solver.
+// Newton's method on g and ġ inside its bracket (PolishCrossing), which Newton's error bound ends without a
+// confirming evaluation; a vertex that lifts and lands within one step is searched from the landing of the step's
+// Hermite cubic (LandingAfterHop); the maximum of a guard that rose and fell back within a step, which needs only
+// ġ, by GSL's Brent solver (where the Hermite landing does not apply).
 #pragma once
 
 #include <algorithm>
