@@ -215,6 +215,98 @@ TEST(FindFirstDescent, AHopFarShorterThanTheStepFromTheSurfaceLandsAfterTheHopNo
   EXPECT_NEAR(*t, 2e-7, 1e-16);  // round-off of g near its root, 5e-10 relative
 }
 
+// A vertex that leaves the ground at t = 0 under a steady rotation and comes back within the step: its height is
+// the hump A cos(ω (t − t_m)) − A cos(ω t_m), rising at 0, highest at t_m, landing at 2 t_m.
+struct Hop {
+  double amplitude_m, rate_rad_s, t_top_s;
+  GuardValue operator()(double t) const {
+    return {amplitude_m * (std::cos(rate_rad_s * (t - t_top_s)) - std::cos(rate_rad_s * t_top_s)),
+            -amplitude_m * rate_rad_s * std::sin(rate_rad_s * (t - t_top_s))};
+  }
+  double landing_s() const { return 2.0 * t_top_s; }
+  // Round-off of the landing time: a few units of round-off of the height over its rate at the landing.
+  double landing_tol_s() const {
+    const double eps = std::numeric_limits<double>::epsilon();
+    return 8.0 * eps * std::max(1.0, landing_s()) + 8.0 * eps / (rate_rad_s * std::sin(rate_rad_s * t_top_s));
+  }
+};
+
+TEST(HermiteLandingTime, IsTheLandingOfACubicGuardThatLeavesTheSurface) {
+  // g = t (0.4 − t)(t + 0.5): zero and rising at 0, back to zero at 0.4 and below after; the Hermite cubic of a
+  // cubic is the cubic itself.
+  const auto g = [](double t) {
+    return GuardValue{t * (0.4 - t) * (t + 0.5), (0.4 - t) * (t + 0.5) - t * (t + 0.5) + t * (0.4 - t)};
+  };
+  for (const double t1 : {0.5, 1.0, 3.0}) {
+    const auto landing = HermiteLandingTime(0.0, g(0.0), t1, g(t1));
+    ASSERT_TRUE(landing.has_value()) << t1;
+    EXPECT_NEAR(*landing, 0.4, 1e-15) << t1;
+  }
+  // Not a guard leaving the surface: no landing.
+  EXPECT_FALSE(HermiteLandingTime(0.0, GuardValue{1e-3, 1.0}, 1.0, g(1.0)).has_value());
+  EXPECT_FALSE(HermiteLandingTime(0.0, GuardValue{0.0, -1.0}, 1.0, g(1.0)).has_value());
+  EXPECT_FALSE(HermiteLandingTime(0.0, g(0.0), 0.3, g(0.3)).has_value());
+}
+
+TEST(FindFirstDescent, AVertexThatLiftsAndLandsWithinOneStepLandsAtTheClosedFormInFewEvaluations) {
+  RootPolisher polisher;
+  // Steps that turn the body by 0.45 rad (the simulator's bound is 0.5), hops from 1e-7 of the step to 0.95 of it.
+  constexpr double kRate_rad_s = 3.0;
+  constexpr double kStep_s = 0.15;
+  for (const double fraction : {1e-7, 1e-4, 0.01, 0.1, 0.3, 0.5, 0.7, 0.9, 0.95}) {
+    const Hop hop{0.05, kRate_rad_s, 0.5 * fraction * kStep_s};
+    const auto g = Count([&](double t) { return hop(t).value; }, [&](double t) { return hop(t).rate; });
+    const auto root = FindFirstDescent(g, 0.0, GuardValue{0.0, hop(0.0).rate}, kStep_s, hop(kStep_s), polisher,
+                                       kTimeTol);
+    ASSERT_TRUE(root.has_value()) << fraction;
+    EXPECT_NEAR(*root, hop.landing_s(), hop.landing_tol_s()) << fraction;
+    EXPECT_LT(hop(*root).rate, 0.0) << fraction;  // a landing, not the start
+    EXPECT_LE(g.evaluations, 4) << fraction;      // the search from the guard's maximum needed 7
+  }
+  // A hop that is not a cubic's shape (a hump with a long low tail): further from the Hermite landing, still found.
+  const auto tail = Count([](double t) { return t * (0.4 - t) * std::exp(-8.0 * t); },
+                          [](double t) { return ((0.4 - t) - t - 8.0 * t * (0.4 - t)) * std::exp(-8.0 * t); });
+  const auto root = FindFirstDescent(tail, 0.0, tail(0.0), 1.0, tail(1.0), polisher, kTimeTol);
+  ASSERT_TRUE(root.has_value());
+  EXPECT_NEAR(*root, 0.4, 4.0 * std::numeric_limits<double>::epsilon());
+}
+
+// Newton's error bound ends the polish one evaluation early where the next step would be below round-off: over
+// random crossings of rotating heights A cos(ω t) + C within steps that turn the body by up to 0.5 rad, the crossing
+// is the closed form's to round-off, as without the bound, in fewer evaluations.
+TEST(PolishCrossing, NewtonsErrorBoundSavesTheConfirmingEvaluationAndKeepsTheRootAtRoundOff) {
+  std::mt19937 rng(20261127);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  long with_bound = 0, without_bound = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const double amplitude_m = 0.01 + 0.1 * unit(rng);
+    const double rate_rad_s = 0.5 + 20.0 * unit(rng);
+    const double crossing_rad = 0.05 + 2.9 * unit(rng);  // ω t at the crossing, where the height falls
+    const RotatingHeight g{amplitude_m, -amplitude_m * std::cos(crossing_rad), rate_rad_s};
+    const double t_cross = crossing_rad / rate_rad_s;
+    const double turn_rad = 0.5 * unit(rng) + 1e-3;
+    const double t0 = t_cross - unit(rng) * turn_rad / rate_rad_s;
+    const double t1 = t0 + turn_rad / rate_rad_s;
+    if (!(g(t0).value > 0.0 && g(t1).value < 0.0)) continue;
+    int counted_plain = 0, counted_bound = 0;
+    const auto plain = [&](double t) { ++counted_plain; return g(t); };
+    const auto bounded = [&](double t) { ++counted_bound; return g(t); };
+    const auto root_plain = PolishCrossing(plain, t0, g(t0), t1, g(t1));
+    const auto root_bound = PolishCrossing(bounded, t0, g(t0), t1, g(t1), HermiteCurvatureBound(t0, g(t0), t1, g(t1)));
+    ASSERT_TRUE(root_plain.has_value() && root_bound.has_value()) << trial;
+    // Round-off of the crossing time: a few units of round-off of the height over its rate there.
+    const double eps = std::numeric_limits<double>::epsilon();
+    const double tol_s = 8.0 * eps * std::max(1.0, t_cross) + 8.0 * eps / (rate_rad_s * std::sin(crossing_rad));
+    EXPECT_NEAR(*root_bound, t_cross, tol_s) << trial;
+    EXPECT_NEAR(*root_bound, *root_plain, tol_s) << trial;
+    EXPECT_LE(counted_bound, counted_plain) << trial;
+    with_bound += counted_bound;
+    without_bound += counted_plain;
+  }
+  std::printf("evaluations: %ld with Newton's error bound, %ld without\n", with_bound, without_bound);
+  EXPECT_LT(with_bound, without_bound);
+}
+
 TEST(HermiteDipTime, IsEmptyForAGuardThatTurnsTwiceAboveZeroAndExactForACubic) {
   // (t + 0.2)(t − 0.4)(t − 0.6) + 0.02 turns twice but stays above zero: no dip.
   const auto above = [](double t) {

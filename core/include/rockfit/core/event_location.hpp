@@ -4,8 +4,10 @@
 // per step; the sign of ġ at the two step ends tells whether an interior minimum exists, and that minimum is
 // bounded from below (TimeBelowZeroNearMinimum) or searched on the dense output. A guard that turns twice within
 // a step (under a moving table) is caught by the step's Hermite cubic (HermiteDipTime). A crossing is polished by
-// Newton's method on g and ġ inside its bracket (PolishCrossing); the maximum of a guard that rose and fell back
-// within a step, which needs only ġ, by GSL's Brent solver.
+// Newton's method on g and ġ inside its bracket (PolishCrossing), which Newton's error bound ends without a
+// confirming evaluation; a vertex that lifts and lands within one step is searched from the landing of the step's
+// Hermite cubic (LandingAfterHop); the maximum of a guard that rose and fell back within a step, which needs only
+// ġ, by GSL's Brent solver (where the Hermite landing does not apply).
 #pragma once
 
 #include <algorithm>
@@ -45,26 +47,40 @@ class RootPolisher {
   void* solver_;  // gsl_root_fsolver*
 };
 
-// A root of g in [a, b], where g(a) and g(b) do not have the same strict sign, with g and ġ at both ends.
-// Newton steps from the latest point, kept inside the bracket, which shrinks with every evaluation; a step that
-// leaves the bracket, or that does not at least halve the one before it, becomes a bisection. It ends when a
-// step or the bracket is within round-off of t. On the chattering benchmark record of the response it needs 8–9
-// evaluations a crossing (many brackets start at a guard's maximum, where Newton starts slowly), where Brent's
-// method on g alone needed 12 to close the bracket to 1e-12 s. Polishing to round-off rather than to a
-// tolerance matters for runs that should agree: rocking that wobbles along a base edge amplifies a difference
-// in an event time a hundredfold within tens of impacts, and a run whose events are off by up to the tolerance
-// seeds that difference at the tolerance instead of at round-off. Empty if g is not finite.
+// A bound of |g̈| over a step [t0, t1] for Newton's error bound (NewtonInBracket): the larger |p''| of the cubic p
+// through g and ġ at both ends of the step (Hermite) at the two ends (p'' is linear: its largest value on the step),
+// times a safety factor for the difference between the cubic and the guard.
+inline double HermiteCurvatureBound(double t0, const GuardValue& g0, double t1, const GuardValue& g1) {
+  // The cubic's curvature is the guard's to within the step's interpolation error; over a step that turns the body
+  // by at most half a radian (a vertex height A cos(ω t) + C) that is far below a factor of four.
+  constexpr double kCurvatureSafety = 4.0;
+  const double h = t1 - t0;
+  // p(s) = a s³ + b s² + c s + d on s ∈ [0, 1], t = t0 + s h: p''(0) = 2b, p''(1) = 6a + 2b.
+  const double b = 3.0 * (g1.value - g0.value) - 2.0 * h * g0.rate - h * g1.rate;
+  const double a = 2.0 * (g0.value - g1.value) + h * g0.rate + h * g1.rate;
+  return kCurvatureSafety * std::max(std::abs(2.0 * b), std::abs(6.0 * a + 2.0 * b)) / (h * h);
+}
+
+// Newton steps on g from x inside the bracket [a, b] of a crossing, where g is positive at a (`positive_at_a`) or at
+// b: the steps are kept inside the bracket, which shrinks with every evaluation; a step that leaves the bracket, or
+// that does not at least halve the one before it, becomes a bisection. It ends when a step or the bracket is
+// within round-off of t. With a bound of |g̈| on the bracket (`curvature_bound` > 0) it also ends after a Newton
+// step whose successor would be below round-off: Newton's error after a step δ from x is at most
+// |g̈| δ² / (2 |ġ(x)|) (quadratic convergence), and where that is below round-off of t the evaluation at the new
+// point would only confirm it. The bound is raised to the difference quotient of ġ between the last two points
+// where that is larger (times the same safety factor of four). Empty if g is not finite. The loop of
+// PolishCrossing and LandingAfterHop.
 template <class Eval>
-std::optional<double> PolishCrossing(const Eval& eval, double a, GuardValue ga, double b, GuardValue gb) {
+std::optional<double> NewtonInBracket(const Eval& eval, double a, double b, bool positive_at_a, double x,
+                                      double curvature_bound = 0.0) {
   constexpr int kMaxIterations = 200;  // bisection alone closes any bracket of a step in fewer
-  if (ga.value == 0.0) return a;
-  if (gb.value == 0.0) return b;
-  if ((ga.value > 0.0) == (gb.value > 0.0)) return std::nullopt;
-  const bool positive_at_a = ga.value > 0.0;
-  // First point: the secant of the bracket (a Newton step from either end can overshoot the other).
-  double x = a - ga.value * (b - a) / (gb.value - ga.value);
-  if (!(x > a && x < b)) x = 0.5 * (a + b);
+  constexpr double kCurvatureSafety = 4.0;  // as HermiteCurvatureBound's
+  // Newton's error bound is used once the relative change of ġ over a step is below this (the bound's
+  // (δ + error)² ≈ δ² then holds to a few per cent, which the factor of two below covers).
+  constexpr double kQuadraticRegime = 0.1;
   double step_before = b - a;
+  double x_before = std::numeric_limits<double>::quiet_NaN();
+  double rate_before = 0.0;
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
     const GuardValue gx = eval(x);
     if (!std::isfinite(gx.value) || !std::isfinite(gx.rate)) return std::nullopt;
@@ -78,12 +94,91 @@ std::optional<double> PolishCrossing(const Eval& eval, double a, GuardValue ga, 
     if (!(next > a && next < b) || step > 0.5 * step_before) {
       next = 0.5 * (a + b);
       step = 0.5 * (b - a);
+    } else if (curvature_bound > 0.0) {
+      double curvature = curvature_bound;
+      if (std::isfinite(x_before) && x_before != x) {
+        curvature = std::max(curvature, kCurvatureSafety * std::abs((gx.rate - rate_before) / (x - x_before)));
+      }
+      const double k = curvature / (2.0 * std::abs(gx.rate));  // error of next ≤ k · step²
+      if (k * step <= kQuadraticRegime && 2.0 * k * step * step <= floor_s) return next;
     }
     if (step <= floor_s || b - a <= floor_s) return next;
     step_before = step;
+    x_before = x;
+    rate_before = gx.rate;
     x = next;
   }
   return 0.5 * (a + b);
+}
+
+// A root of g in [a, b], where g(a) and g(b) do not have the same strict sign, with g and ġ at both ends.
+// Newton steps from the secant root of the bracket (a Newton step from either end can overshoot the other), kept
+// inside the bracket (NewtonInBracket). On the chattering benchmark record of the response it needs 8–9
+// evaluations a crossing (many brackets start at a guard's maximum, where Newton starts slowly), where Brent's
+// method on g alone needed 12 to close the bracket to 1e-12 s. Polishing to round-off rather than to a
+// tolerance matters for runs that should agree: rocking that wobbles along a base edge amplifies a difference
+// in an event time a hundredfold within tens of impacts, and a run whose events are off by up to the tolerance
+// seeds that difference at the tolerance instead of at round-off. Empty if g is not finite.
+template <class Eval>
+std::optional<double> PolishCrossing(const Eval& eval, double a, GuardValue ga, double b, GuardValue gb,
+                                     double curvature_bound = 0.0) {
+  if (ga.value == 0.0) return a;
+  if (gb.value == 0.0) return b;
+  if ((ga.value > 0.0) == (gb.value > 0.0)) return std::nullopt;
+  double x = a - ga.value * (b - a) / (gb.value - ga.value);
+  if (!(x > a && x < b)) x = 0.5 * (a + b);
+  return NewtonInBracket(eval, a, b, ga.value > 0.0, x, curvature_bound);
+}
+
+// For a guard that leaves the surface rising at t0 (g0 = 0, ġ0 > 0) and is below it at t1: the time at which the
+// cubic through g and ġ at both ends of the step (Hermite) comes back to zero; empty where the ends do not fit
+// that shape. With p(s) = a s³ + b s² + c s on s ∈ [0, 1] (t = t0 + s h, p(0) = 0), the landing is the root of
+// a s² + b s + c, positive at s = 0 (c = h ġ0) and negative at s = 1 (its value there is g1): one root in (0, 1).
+// Over a step that turns the body by at most half a radian the cubic is close to the guard (a hop of a vertex is
+// a hump of A cos(ω t) + C), so the root is a first point from which Newton's method needs one or two steps.
+inline std::optional<double> HermiteLandingTime(double t0, const GuardValue& g0, double t1, const GuardValue& g1) {
+  if (!(g0.value == 0.0 && g0.rate > 0.0 && g1.value < 0.0)) return std::nullopt;
+  const double h = t1 - t0;
+  const double c = h * g0.rate;
+  const double b = 3.0 * g1.value - 2.0 * h * g0.rate - h * g1.rate;
+  const double a = -2.0 * g1.value + h * g0.rate + h * g1.rate;
+  double s = -1.0;
+  if (a == 0.0) {
+    if (b != 0.0) s = -c / b;
+  } else {
+    const double discriminant = b * b - 4.0 * a * c;
+    if (discriminant < 0.0) return std::nullopt;
+    // The two roots without cancellation: q/a and c/q.
+    const double q = -0.5 * (b + std::copysign(std::sqrt(discriminant), b));
+    if (q == 0.0) return std::nullopt;
+    const double root_1 = q / a, root_2 = c / q;
+    s = (root_1 > 0.0 && root_1 < 1.0) ? root_1 : root_2;
+  }
+  if (!(s > 0.0 && s < 1.0)) return std::nullopt;
+  return t0 + s * h;
+}
+
+// The landing of a guard that leaves the surface rising at t0 and is below it and falling at t1 (a vertex that
+// lifts and lands within one step), to round-off: Newton's method from the step's Hermite landing
+// (HermiteLandingTime) inside [t0, t1], where g is positive just after t0. Empty where the cubic has no landing or
+// the evaluations do not show one hump (a point below the surface that is not falling: a hop too short to see,
+// which the caller's search by halving handles); the landing's rate is negative.
+template <class Eval>
+std::optional<double> LandingAfterHop(const Eval& eval, double t0, const GuardValue& g0, double t1,
+                                      const GuardValue& g1) {
+  const std::optional<double> guess = HermiteLandingTime(t0, g0, t1, g1);
+  if (!guess) return std::nullopt;
+  GuardValue last;
+  bool one_hump = true;
+  const auto watched = [&](double t) {
+    last = eval(t);
+    if (last.value <= 0.0 && !(last.rate < 0.0)) one_hump = false;
+    return last;
+  };
+  const std::optional<double> root =
+      NewtonInBracket(watched, t0, t1, true, *guess, HermiteCurvatureBound(t0, g0, t1, g1));
+  if (!root || !one_hump || !(last.rate < 0.0) || !(*root > t0)) return std::nullopt;
+  return root;
 }
 
 // Inside a step where g has its minimum (ġ(t0) < 0 < ġ(t1)): a time at which g < 0, or empty when g stays
@@ -242,6 +337,9 @@ std::optional<double> FindFirstDescent(const Eval& eval, double t0, const GuardV
     // chatter's facet impact) is found by halving from t0, as in the dip case above.
     const auto short_hop = [&] { return CrossingAfterItRose(eval, t0, t1, g1, g0.rate); };
     if (!(g1.rate < 0.0)) return short_hop();
+    // A hop within the step (99 of the 155 guard evaluations of the paper's Fig. 14 run went to 14 of them, 7
+    // each, by the search below): Newton's method from the step's Hermite landing.
+    if (const std::optional<double> landing = LandingAfterHop(eval, t0, g0, t1, g1)) return landing;
     double t_positive = t0 + (t1 - t0) * g0.rate / (g0.rate - g1.rate);
     GuardValue g_positive;
     if (t_positive > t0 && t_positive < t1) g_positive = eval(t_positive);
@@ -256,7 +354,7 @@ std::optional<double> FindFirstDescent(const Eval& eval, double t0, const GuardV
     return root ? root : std::optional<double>(t1);
   }
   if (g1.value < 0.0) {
-    const std::optional<double> root = PolishCrossing(eval, t0, g0, t1, g1);
+    const std::optional<double> root = PolishCrossing(eval, t0, g0, t1, g1, HermiteCurvatureBound(t0, g0, t1, g1));
     return root ? root : std::optional<double>(t1);
   }
   if (g0.rate < 0.0 && g1.rate > 0.0) {
