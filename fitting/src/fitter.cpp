@@ -467,6 +467,8 @@ FitSummary FitOnWindow(const Objective& objective, const Eigen::VectorXd& x_star
   return summary;
 }
 
+// The release: what the fall before the first impact fixes.
+constexpr ParameterId kReleaseParameters[] = {ParameterId::kT0, ParameterId::kAlpha, ParameterId::kReleaseRoll};
 
 bool LambdaLatDetermined(const FitSummary& summary) {
   const auto& d = summary.uncertainty.determined[static_cast<std::size_t>(ParameterId::kLambdaLat)];
@@ -511,8 +513,13 @@ FitSummary ExtendWindowWhileLambdaLatUndetermined(const Objective& objective, co
   // model error of a real block (its contact, its corners) would pull them and narrow their intervals around the
   // pulled values. The longer windows fit the impact parameters with the release held at the first fit's values,
   // and the kept fit reports the release as the first fit did.
-  const ParameterSet held =
-      ReleaseOnLongerWindow(objective.parameters(), first.parameters, first.uncertainty.interval_95, false);
+  ParameterSet held = objective.parameters();
+  for (ParameterId id : kReleaseParameters) {
+    if (!held[id].fixed) {
+      held[id].value = first.parameters.value(id);
+      held[id].fixed = true;
+    }
+  }
   for (std::size_t n = 0; n < tries; ++n) {
     const Objective longer = objective.WithWindowEnd(later[n]).WithParameters(held);
     const ParameterSet start = StartOnLongerWindow(longer, from, options.window_extension);
@@ -568,78 +575,6 @@ FitSummary ExtendWindowWhileLambdaLatUndetermined(const Objective& objective, co
   return first;
 }
 
-// After the extension (ExtendWindowWhileLambdaLatUndetermined), one more fit on the longest window it tried with
-// the release free within the kept fit's 95 % intervals (the first window's), from the kept point; it replaces
-// the kept fit when its (28) on that window is lower than the kept fit's there (window_extension.hpp).
-FitSummary RefitOnLongestWindow(const Objective& objective, const FitOptions& options, FitSummary kept) {
-  if (!options.window_extension.longest_window_refit || kept.window.tried_t_end_s.empty() || !kept.feasible) {
-    return kept;
-  }
-  const double t_end_s = kept.window.tried_t_end_s.back();
-  const Objective window = objective.WithWindowEnd(t_end_s);
-  const Evaluation kept_there = window.Evaluate(kept.parameters);
-  const Objective longer = window.WithParameters(
-      ReleaseOnLongerWindow(objective.parameters(), kept.parameters, kept.uncertainty.interval_95, true));
-  const ParameterSet start = StartOnLongerWindow(longer, kept.parameters, options.window_extension);
-  const Eigen::VectorXd x_from = longer.FreeValues(start).cwiseMax(longer.FreeLower()).cwiseMin(longer.FreeUpper());
-  FitSummary refit = FitOnWindow(longer, x_from, options, true, window);
-  const bool lower = refit.feasible && (!kept_there.feasible || refit.epsilon_rad_s < kept_there.epsilon_rad_s);
-  kept.stages.push_back({"longest-window-refit", refit.epsilon_rad_s, refit.simulations, refit.wall_time_s,
-                         refit.termination_type,
-                         fmt::format("every parameter on the window to {:.4f} s, the release within its intervals: "
-                                     "ε {:.6g} against the kept fit's {:.6g} rad/s there; {}",
-                                     t_end_s, refit.epsilon_rad_s, kept_there.epsilon_rad_s, lower ? "kept" : "not kept")});
-  kept.simulations += refit.simulations;
-  kept.wall_time_s += refit.wall_time_s;
-  if (!lower) return kept;
-
-  for (ParameterId id : kReleaseParameters) {
-    if (!objective.IsFree(id)) continue;
-    const std::size_t k = static_cast<std::size_t>(id);
-    // The refit's value, within the kept (first window's) interval; the original bounds.
-    refit.parameters[id] = Parameter{refit.parameters.value(id), kept.parameters[id].lower, kept.parameters[id].upper, false};
-    refit.std_error[k] = kept.std_error[k];
-    refit.identifiable[k] = kept.identifiable[k];
-    refit.at_bound[k] = kept.at_bound[k];
-    refit.uncertainty.interval_68[k] = kept.uncertainty.interval_68[k];
-    refit.uncertainty.interval_95[k] = kept.uncertainty.interval_95[k];
-    refit.uncertainty.determined[k] = kept.uncertainty.determined[k];
-  }
-  // The release's warnings (at a bound, not identifiable, not determined) are the first window's: on this window
-  // its bounds were those intervals.
-  const auto is_release_or_window = [](const FitWarning& w) {
-    if (w.kind == WarningKind::kWindowExtended) return true;
-    for (ParameterId id : kReleaseParameters) {
-      if (w.parameter == Name(id)) return true;
-    }
-    return false;
-  };
-  refit.warnings.erase(std::remove_if(refit.warnings.begin(), refit.warnings.end(), is_release_or_window),
-                       refit.warnings.end());
-  for (const FitWarning& w : kept.warnings) {
-    if (is_release_or_window(w) && w.kind != WarningKind::kWindowExtended) refit.warnings.push_back(w);
-  }
-  refit.uncertainty.statements = DescribeUncertainty(refit.uncertainty, refit.parameters);
-  kept.stages.insert(kept.stages.end(), refit.stages.begin(), refit.stages.end());
-  refit.stages = std::move(kept.stages);
-  refit.start = kept.start;
-  refit.epsilon_initial_rad_s = window.Evaluate(kept.start).epsilon_rad_s;
-  refit.simulations = kept.simulations;
-  refit.wall_time_s = kept.wall_time_s;
-  refit.window = kept.window;
-  refit.window.t_end_s = t_end_s;
-  refit.window.extensions = static_cast<int>(kept.window.tried_t_end_s.size());
-  refit.window.reason = "lower error on the longest window tried";
-  refit.warnings.push_back(
-      {WarningKind::kWindowExtended, "",
-       fmt::format("the window ending at {:.4f} s left λ_lat undetermined; extended to {:.4f} s ({} later return "
-                   "impact(s)), where every parameter refitted (the release within its intervals) has a lower (28) "
-                   "than the fit kept before ({:.6g} against {:.6g} rad/s)",
-                   kept.window.first_t_end_s, t_end_s, refit.window.extensions, refit.epsilon_rad_s,
-                   kept_there.epsilon_rad_s)});
-  return refit;
-}
-
 }  // namespace
 
 FitSummary Fit(const Objective& given, const ParameterSet& start_in, const FitOptions& given_options) {
@@ -656,9 +591,7 @@ FitSummary Fit(const Objective& given, const ParameterSet& start_in, const FitOp
   }
   const Eigen::VectorXd x_start =
       objective.FreeValues(start_in).cwiseMax(objective.FreeLower()).cwiseMin(objective.FreeUpper());
-  FitSummary summary = RefitOnLongestWindow(
-      objective, options,
-      ExtendWindowWhileLambdaLatUndetermined(objective, options, FitOnWindow(objective, x_start, options, false, objective)));
+  FitSummary summary = ExtendWindowWhileLambdaLatUndetermined(objective, options, FitOnWindow(objective, x_start, options, false, objective));
   summary.simulations_per_second =
       summary.wall_time_s > 0.0 ? static_cast<double>(summary.simulations) / summary.wall_time_s : 0.0;
   return summary;

@@ -1,7 +1,6 @@
 #include "rockfit/fitting/window_extension.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 
 #include <fmt/format.h>
@@ -39,27 +38,6 @@ ParameterSet StartOnLongerWindow(const Objective& longer, const ParameterSet& pr
     }
   }
   return best;
-}
-
-ParameterSet ReleaseOnLongerWindow(const ParameterSet& parameters, const ParameterSet& kept,
-                                   const std::array<std::array<double, 2>, kNumParameters>& kept_interval_95,
-                                   bool within_interval) {
-  ParameterSet release = parameters;
-  for (ParameterId id : kReleaseParameters) {
-    Parameter& p = release[id];
-    if (p.fixed) continue;
-    p.value = kept.value(id);
-    const std::array<double, 2>& interval = kept_interval_95[static_cast<std::size_t>(id)];
-    const bool closed = std::isfinite(interval[0]) && std::isfinite(interval[1]) && interval[0] < interval[1];
-    if (!within_interval || !closed) {
-      p.fixed = true;
-      continue;
-    }
-    p.lower = std::max(p.lower, std::min(interval[0], p.value));
-    p.upper = std::min(p.upper, std::max(interval[1], p.value));
-    if (!(p.lower < p.upper)) p.fixed = true;
-  }
-  return release;
 }
 
 std::string WindowReportJson(const WindowReport& report) {

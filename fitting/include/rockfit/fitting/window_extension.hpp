@@ -10,7 +10,6 @@
 // determines (or fixes) is never refitted.
 #pragma once
 
-#include <array>
 #include <string>
 #include <vector>
 
@@ -29,14 +28,6 @@ struct WindowExtensionOptions {
   // over its bounds (the other parameters held), when (28) is lower there than at the previous fit's point
   // (0: not). 61 points step 0.05 over the empirical bounds [−0.5, 2.5].
   int lambda_lon_scan_points = 61;
-  // After the extension, one more fit on the longest window it tried, with every parameter free — the release
-  // (t0, α, the roll) within the first window's 95 % intervals —, from the kept fit's point; it replaces the kept
-  // fit when its (28) on that common window is lower than the kept fit's there. The fall fixes the release only to
-  // within those intervals, and on a rolled release where in them it lies decides the phase of the corner-to-corner
-  // rocking at the base impact and the motion after it: a release held at the first window's values can leave
-  // the longer window's (28) several times higher (fitting/README.md, "End of the fitting window"). The kept fit
-  // reports the first window's intervals of the release.
-  bool longest_window_refit = true;
   void Validate() const;  // throws InvalidArgument
 };
 
@@ -49,8 +40,7 @@ struct WindowReport {
   int extensions_tried = 0;    // fits on longer windows (kept or not)
   std::vector<double> tried_t_end_s;  // their window ends (recording time), in order
   // "lambda_lat determined", "lambda_lat fixed", "lambda_lat determined by the extension", "lambda_lat not
-  // determined by any extension", "lower error on the longest window tried", "no later return impact",
-  // "extension off"
+  // determined by any extension", "no later return impact", "extension off"
   std::string reason;
 };
 
@@ -59,16 +49,6 @@ struct WindowReport {
 // over its bounds, whichever has the lower (28) on `longer`'s window. Never throws for numerical trouble.
 ParameterSet StartOnLongerWindow(const Objective& longer, const ParameterSet& previous,
                                  const WindowExtensionOptions& options);
-
-// The release: what the fall before the first impact fixes.
-inline constexpr ParameterId kReleaseParameters[] = {ParameterId::kT0, ParameterId::kAlpha, ParameterId::kReleaseRoll};
-
-// The parameters of a fit on a longer window: `parameters` with each free release parameter started at `kept`'s
-// value and free within its 95 % interval `kept_interval_95` (intersected with its bounds, widened to hold the
-// value) — or held at that value where `within_interval` is false or the interval is open or empty.
-ParameterSet ReleaseOnLongerWindow(const ParameterSet& parameters, const ParameterSet& kept,
-                                   const std::array<std::array<double, 2>, kNumParameters>& kept_interval_95,
-                                   bool within_interval);
 
 // {"first_t_end", "t_end", "extensions", "extensions_tried", "tried_t_end", "reason"} for the fit JSON.
 std::string WindowReportJson(const WindowReport& report);
