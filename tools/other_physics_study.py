@@ -35,10 +35,11 @@ recording of the fitted t0, α, λ, λ_lat, λ_lon with the same measurement mod
 line per OPMF miss: both OPMFs, the largest drift-corrected |φx| of the recording and of the model and how long
 after the first impact it comes (`rockfit correct`), and what became of the fit's window.
 
-`--refit-rule opmf|epsilon` (with --metrics) emulates a candidate rule of the fit outside it: every parameter fitted
+`--refit-rule opmf|epsilon|lateral` (with --metrics) emulates a candidate rule of the fit outside it: every parameter fitted
 again on the last window the window extension tried (`rockfit fit --t-end`), kept where the model's OPMF missed and
 the refit's is closer (opmf — a rule that selects on the OPMF itself, so the check is then no prediction) or where
-its (28) on that common window is lower than the kept fit's (epsilon). Writes OUT/refit_RULE.jsonl and the counts
+its (28) on that common window is lower than the kept fit's (epsilon), or where its model's ω_x, ω_z miss the
+recording's less over the 0.1 s after the first impact (lateral). Writes OUT/refit_RULE.jsonl and the counts
 with the rule. With --report-only it reuses the fits of an earlier run.
 """
 import argparse
@@ -209,13 +210,39 @@ def epsilon_at(args, trial, prefix, parameters, t_end):
     return json.loads(out.stdout).get("epsilon") if out.stdout.strip() else None
 
 
+LATERAL_SPAN_S = 0.1  # the lateral criterion's span after the first impact: the first lateral swing (fitting/README.md)
+
+
+def lateral_misfit_after_first_impact(recording_prefix, model_prefix):
+    """Σ (ω_x² + ω_z²) of the recording minus the model over the LATERAL_SPAN_S after the recording's first impact,
+    from the files `rockfit correct` wrote for largest_roll_after_first_impact (same sample times: same rate and
+    duration). None when a file is missing."""
+    def read(prefix):
+        path = prefix + "_corrected.csv"
+        if not os.path.exists(path):
+            return None
+        with open(path) as f:
+            return [(float(r["time_s"]), float(r["w_x_rad_s"]), float(r["w_z_rad_s"]), r["impact_y"] == "1")
+                    for r in csv.DictReader(f)]
+    recording, model = read(recording_prefix), read(model_prefix)
+    if recording is None or model is None:
+        return None
+    impacts = [r[0] for r in recording if r[3]]
+    if not impacts:
+        return None
+    return sum((a[1] - b[1]) ** 2 + (a[2] - b[2]) ** 2 for a, b in zip(recording, model)
+               if impacts[0] <= a[0] < impacts[0] + LATERAL_SPAN_S)
+
+
 def refit_on_longest_window(args, trials, rows, out_dir, criterion):
     """Candidate rules, emulated (fitting/README.md, "OPMF and AVRF on MuJoCo recordings"): fit again with every
     parameter free (the release too) on the last window the extension tried, and keep that fit
       criterion "opmf":    where the fitted model's OPMF misses the recording's, when the refit's is closer — a rule
                            that selects on the OPMF itself (on the trials it changes the check is no prediction);
       criterion "epsilon": on every fit whose window extension was tried, when its (28) on that common window is
-                           lower than the kept fit's there."""
+                           lower than the kept fit's there;
+      criterion "lateral": on the same fits, when its model's out-of-plane rates (ω_x, ω_z of its `synth`
+                           recording) miss the recording's less over the LATERAL_SPAN_S after the first impact."""
     by_row = {r["index"]: r for r in rows}
     out = []
     for trial in trials:
@@ -251,6 +278,12 @@ def refit_on_longest_window(args, trials, rows, out_dir, criterion):
         elif criterion == "opmf":
             entry["keep"] = (abs(m["model"]["opmf"] - r["recording"]["opmf"]) <
                              abs(r["model"]["opmf"] - r["recording"]["opmf"]))
+        elif criterion == "lateral":
+            recordings = os.path.join(out_dir, "recordings")
+            kept = lateral_misfit_after_first_impact(prefix, os.path.join(recordings, f"model{trial['index']:03d}"))
+            again = lateral_misfit_after_first_impact(prefix, os.path.join(recordings, f"refit{trial['index']:03d}"))
+            entry["kept_lateral"], entry["refit_lateral"] = kept, again
+            entry["keep"] = kept is not None and again is not None and again < kept
         else:
             entry["keep"] = entry["kept_epsilon"] is not None and entry["refit_epsilon"] < entry["kept_epsilon"]
         out.append(entry)
@@ -259,8 +292,10 @@ def refit_on_longest_window(args, trials, rows, out_dir, criterion):
 
 def refit_report(refits, rows, criterion):
     lines = [f"\nCandidate rule, emulated: every parameter refitted on the last window the extension tried, kept "
-             + ("where the model's OPMF missed and the refit's is closer (selects on the OPMF):" if criterion == "opmf"
-                else "where its (28) on that window is lower than the kept fit's:")]
+             + {"opmf": "where the model's OPMF missed and the refit's is closer (selects on the OPMF):",
+                "epsilon": "where its (28) on that window is lower than the kept fit's:",
+                "lateral": f"where its model's ω_x, ω_z miss the recording's less over the {LATERAL_SPAN_S} s after the "
+                           "first impact:"}[criterion]]
     model = {r["index"]: r["model"] for r in rows}
     for e in refits:
         if e.get("refit_model") is None:
@@ -360,10 +395,11 @@ def main():
     parser.add_argument("--report-only", action="store_true")
     parser.add_argument("--metrics", action="store_true",
                         help="also compare the OPMF and AVRF of the fitted model with the recording's (OUT/metrics.jsonl)")
-    parser.add_argument("--refit-rule", default=None, choices=["opmf", "epsilon"],
+    parser.add_argument("--refit-rule", default=None, choices=["opmf", "epsilon", "lateral"],
                         help="with --metrics: emulate a candidate rule — every parameter fitted again on the last "
                              "window the extension tried, kept where the model's OPMF missed and the refit's is closer "
-                             "(opmf: selects on the OPMF itself) or where its (28) on that window is lower (epsilon); "
+                             "(opmf: selects on the OPMF itself), where its (28) on that window is lower (epsilon), or "
+                             "where its ω_x, ω_z miss the recording's less just after the first impact (lateral); "
                              "OUT/refit_RULE.jsonl")
     args = parser.parse_args()
     path = os.path.join(args.out, "trials.jsonl")
