@@ -272,6 +272,9 @@ def refit_on_longest_window(args, trials, rows, out_dir, criterion):
                  "refit_model": m["model"], "t0_error": refit["fit"]["parameters"]["t0"]["value"] - trial["t0"],
                  "alpha_error": refit["fit"]["parameters"]["alpha"]["value"] - trial["alpha"],
                  "refit_epsilon": refit["fit"]["epsilon"],
+                 "refit_interval_95": {name: refit["fit"]["parameters"][name]["interval_95"]
+                                       for name in ("t0", "alpha", "release_roll")
+                                       if name in refit["fit"]["parameters"]},
                  "kept_epsilon": epsilon_at(args, trial, prefix, trial["fit"]["parameters"], t_end)}
         if m["model"].get("opmf") is None:
             entry["keep"] = False
@@ -290,7 +293,7 @@ def refit_on_longest_window(args, trials, rows, out_dir, criterion):
     return out
 
 
-def refit_report(refits, rows, criterion):
+def refit_report(refits, rows, criterion, trials=()):
     lines = [f"\nCandidate rule, emulated: every parameter refitted on the last window the extension tried, kept "
              + {"opmf": "where the model's OPMF missed and the refit's is closer (selects on the OPMF):",
                 "epsilon": "where its (28) on that window is lower than the kept fit's:",
@@ -310,6 +313,16 @@ def refit_report(refits, rows, criterion):
                      f"{e['model'].get('avrf') or float('nan'):.4f} → {e['refit_model'].get('avrf') or float('nan'):.4f}"
                      f" (recorded {rec.get('avrf') or float('nan'):.4f}); {'kept' if e['keep'] else 'not kept'}; "
                      f"t0 error {1e3 * e['t0_error']:+.1f} ms, α error {1e3 * e['alpha_error']:+.2f} mrad")
+    kept = [e for e in refits if e.get("refit_model") is not None and e["keep"] and "refit_interval_95" in e]
+    if kept:  # the release's 95 % intervals of the kept refits (all parameters free on the longer window)
+        by_index = {t["index"]: t for t in trials}
+        for name, truth_key in (("t0", "t0"), ("alpha", "alpha"), ("release_roll", "roll")):
+            with_it = [e for e in kept if name in e["refit_interval_95"]]
+            before = sum(holds(by_index[e["index"]]["fit"]["parameters"][name]["interval_95"], by_index[e["index"]][truth_key])
+                         for e in with_it if name in by_index[e["index"]]["fit"]["parameters"])
+            after = sum(holds(e["refit_interval_95"][name], by_index[e["index"]][truth_key]) for e in with_it)
+            lines.append(f"  {name}: the 95 % interval holds the truth in {before} → {after} of the {len(with_it)} "
+                         "refits kept (the kept fit's → the refit's own)")
     after = [dict(r, model=model[r["index"]]) for r in rows]
     lines += [line.replace("OPMF and AVRF of the fitted model", "With the rule, OPMF and AVRF of the fitted model")
               for line in metrics_report(after) if not line.startswith("    OPMF miss")]
@@ -437,7 +450,7 @@ def main():
                     for e in refit_on_longest_window(args, trials, rows, args.out, args.refit_rule):
                         f.write(json.dumps(e) + "\n")
             text += "\n" + "\n".join(refit_report([json.loads(line) for line in open(refit_path)], rows,
-                                                   args.refit_rule))
+                                                   args.refit_rule, trials))
     open(os.path.join(args.out, "report.md"), "w").write(text + "\n")
     print(text)
 
