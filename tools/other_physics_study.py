@@ -31,9 +31,19 @@ Writes OUT/trials.jsonl and prints the table (also OUT/report.md); `--report-onl
 `--metrics` (with or after a run) checks that the fitted model reproduces each recording's OPMF and AVRF (paper
 Sect. 3.2, `rockfit metrics`): the recording's are measured as recorded; the model's on a `rockfit synth`
 recording of the fitted t0, α, λ, λ_lat, λ_lon with the same measurement model and seed. Targets: AVRF within
-2 % (relative), OPMF within 0.003 (absolute). Writes OUT/metrics.jsonl and adds the table to the report.
+2 % (relative), OPMF within 0.003 (absolute). Writes OUT/metrics.jsonl and adds the table to the report, with a
+line per OPMF miss: both OPMFs, the largest drift-corrected |φx| of the recording and of the model and how long
+after the first impact it comes (`rockfit correct`), and what became of the fit's window.
+
+`--refit-rule opmf|epsilon|lateral` (with --metrics) emulates a candidate rule of the fit outside it: every parameter fitted
+again on the last window the window extension tried (`rockfit fit --t-end`), kept where the model's OPMF missed and
+the refit's is closer (opmf — a rule that selects on the OPMF itself, so the check is then no prediction) or where
+its (28) on that common window is lower than the kept fit's (epsilon), or where its model's ω_x, ω_z miss the
+recording's less over the 0.1 s after the first impact (lateral). Writes OUT/refit_RULE.jsonl and the counts
+with the rule. With --report-only it reuses the fits of an earlier run.
 """
 import argparse
+import csv
 import json
 import math
 import os
@@ -107,12 +117,31 @@ def metrics_of(args, prefix, b2):
     return {k: m.get(k) for k in ("opmf", "avrf", "status", "opmf_status", "avrf_status")}
 
 
-def metrics_trial(args, trial, out_dir):
+def largest_roll_after_first_impact(args, prefix):
+    """Time after the first impact [s] and size [rad] of the largest |φx| (drift-corrected, `rockfit correct`): the
+    numerator of the OPMF. On the rolled MuJoCo releases it is the first lateral swing after the base impact."""
+    csv_path = prefix + "_corrected.csv"
+    out = subprocess.run([args.rockfit, "correct", prefix, "-o", csv_path, "--json"], capture_output=True, text=True)
+    if out.returncode != 0 or not out.stdout.strip():
+        return None
+    impacts = json.loads(out.stdout).get("impact_times") or []
+    if not impacts:
+        return None
+    with open(csv_path) as f:
+        rows = [(float(r["time_s"]), float(r["phi_x_corrected_rad"])) for r in csv.DictReader(f)]
+    after = [r for r in rows if r[0] >= impacts[0]]
+    if not after:
+        return None
+    t_s, phi_x = max(after, key=lambda r: abs(r[1]))
+    return {"after_first_impact_s": t_s - impacts[0], "abs_phi_x_rad": abs(phi_x)}
+
+
+def metrics_trial(args, trial, out_dir, model_name=None):
     """OPMF and AVRF of the recording and of the fitted model (synth with the fitted parameters, same seed)."""
     prefix = os.path.join(out_dir, "recordings", f"trial{trial['index']:03d}")
     row = {"index": trial["index"], "recording": metrics_of(args, prefix, trial["b2"])}
     p = trial["fit"]["parameters"]
-    model = os.path.join(out_dir, "recordings", f"model{trial['index']:03d}")
+    model = os.path.join(out_dir, "recordings", model_name or f"model{trial['index']:03d}")
     synth = subprocess.run([args.rockfit, "synth", "-o", model, "--t0", repr(p["t0"]["value"]), "--duration", "3",
                             "--alpha", repr(p["alpha"]["value"]), "--lambda", repr(p["lambda"]["value"]),
                             "--lambda-lat", repr(p["lambda_lat"]["value"]), "--lambda-lon", repr(p["lambda_lon"]["value"]),
@@ -122,10 +151,13 @@ def metrics_trial(args, trial, out_dir):
                            capture_output=True, text=True)
     row["model"] = metrics_of(args, model, trial["b2"]) if synth.returncode == 0 else {"status": "error",
                                                                                       "message": synth.stderr.strip()}
+    row["recording"]["largest_roll"] = largest_roll_after_first_impact(args, prefix)
+    if synth.returncode == 0:
+        row["model"]["largest_roll"] = largest_roll_after_first_impact(args, model)
     return row
 
 
-def metrics_report(rows):
+def metrics_report(rows, trials=None):
     both = lambda key: [r for r in rows if r["recording"].get(key) is not None and r["model"].get(key) is not None]
     q90 = lambda v: statistics.quantiles(v, n=10)[8] if len(v) > 1 else v[0]
     lines = ["\nOPMF and AVRF of the fitted model against the recording's:"]
@@ -148,6 +180,152 @@ def metrics_report(rows):
                      f"max {max(opmf):.4f}; the recording's OPMF median "
                      f"{statistics.median(r['recording']['opmf'] for r in ok):.4f}, the model's "
                      f"{statistics.median(r['model']['opmf'] for r in ok):.4f}")
+        fits = {t["index"]: t["fit"] for t in trials or [] if t.get("fit")}
+        for r in ok:
+            if abs(r["model"]["opmf"] - r["recording"]["opmf"]) <= OPMF_TOLERANCE:
+                continue
+            line = (f"    OPMF miss, trial {r['index']}: recorded {r['recording']['opmf']:.4f}, model "
+                    f"{r['model']['opmf']:.4f}")
+            where = [r[k].get("largest_roll") for k in ("recording", "model")]
+            if all(where):
+                line += (f"; largest |φx| {1e3 * where[0]['abs_phi_x_rad']:.2f} / {1e3 * where[1]['abs_phi_x_rad']:.2f} "
+                         f"mrad, {1e3 * where[0]['after_first_impact_s']:.0f} / "
+                         f"{1e3 * where[1]['after_first_impact_s']:.0f} ms after the first impact (recording / model)")
+            window = fits.get(r["index"], {}).get("window")
+            if window:
+                line += f"; window {window['reason']}, {window['extensions']} of {window['extensions_tried']} extensions kept"
+            lines.append(line)
+    return lines
+
+
+def epsilon_at(args, trial, prefix, parameters, t_end):
+    """(28) of the fitted values on the window ending at t_end (`rockfit fit --evaluate`)."""
+    cmd = [args.rockfit, "fit", prefix, "--rate", "256", "--b1", repr(B1), "--b2", repr(trial["b2"]), "--h", repr(H),
+           "--density", repr(DENSITY), "--evaluate", "--json", "--t-end", repr(t_end)]
+    for name, option in (("t0", "--t0"), ("alpha", "--alpha"), ("lambda", "--lambda"), ("lambda_lat", "--lambda-lat"),
+                         ("lambda_lon", "--lambda-lon"), ("release_roll", "--release-roll")):
+        if name in parameters:
+            cmd += [option, repr(parameters[name]["value"])]
+    out = subprocess.run(cmd, capture_output=True, text=True)
+    return json.loads(out.stdout).get("epsilon") if out.stdout.strip() else None
+
+
+LATERAL_SPAN_S = 0.1  # the lateral criterion's span after the first impact: the first lateral swing (fitting/README.md)
+
+
+def lateral_misfit_after_first_impact(recording_prefix, model_prefix):
+    """Σ (ω_x² + ω_z²) of the recording minus the model over the LATERAL_SPAN_S after the recording's first impact,
+    from the files `rockfit correct` wrote for largest_roll_after_first_impact (same sample times: same rate and
+    duration). None when a file is missing."""
+    def read(prefix):
+        path = prefix + "_corrected.csv"
+        if not os.path.exists(path):
+            return None
+        with open(path) as f:
+            return [(float(r["time_s"]), float(r["w_x_rad_s"]), float(r["w_z_rad_s"]), r["impact_y"] == "1")
+                    for r in csv.DictReader(f)]
+    recording, model = read(recording_prefix), read(model_prefix)
+    if recording is None or model is None:
+        return None
+    impacts = [r[0] for r in recording if r[3]]
+    if not impacts:
+        return None
+    return sum((a[1] - b[1]) ** 2 + (a[2] - b[2]) ** 2 for a, b in zip(recording, model)
+               if impacts[0] <= a[0] < impacts[0] + LATERAL_SPAN_S)
+
+
+def refit_on_longest_window(args, trials, rows, out_dir, criterion):
+    """Candidate rules, emulated (fitting/README.md, "OPMF and AVRF on MuJoCo recordings"): fit again with every
+    parameter free (the release too) on the last window the extension tried, and keep that fit
+      criterion "opmf":    where the fitted model's OPMF misses the recording's, when the refit's is closer — a rule
+                           that selects on the OPMF itself (on the trials it changes the check is no prediction);
+      criterion "epsilon": on every fit whose window extension was tried, when its (28) on that common window is
+                           lower than the kept fit's there;
+      criterion "lateral": on the same fits, when its model's out-of-plane rates (ω_x, ω_z of its `synth`
+                           recording) miss the recording's less over the LATERAL_SPAN_S after the first impact."""
+    by_row = {r["index"]: r for r in rows}
+    out = []
+    for trial in trials:
+        r = by_row.get(trial["index"])
+        if r is None or r["recording"].get("opmf") is None or r["model"].get("opmf") is None:
+            continue
+        window = trial["fit"].get("window") or {}
+        if criterion == "opmf":
+            if abs(r["model"]["opmf"] - r["recording"]["opmf"]) <= OPMF_TOLERANCE:
+                continue
+        elif not window.get("extensions_tried"):
+            continue
+        t_end = (window.get("tried_t_end") or [window.get("t_end")])[-1]
+        if t_end is None or t_end <= window.get("first_t_end", 0.0):
+            out.append({"index": trial["index"], "refit_model": None, "reason": "no later window"})
+            continue
+        prefix = os.path.join(out_dir, "recordings", f"trial{trial['index']:03d}")
+        fit = subprocess.run([args.rockfit, "fit", prefix, "--rate", "256", "--b1", repr(B1), "--b2", repr(trial["b2"]),
+                              "--h", repr(H), "--density", repr(DENSITY), "--threads", "1", "--json", "--t-end",
+                              repr(t_end)] + widening_args(args), capture_output=True, text=True)
+        if not fit.stdout.strip():
+            out.append({"index": trial["index"], "refit_model": None, "reason": fit.stderr.strip()})
+            continue
+        refit = dict(trial, fit=json.loads(fit.stdout))
+        m = metrics_trial(args, refit, out_dir, model_name=f"refit{trial['index']:03d}")
+        entry = {"index": trial["index"], "t_end": t_end, "recording": r["recording"], "model": r["model"],
+                 "refit_model": m["model"], "t0_error": refit["fit"]["parameters"]["t0"]["value"] - trial["t0"],
+                 "alpha_error": refit["fit"]["parameters"]["alpha"]["value"] - trial["alpha"],
+                 "refit_epsilon": refit["fit"]["epsilon"],
+                 "refit_interval_95": {name: refit["fit"]["parameters"][name]["interval_95"]
+                                       for name in ("t0", "alpha", "release_roll")
+                                       if name in refit["fit"]["parameters"]},
+                 "kept_epsilon": epsilon_at(args, trial, prefix, trial["fit"]["parameters"], t_end)}
+        if m["model"].get("opmf") is None:
+            entry["keep"] = False
+        elif criterion == "opmf":
+            entry["keep"] = (abs(m["model"]["opmf"] - r["recording"]["opmf"]) <
+                             abs(r["model"]["opmf"] - r["recording"]["opmf"]))
+        elif criterion == "lateral":
+            recordings = os.path.join(out_dir, "recordings")
+            kept = lateral_misfit_after_first_impact(prefix, os.path.join(recordings, f"model{trial['index']:03d}"))
+            again = lateral_misfit_after_first_impact(prefix, os.path.join(recordings, f"refit{trial['index']:03d}"))
+            entry["kept_lateral"], entry["refit_lateral"] = kept, again
+            entry["keep"] = kept is not None and again is not None and again < kept
+        else:
+            entry["keep"] = entry["kept_epsilon"] is not None and entry["refit_epsilon"] < entry["kept_epsilon"]
+        out.append(entry)
+    return out
+
+
+def refit_report(refits, rows, criterion, trials=()):
+    lines = [f"\nCandidate rule, emulated: every parameter refitted on the last window the extension tried, kept "
+             + {"opmf": "where the model's OPMF missed and the refit's is closer (selects on the OPMF):",
+                "epsilon": "where its (28) on that window is lower than the kept fit's:",
+                "lateral": f"where its model's ω_x, ω_z miss the recording's less over the {LATERAL_SPAN_S} s after the "
+                           "first impact:"}[criterion]]
+    model = {r["index"]: r["model"] for r in rows}
+    for e in refits:
+        if e.get("refit_model") is None:
+            lines.append(f"  trial {e['index']}: not refitted ({e.get('reason', '')[:80]})")
+            continue
+        if e["keep"]:
+            model[e["index"]] = e["refit_model"]
+        rec = e["recording"]
+        lines.append(f"  trial {e['index']}: window to {e['t_end']:.4f} s: ε {e['kept_epsilon']:.5f} → "
+                     f"{e['refit_epsilon']:.5f}; model OPMF {e['model']['opmf']:.4f} → "
+                     f"{e['refit_model'].get('opmf') or float('nan'):.4f} (recorded {rec['opmf']:.4f}); AVRF "
+                     f"{e['model'].get('avrf') or float('nan'):.4f} → {e['refit_model'].get('avrf') or float('nan'):.4f}"
+                     f" (recorded {rec.get('avrf') or float('nan'):.4f}); {'kept' if e['keep'] else 'not kept'}; "
+                     f"t0 error {1e3 * e['t0_error']:+.1f} ms, α error {1e3 * e['alpha_error']:+.2f} mrad")
+    kept = [e for e in refits if e.get("refit_model") is not None and e["keep"] and "refit_interval_95" in e]
+    if kept:  # the release's 95 % intervals of the kept refits (all parameters free on the longer window)
+        by_index = {t["index"]: t for t in trials}
+        for name, truth_key in (("t0", "t0"), ("alpha", "alpha"), ("release_roll", "roll")):
+            with_it = [e for e in kept if name in e["refit_interval_95"]]
+            before = sum(holds(by_index[e["index"]]["fit"]["parameters"][name]["interval_95"], by_index[e["index"]][truth_key])
+                         for e in with_it if name in by_index[e["index"]]["fit"]["parameters"])
+            after = sum(holds(e["refit_interval_95"][name], by_index[e["index"]][truth_key]) for e in with_it)
+            lines.append(f"  {name}: the 95 % interval holds the truth in {before} → {after} of the {len(with_it)} "
+                         "refits kept (the kept fit's → the refit's own)")
+    after = [dict(r, model=model[r["index"]]) for r in rows]
+    lines += [line.replace("OPMF and AVRF of the fitted model", "With the rule, OPMF and AVRF of the fitted model")
+              for line in metrics_report(after) if not line.startswith("    OPMF miss")]
     return lines
 
 
@@ -230,6 +408,12 @@ def main():
     parser.add_argument("--report-only", action="store_true")
     parser.add_argument("--metrics", action="store_true",
                         help="also compare the OPMF and AVRF of the fitted model with the recording's (OUT/metrics.jsonl)")
+    parser.add_argument("--refit-rule", default=None, choices=["opmf", "epsilon", "lateral"],
+                        help="with --metrics: emulate a candidate rule — every parameter fitted again on the last "
+                             "window the extension tried, kept where the model's OPMF missed and the refit's is closer "
+                             "(opmf: selects on the OPMF itself), where its (28) on that window is lower (epsilon), or "
+                             "where its ω_x, ω_z miss the recording's less just after the first impact (lateral); "
+                             "OUT/refit_RULE.jsonl")
     args = parser.parse_args()
     path = os.path.join(args.out, "trials.jsonl")
     if not args.report_only:
@@ -257,7 +441,16 @@ def main():
                     if t.get("fit"):
                         f.write(json.dumps(metrics_trial(args, t, args.out)) + "\n")
                         f.flush()
-        text += "\n".join(metrics_report([json.loads(line) for line in open(metrics_path)]))
+        rows = [json.loads(line) for line in open(metrics_path)]
+        text += "\n".join(metrics_report(rows, trials))
+        if args.refit_rule:
+            refit_path = os.path.join(args.out, f"refit_{args.refit_rule}.jsonl")
+            if not os.path.exists(refit_path):
+                with open(refit_path, "w") as f:
+                    for e in refit_on_longest_window(args, trials, rows, args.out, args.refit_rule):
+                        f.write(json.dumps(e) + "\n")
+            text += "\n" + "\n".join(refit_report([json.loads(line) for line in open(refit_path)], rows,
+                                                   args.refit_rule, trials))
     open(os.path.join(args.out, "report.md"), "w").write(text + "\n")
     print(text)
 
