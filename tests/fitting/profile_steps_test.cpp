@@ -8,6 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include "rockfit/core/errors.hpp"
+#include "rockfit/fitting/fit_options.hpp"
+
 namespace rockfit::fitting {
 namespace {
 
@@ -67,6 +70,19 @@ TEST(RidgeSlope, IsZeroWithoutAPositiveVariance) {
   EXPECT_TRUE(RidgeSlope(m, 1).isZero());
   m(1, 1) = std::numeric_limits<double>::quiet_NaN();
   EXPECT_TRUE(RidgeSlope(m, 1).isZero());
+}
+
+// The aimed points must pass the 95 % crossing (z = 1.96) to bracket it, and a refinement threshold below the
+// aim would refine every point.
+TEST(IntervalOptions, RejectsAnAimThatCannotBracketTheCrossing) {
+  IntervalOptions options;
+  options.profile_aim_rho = 1.9;
+  EXPECT_THROW(options.Validate(), InvalidArgument);
+  options.profile_aim_rho = 2.2;
+  options.profile_refine_above_rho = 2.0;
+  EXPECT_THROW(options.Validate(), InvalidArgument);
+  options.profile_refine_above_rho = 3.0;
+  EXPECT_NO_THROW(options.Validate());
 }
 
 }  // namespace

@@ -182,10 +182,11 @@ struct IntervalOptions {
   // The profile points aimed at the 95 % crossing of the signed root ρ (profile_steps.hpp): the first at
   // profile_aim_rho·σ_j, each next one by the secant of ρ, one point inside the bracket where the point beyond
   // lies past profile_refine_above_rho; the re-fits start from the better of the previous point and its
-  // shift along the linearised ridge. Measured on the sample campaign and the coverage study (fitting/README.md,
-  // "Intervals"): the intervals' simulations 37 % fewer than with the fixed grid, coverage and ε kept.
+  // shift along the linearised ridge. Measured (fitting/README.md, "Intervals"): the intervals' simulations 37 %
+  // fewer than with the fixed grid; ε and coverage kept on the sample campaign and coverage study seed 1, but on
+  // seed 2 (ringing ×2) ε rose by 0.19–0.30 % on two trials and the 68 % coverage fell by 4 values: off.
   // false: the fixed grid 1, 2, then × profile_growth times σ_j, each re-fit started from the previous point.
-  bool profile_aimed = true;
+  bool profile_aimed = false;
   double profile_aim_rho = 2.2;           // a little beyond 1.96, so that a quadratic profile brackets it at once
   double profile_refine_above_rho = 3.0;  // a first bracket this loose is refined by one point inside it
   double profile_growth = 1.5;  // the fixed grid: factor between successive offsets (after the first two)
