@@ -9,6 +9,12 @@
 #include "rockfit/core/errors.hpp"
 
 namespace rockfit::fitting {
+namespace {
+
+// z of the two-sided 95 % interval: the signed root the aimed profile points must pass.
+constexpr double kZ95 = 1.959963984540054;
+
+}  // namespace
 
 // Calibrated on the tuning families of the coverage studies, 100 trials each (fitting/README.md, "Intervals under
 // model error"): with q = 0.5 (half a sample period, the resolution of an impact time on the sample grid),
@@ -155,6 +161,16 @@ void IntervalOptions::Validate() const {
   RequireAtLeast(profile_points, 2, FitOption("intervals.profile_points"));
   if (!(profile_growth > 1.0 && std::isfinite(profile_growth))) {
     throw InvalidArgument(fmt::format("fit option intervals.profile_growth must be above 1, got {}", profile_growth));
+  }
+  if (!(profile_aim_rho > kZ95 && std::isfinite(profile_aim_rho))) {
+    throw InvalidArgument(fmt::format("fit option intervals.profile_aim_rho must be above 1.96 (the 95 % crossing the "
+                                      "points must pass), got {}",
+                                      profile_aim_rho));
+  }
+  if (!(profile_refine_above_rho >= profile_aim_rho && std::isfinite(profile_refine_above_rho))) {
+    throw InvalidArgument(fmt::format("fit option intervals.profile_refine_above_rho must be finite and at least "
+                                      "profile_aim_rho ({}), got {}",
+                                      profile_aim_rho, profile_refine_above_rho));
   }
   RequirePositiveEach(min_step, "intervals.min_step");
   if (!(undetermined_range_fraction > 0.0 && undetermined_range_fraction <= 1.0)) {

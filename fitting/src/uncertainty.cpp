@@ -14,6 +14,7 @@
 
 #include "parallel_for.hpp"
 #include "rockfit/fitting/censored_noise_level.hpp"
+#include "rockfit/fitting/profile_steps.hpp"
 #include "rockfit/core/enum_names.hpp"
 
 namespace rockfit::fitting {
@@ -141,13 +142,32 @@ struct ProfilePoint {
   bool at_bound = false;
 };
 
-// One side of the profile of `id`: offsets of 1, 2, then growing by options.profile_growth times `step` from
-// the centre, the other free parameters re-fitted at each (warm-started from the previous point), until S rises
-// above `stop_sum_sq`, the model fails, or the bound is reached.
-std::vector<ProfilePoint> ProfileSide(const Objective& objective, const ParameterSet& centre, ParameterId id,
-                                      double direction, double step, double stop_sum_sq, const PerParameter& refit_step,
-                                      const IntervalOptions& options, BestEpsilon* best_epsilon,
-                                      std::int64_t* evaluations) {
+// The scale of one profile: S at its centre and the effective noise variance κ_j·s² of its signed root.
+struct ProfileScale {
+  double sum_sq_centre = 0.0;
+  double s2_eff = 1.0;
+  double Rho(const SumOfSquaresValue& v) const {
+    return v.feasible ? std::sqrt(std::max(0.0, v.sum_sq - sum_sq_centre) / s2_eff) : std::numeric_limits<double>::infinity();
+  }
+};
+
+// `from` with `id` moved to `value` and held, the others as `from` (the profile point's problem and start).
+ParameterSet HeldAt(const Objective& objective, const ParameterSet& from, ParameterId id, double value) {
+  ParameterSet set = objective.parameters();
+  for (ParameterId other : kAllParameters) set[other].value = from.value(other);
+  set[id].value = value;
+  set[id].fixed = true;
+  return set;
+}
+
+// The fixed grid (IntervalOptions::profile_aimed false): offsets of 1, 2, then growing by options.profile_growth
+// times `step` from the centre, the other free parameters re-fitted at each (warm-started from the previous point),
+// until S rises above 1.5·z²·κ_j·s² (margin to interpolate the crossing), the model fails, or the bound is reached.
+std::vector<ProfilePoint> ProfileSideOnGrid(const Objective& objective, const ParameterSet& centre, ParameterId id,
+                                            double direction, double step, const ProfileScale& scale,
+                                            const PerParameter& refit_step, const IntervalOptions& options,
+                                            BestEpsilon* best_epsilon, std::int64_t* evaluations) {
+  const double stop_sum_sq = scale.sum_sq_centre + 1.5 * kZ95 * kZ95 * scale.s2_eff;
   std::vector<ProfilePoint> points;
   const Parameter& p = objective.parameters()[id];
   const double bound = direction > 0 ? p.upper : p.lower;
@@ -161,10 +181,7 @@ std::vector<ProfilePoint> ProfileSide(const Objective& objective, const Paramete
       point.at_bound = true;
     }
     if (point.value == centre.value(id)) break;  // the centre sits on the bound
-    ParameterSet set = objective.parameters();
-    for (ParameterId other : kAllParameters) set[other].value = previous.value(other);
-    set[id].value = point.value;
-    set[id].fixed = true;
+    const ParameterSet set = HeldAt(objective, previous, id, point.value);
     const Objective held = objective.WithParameters(set);
     SumOfSquaresValue v;
     previous = MinimizeSumOfSquares(held, set, refit_step, options.profile_evaluations, &v, best_epsilon, evaluations);
@@ -175,6 +192,95 @@ std::vector<ProfilePoint> ProfileSide(const Objective& objective, const Paramete
     offset = i == 0 ? 2.0 : offset * options.profile_growth;
   }
   return points;
+}
+
+// Aimed points (IntervalOptions::profile_aimed, profile_steps.hpp), offsets in units of `step` (the linearised σ_j)
+// and never below `min_offset` (the model's resolution): the first at profile_aim_rho, each next one by the secant
+// of the signed root ρ, until ρ passes z = 1.96 (the crossing is bracketed), the model fails or the bound is reached;
+// a first bracket looser than profile_refine_above_rho (or ended by a failed model run) gets one point inside it
+// where that point is not below `min_offset`. Every re-fit starts from the better (lower S) of the re-fitted neighbour inside it and that point
+// moved along the linearised ridge (`ridge_slope`: dθ_o/dθ_j, per parameter; 0 where unknown).
+std::vector<ProfilePoint> ProfileSideAimed(const Objective& objective, const ParameterSet& centre, ParameterId id,
+                                           double direction, double step, double min_offset, const ProfileScale& scale,
+                                           const PerParameter& ridge_slope, const PerParameter& refit_step,
+                                           const IntervalOptions& options, BestEpsilon* best_epsilon,
+                                           std::int64_t* evaluations) {
+  struct Point {
+    ProfilePoint profile;
+    ProfileStepPoint step;
+    ParameterSet refit;
+  };
+  std::vector<Point> points;  // in the order evaluated (outwards, then the refinement)
+  const Parameter& p = objective.parameters()[id];
+  const double bound = direction > 0 ? p.upper : p.lower;
+  const double c = centre.value(id);
+  const ProfileAim aim{options.profile_aim_rho, ProfileAim{}.min_growth, ProfileAim{}.max_growth};
+  // Re-fits the others with `id` held at offset `offset` from the centre, started from `inner` (the re-fitted
+  // point inside it) or its shift along the ridge, whichever has the lower S.
+  auto evaluate = [&](double offset, const ParameterSet& inner) {
+    Point point;
+    point.profile.value = c + direction * offset * step;
+    if (direction * (point.profile.value - bound) >= 0.0) {
+      point.profile.value = bound;
+      point.profile.at_bound = true;
+    }
+    point.step.offset = direction * (point.profile.value - c) / step;
+    ParameterSet start = HeldAt(objective, inner, id, point.profile.value);
+    const Objective held = objective.WithParameters(start);
+    ParameterSet moved = start;
+    bool shifted = false;
+    for (ParameterId other : held.free_ids()) {
+      const double slope = ridge_slope[static_cast<std::size_t>(other)];
+      if (slope == 0.0) continue;
+      const Parameter& q = held.parameters()[other];
+      moved[other].value = std::clamp(inner.value(other) + slope * (point.profile.value - inner.value(id)), q.lower, q.upper);
+      shifted = true;
+    }
+    if (shifted) {
+      const SumOfSquaresValue at_moved = SumOfSquares(held, moved);
+      ++*evaluations;
+      if (at_moved.feasible) {
+        best_epsilon->Offer(at_moved.epsilon_rad_s, moved);
+        if (at_moved.sum_sq < SumOfSquares(held, start).sum_sq) start = moved;
+        ++*evaluations;
+      }
+    }
+    SumOfSquaresValue v;
+    point.refit = MinimizeSumOfSquares(held, start, refit_step, options.profile_evaluations, &v, best_epsilon, evaluations);
+    point.profile.sum_sq = v.sum_sq;
+    point.profile.feasible = v.feasible;
+    point.step.rho = scale.Rho(v);
+    return point;
+  };
+
+  if (c == bound) return {};  // the centre sits on the bound
+  ProfileStepPoint before;            // the point inside the last one evaluated: the centre (offset 0, ρ 0) first
+  std::optional<std::size_t> inner;   // its index in `points` (none: the centre)
+  double offset = std::max(options.profile_aim_rho, min_offset);
+  for (int i = 0; i < options.profile_points; ++i) {
+    points.push_back(evaluate(offset, inner ? points[*inner].refit : centre));
+    const ProfileStepPoint last = points.back().step;
+    const bool at_bound = points.back().profile.at_bound;
+    if (last.rho > kZ95) {
+      // Bracketed. One point inside a loose bracket (or one that ends where the model fails).
+      const double inside = RefineProfileOffset(before, last, options.profile_aim_rho);
+      if (last.rho > options.profile_refine_above_rho && i + 1 < options.profile_points && last.offset > before.offset &&
+          inside >= min_offset) {
+        const ParameterSet from = inner ? points[*inner].refit : centre;
+        points.push_back(evaluate(inside, from));
+      }
+      break;
+    }
+    if (at_bound) break;  // an open end
+    offset = NextProfileOffset(before, last, aim);
+    before = last;
+    inner = points.size() - 1;
+  }
+  std::sort(points.begin(), points.end(), [](const Point& a, const Point& b) { return a.step.offset < b.step.offset; });
+  std::vector<ProfilePoint> out;
+  out.reserve(points.size());
+  for (const Point& point : points) out.push_back(point.profile);
+  return out;
 }
 
 // Where the profile (centre first, then the side's points outwards) first rises above z (signed-root scale
@@ -548,6 +654,15 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
     const double s2_centre = sum_sq_centre / noise_dof;
     linearised_sigma(s2_centre);
 
+    // The linearised ridge of each profile (how the others move when they are re-fitted), 0 without M.
+    std::vector<PerParameter> ridge_slope(profiled.size());
+    for (std::size_t j = 0; j < profiled.size(); ++j) {
+      ridge_slope[j].fill(0.0);
+      const auto a = std::find(covariance_ids.begin(), covariance_ids.end(), profiled[j]);
+      if (!have_cov || a == covariance_ids.end()) continue;
+      const Eigen::VectorXd slope = RidgeSlope(inverse_normal_matrix, a - covariance_ids.begin());
+      for (Eigen::Index b = 0; b < n_cov; ++b) ridge_slope[j][static_cast<std::size_t>(covariance_ids[static_cast<std::size_t>(b)])] = slope[b];
+    }
     // Both sides of every profiled parameter, in parallel (independent: deterministic in any thread count).
     const std::size_t sides = 2 * profiled.size();
     std::vector<std::vector<ProfilePoint>> points(sides);
@@ -557,10 +672,17 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
       const ParameterId id = profiled[s / 2];
       const std::size_t k = static_cast<std::size_t>(id);
       const double step = std::isfinite(sigma[k]) ? std::max(sigma[k], options.min_step[k]) : kFallbackStep[k];
-      // Far enough past the 95 % threshold to interpolate it, with margin for a lower minimum found later.
-      const double stop = sum_sq_centre + 1.5 * kZ95 * kZ95 * kappa[k] * s2_centre;
-      points[s] = ProfileSide(ls, centre, id, s % 2 == 0 ? -1.0 : +1.0, step, stop, refit_step, options, &side_best[s],
-                              &side_evaluations[s]);
+      // The aimed points' unit: σ_j itself, the model's resolution kept as a smallest offset.
+      const double unit = std::isfinite(sigma[k]) && sigma[k] > 0.0 ? sigma[k] : step;
+      const ProfileScale scale{sum_sq_centre, kappa[k] * s2_centre};
+      const double direction = s % 2 == 0 ? -1.0 : +1.0;
+      if (options.profile_aimed) {
+        points[s] = ProfileSideAimed(ls, centre, id, direction, unit, options.min_step[k] / unit, scale, ridge_slope[s / 2], refit_step, options,
+                                     &side_best[s], &side_evaluations[s]);
+      } else {
+        points[s] = ProfileSideOnGrid(ls, centre, id, direction, step, scale, refit_step, options, &side_best[s],
+                                      &side_evaluations[s]);
+      }
     });
     sum_sq_min = sum_sq_centre;
     for (std::size_t s = 0; s < sides; ++s) {

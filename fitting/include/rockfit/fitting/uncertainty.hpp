@@ -16,8 +16,9 @@
 //  fast      value ± z·σ_j, σ_j² = κ_j·s²·M_jj (linearised, the Jacobian of the Ceres back end; z = 1.96),
 //            and value ± σ_j at the bulk level for 68 %;
 //  thorough  95 %: profile intervals of S = Σ w_k‖ω_m − ω_s‖² (the least-squares form of (28)): parameter j
-//            is stepped outwards from the least-squares optimum, the others re-fitted by Nelder–Mead at every
-//            step (warm-started), and the interval ends where S_profile − S_min = z²·s²_eff (z = 1.96, the
+//            is stepped outwards from the least-squares optimum (a fixed grid of multiples of σ_j, or aimed at the
+//            crossing: IntervalOptions::profile_aimed, profile_steps.hpp), the others re-fitted by Nelder–Mead at
+//            every step (warm-started), and the interval ends where S_profile − S_min = z²·s²_eff (z = 1.96, the
 //            χ²₁ quantile), widened to the linearised one. Curved valleys (t0 + T(α) near θ_c, λ–λ_lat with weak
 //            lateral motion) are followed by the re-fits instead of linearised. 68 %: linearised at the bulk
 //            level, as in fast (or the profile's crossing at z = 1, IntervalOptions::profile_68).
