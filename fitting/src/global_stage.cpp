@@ -19,16 +19,38 @@ namespace {
 // Two starts closer than this in box-normalised coordinates (each axis scaled to [0, 1]) are the same start.
 constexpr double kDistinctStartDistance = 0.05;
 
+// True when moving `id` by ±probe_step from `at` (within its bounds) changes ε on `window` by more than
+// `tolerance_rad_s` — CheckIdentifiability's verdict (identifiability.hpp) for one parameter, with the −step probe
+// run only when the +step probe shows no change: the same verdict for half the runs where the parameter acts.
+bool ActsAt(const Objective& window, const ParameterSet& at, const Evaluation& centre, ParameterId id,
+            double tolerance_rad_s, const IdentifiabilityOptions& options) {
+  const Parameter& p = window.parameters()[id];
+  const double step = options.probe_step[static_cast<std::size_t>(id)];
+  for (double direction : {+1.0, -1.0}) {
+    ParameterSet probe = at;
+    probe[id].value = std::clamp(at.value(id) + direction * step, p.lower, p.upper);
+    if (probe[id].value == at.value(id)) continue;
+    const Evaluation e = window.Evaluate(probe);
+    // A probe where the model fails shows that the parameter matters.
+    const double change = e.feasible == centre.feasible ? std::abs(e.epsilon_rad_s - centre.epsilon_rad_s)
+                                                        : std::abs(window.options().failure_penalty_rad_s);
+    if (change > tolerance_rad_s) return true;
+  }
+  return false;
+}
+
 // `window` with every parameter that does not change ε at `at` held fixed at its value there (all values
-// taken from `at`). nullopt when nothing acts (or the model fails at `at`).
+// taken from `at`; the verdicts of CheckIdentifiability). nullopt when nothing acts; `window` at `at`'s values,
+// nothing held, when the model fails at `at`.
 std::optional<Objective> ActingParameters(const Objective& window, const ParameterSet& at,
                                           const IdentifiabilityOptions& options) {
   ParameterSet params = window.parameters();
   for (ParameterId id : kAllParameters) params[id].value = at.value(id);
-  if (!window.Evaluate(params).feasible) return window.WithParameters(params);
-  const IdentifiabilityReport report = CheckIdentifiability(window.WithParameters(params), params, options);
+  const Evaluation centre = window.Evaluate(params);
+  if (!centre.feasible) return window.WithParameters(params);
+  const double tolerance_rad_s = options.relative_tolerance * std::abs(centre.epsilon_rad_s);
   for (ParameterId id : window.free_ids()) {
-    if (!report.identifiable[static_cast<std::size_t>(id)]) params[id].fixed = true;
+    if (!ActsAt(window, params, centre, id, tolerance_rad_s, options)) params[id].fixed = true;
   }
   if (params.FreeIds().empty()) return std::nullopt;
   return window.WithParameters(params);
@@ -431,21 +453,37 @@ ParameterSet ScanParameter(const Objective& window, const ParameterSet& at, Para
                            double prefix_fraction) {
   const Parameter& p = window.parameters()[id];
   const PrefixScreen screen(window, prefix_fraction);
-  ParameterSet best = at;
+  std::vector<ParameterSet> trials(static_cast<std::size_t>(std::max(points, 0)), at);
+  std::vector<PrefixBound> bounds(trials.size());
+  for (std::size_t j = 0; j < trials.size(); ++j) {
+    trials[j][id].value = p.lower + (p.upper - p.lower) * (static_cast<double>(j) + 0.5) / points;
+    bounds[j] = screen.Bound(trials[j]);
+  }
+  // The values run over the whole window in the order of their bounds, until the next bound rules out the rest:
+  // every value whose (28) is at most the best's is run (its bound is at most its (28)), so the result is that of
+  // running them all — the first of the values with the lowest (28), when that lies below (28) at `at`.
+  std::vector<std::size_t> order;
+  for (std::size_t j = 0; j < trials.size(); ++j) {
+    if (bounds[j].feasible) order.push_back(j);  // a prefix on which the model fails: the whole window fails too
+  }
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return bounds[a].epsilon_lower_rad_s < bounds[b].epsilon_lower_rad_s;
+  });
   Evaluation best_e = window.Evaluate(at);
-  for (int j = 0; j < points; ++j) {
-    ParameterSet trial = at;
-    trial[id].value = p.lower + (p.upper - p.lower) * (j + 0.5) / points;
-    if (screen.CannotBeat(trial, best_e.feasible ? best_e.epsilon_rad_s : std::numeric_limits<double>::infinity())) {
-      continue;
-    }
-    const Evaluation e = window.Evaluate(trial);
-    if (e.feasible && (!best_e.feasible || e.epsilon_rad_s < best_e.epsilon_rad_s)) {
-      best = trial;
+  std::optional<std::size_t> best;  // nullopt: `at` itself
+  for (std::size_t j : order) {
+    const double to_beat = best_e.feasible ? best_e.epsilon_rad_s : std::numeric_limits<double>::infinity();
+    if (PrefixScreen::CannotBeatWithBound(bounds[j], to_beat)) break;
+    const Evaluation e = window.Evaluate(trials[j]);
+    if (!e.feasible) continue;
+    const bool lower = !best_e.feasible || e.epsilon_rad_s < best_e.epsilon_rad_s;
+    const bool equal_and_earlier = best && e.epsilon_rad_s == best_e.epsilon_rad_s && j < *best;
+    if (lower || equal_and_earlier) {
+      best = j;
       best_e = e;
     }
   }
-  return best;
+  return best ? trials[*best] : at;
 }
 
 std::optional<double> FirstImpactTime(const Objective& objective, const ParameterSet& at) {

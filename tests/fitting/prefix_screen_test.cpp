@@ -91,6 +91,21 @@ TEST(PrefixScreen, ScreenedScanFindsWhatTheFullScanFinds) {
   }
 }
 
+// Values with equal (28) (λ before the first edge impact does not act) leave the start where it was, as a scan that
+// runs every value over the whole window does: only a lower (28) moves it.
+TEST(PrefixScreen, ScreenedScanOfAParameterThatDoesNotActKeepsTheStart) {
+  const ScreenTrial t;
+  const std::optional<double> t1 = FirstImpactTime(t.objective, t.trial.truth);
+  ASSERT_TRUE(t1.has_value());
+  const Objective before_impact = t.objective.WithWindowEnd(*t1 - 0.01);
+  ParameterSet start = t.trial.truth;
+  start[ParameterId::kLambda].value = 0.4;
+  for (double fraction : {0.0, 0.7}) {
+    const ParameterSet scanned = ScanParameter(before_impact, start, ParameterId::kLambda, 48, fraction);
+    EXPECT_EQ(scanned.value(ParameterId::kLambda), 0.4) << "prefix fraction " << fraction;
+  }
+}
+
 TEST(PrefixScreen, ScreenedArgminIsTheArgminOfTheWholeWindowInAnyThreadCount) {
   const ScreenTrial t;
   std::mt19937_64 rng(3);
