@@ -16,7 +16,12 @@ VertexDynamics::VertexDynamics(const Block& block, const Eigen::Vector3d& p_BP_B
       p_BP_B_(p_BP_B),
       p_PC_B_(block.p_BC_B() - p_BP_B),
       inertia_P_B_(InertiaAboutPoint(block, p_BP_B)),
-      inertia_P_B_inverse_(inertia_P_B_.inverse()) {}
+      inertia_P_B_inverse_(inertia_P_B_.inverse()) {
+  Eigen::Matrix3d cross_c;  // [c]×: cross_c v = c × v
+  cross_c << 0.0, -p_PC_B_.z(), p_PC_B_.y(), p_PC_B_.z(), 0.0, -p_PC_B_.x(), -p_PC_B_.y(), p_PC_B_.x(), 0.0;
+  gravity_tilt_B_ = -weight_N_ * (inertia_P_B_inverse_ * cross_c);
+  gravity_upright_B_ = gravity_tilt_B_.col(2);
+}
 
 VertexDynamics::State VertexDynamics::MakeState(const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& w_B) {
   State y;

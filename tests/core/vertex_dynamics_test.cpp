@@ -1,9 +1,11 @@
-// Rotation about a fixed body point (the Vertex(k) mode): inertia by direct integration over the box,
-// agreement with an independent world-frame angular-momentum formulation, energy conservation, the
+// Rotation about a fixed body point (the Vertex(k) mode): the vertical in B and the right-hand side against
+// Eigen's rotation matrix at quaternions off unit norm, inertia by direct integration over the box, agreement with an independent world-frame angular-momentum formulation, energy conservation, the
 // contact force against the COM acceleration, and the edge-midpoint pivot against the 1-DOF edge model.
 #include "rockfit/core/vertex_dynamics.hpp"
 
 #include <cmath>
+#include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -56,6 +58,67 @@ Eigen::Matrix3d BoxInertiaByIntegration(const Block& block, const Eigen::Vector3
     }
   }
   return J;
+}
+
+// Quaternions off unit norm by up to 1e-5 relative (as DOP853's stages see them), from a fixed seed.
+std::vector<VertexDynamics::State> NonUnitStates() {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> stretch(1.0 - 1e-5, 1.0 + 1e-5);
+  std::vector<VertexDynamics::State> states;
+  for (int i = 0; i < 200; ++i) {
+    const Eigen::Vector4d q = Eigen::Vector4d(normal(rng), normal(rng), normal(rng), normal(rng)).normalized() *
+                              stretch(rng);
+    VertexDynamics::State y;
+    y << q, 3.0 * normal(rng), 3.0 * normal(rng), 3.0 * normal(rng);
+    states.push_back(y);
+  }
+  return states;
+}
+
+// Round-off of a few products of unit-size numbers, the vertical's components being of order one [1].
+constexpr double kVerticalRoundOffTol = 1e-15;
+
+TEST(VertexDynamics, UpInBodyPartsGiveTheVerticalOfEigensRotationMatrix) {
+  for (const VertexDynamics::State& y : NonUnitStates()) {
+    const Eigen::Matrix3d R_WB = Eigen::Quaterniond(y[0], y[1], y[2], y[3]).normalized().toRotationMatrix();
+    const Eigen::Vector3d expected_B = R_WB.transpose() * Eigen::Vector3d::UnitZ();
+    const VertexDynamics::UpParts up = VertexDynamics::UpInBodyParts(y);
+    EXPECT_NEAR((up.scale * up.tilt_B + Eigen::Vector3d::UnitZ() - expected_B).norm(), 0.0, kVerticalRoundOffTol);
+    EXPECT_NEAR((VertexDynamics::UpInBody(y) - expected_B).norm(), 0.0, kVerticalRoundOffTol);
+  }
+}
+
+// Round-off of ẇ relative to its size: J_P⁻¹ amplifies the torques' round-off by its condition number (~10) [1].
+constexpr double kAngularAccelerationRelTol = 1e-13;
+
+// Round-off of q̇ = ½ q ⊗ (0, w) relative to its size: three products summed per component [1].
+constexpr double kQuaternionRateRelTol = 1e-15;
+
+TEST(VertexDynamics, RightHandSideIsEulersEquationsWithEigensRotationMatrix) {
+  const Block block = TestBlock();
+  for (int k = 1; k <= 4; ++k) {
+    const VertexDynamics dynamics(block, k, kG);
+    const Eigen::Matrix3d& J = dynamics.inertia_P_B();
+    for (const VertexDynamics::State& y : NonUnitStates()) {
+      const Eigen::Quaterniond q(y[0], y[1], y[2], y[3]);
+      const Eigen::Vector3d up_B = q.normalized().toRotationMatrix().transpose() * Eigen::Vector3d::UnitZ();
+      const Eigen::Vector3d w_B = y.tail<3>();
+      const Eigen::Vector3d torque_B = dynamics.p_PC_B().cross(-block.mass() * kG * up_B);
+      const Eigen::Vector3d expected_w_dot_B = J.lu().solve(torque_B - w_B.cross(J * w_B));
+      const Eigen::Quaterniond expected_q_dot = q * Eigen::Quaterniond(0.0, w_B.x(), w_B.y(), w_B.z());
+      VertexDynamics::State dydt;
+      dynamics(0.0, y, dydt);
+      EXPECT_NEAR((dydt.tail<3>() - expected_w_dot_B).norm() / expected_w_dot_B.norm(), 0.0,
+                  kAngularAccelerationRelTol)
+          << "V" << k;
+      const Eigen::Vector4d expected_q_dot_wxyz =
+          0.5 * Eigen::Vector4d(expected_q_dot.w(), expected_q_dot.x(), expected_q_dot.y(), expected_q_dot.z());
+      EXPECT_NEAR((dydt.head<4>() - expected_q_dot_wxyz).norm() / expected_q_dot_wxyz.norm(), 0.0,
+                  kQuaternionRateRelTol)
+          << "V" << k;
+    }
+  }
 }
 
 TEST(VertexDynamics, InertiaAboutAVertexMatchesTheDefiningIntegral) {

@@ -55,17 +55,32 @@ class VertexDynamics {
   // R_WBᵀ e_z: the world vertical in B, from a possibly non-unit quaternion (the third row of R(q) for
   // q = (w, x, y, z), scaled by 2/|q|² so that a non-unit q still gives a rotation).
   static Eigen::Vector3d UpInBody(const State& y) {
+    const UpParts up = UpInBodyParts(y);
+    return {up.scale * up.tilt_B.x(), up.scale * up.tilt_B.y(), 1.0 + up.scale * up.tilt_B.z()};
+  }
+  // R_WBᵀ e_z = scale·tilt_B + e_z: the third row of R(q) less its unit term, with the scale 2/|q|² apart, so that
+  // a product with tilt_B need not wait for the division (the right-hand side scales its gravity term last).
+  // UpInBody gives the same vector bit for bit.
+  struct UpParts {
+    double scale;            // 2/|q|²
+    Eigen::Vector3d tilt_B;  // (x z − w y, y z + w x, −(x² + y²)) for q = (w, x, y, z)
+  };
+  static UpParts UpInBodyParts(const State& y) {
     const double qw = y[0], qx = y[1], qy = y[2], qz = y[3];
-    const double s = 2.0 / (qw * qw + qx * qx + qy * qy + qz * qz);
-    return {s * (qx * qz - qw * qy), s * (qy * qz + qw * qx), 1.0 - s * (qx * qx + qy * qy)};
+    return {2.0 / (qw * qw + qx * qx + qy * qy + qz * qz),
+            Eigen::Vector3d(qx * qz - qw * qy, qy * qz + qw * qx, -(qx * qx + qy * qy))};
   }
 
   // The right-hand side of the equations above (time-invariant; t is ignored).
   void operator()(double /*t*/, const State& y, State& dydt) const {
-    const Eigen::Vector3d up_B = UpInBody(y);
+    // ẇ = J_P⁻¹(−m g c × up − w × J_P w) with up = s·t + e_z (UpInBodyParts): s·(A t) + (A e_z − J_P⁻¹(w × J_P w)),
+    // A = −m g J_P⁻¹[c]×, so that the division of s runs beside the products instead of before them.
+    const UpParts up = UpInBodyParts(y);
     const Eigen::Vector3d w_B = y.tail<3>();
-    const Eigen::Vector3d torque_B = -weight_N_ * p_PC_B_.cross(up_B);
-    const Eigen::Vector3d w_dot_B = inertia_P_B_inverse_ * (torque_B - w_B.cross(inertia_P_B_ * w_B));
+    const Eigen::Vector3d gyroscopic_B = inertia_P_B_inverse_ * w_B.cross(inertia_P_B_ * w_B);
+    // Named, so that Eigen does not fold the scale into the product (which would wait for the division again).
+    const Eigen::Vector3d gravity_per_scale_B = gravity_tilt_B_ * up.tilt_B;
+    const Eigen::Vector3d w_dot_B = up.scale * gravity_per_scale_B + (gravity_upright_B_ - gyroscopic_B);
     const double qw = y[0], qx = y[1], qy = y[2], qz = y[3];
     dydt[0] = -0.5 * (qx * w_B.x() + qy * w_B.y() + qz * w_B.z());
     dydt[1] = 0.5 * (qw * w_B.x() + qy * w_B.z() - qz * w_B.y());
@@ -103,6 +118,8 @@ class VertexDynamics {
   Eigen::Vector3d p_PC_B_;
   Eigen::Matrix3d inertia_P_B_;
   Eigen::Matrix3d inertia_P_B_inverse_;
+  Eigen::Matrix3d gravity_tilt_B_;     // A = −m g J_P⁻¹[c]× [rad/s²]: ẇ of gravity per unit of up_B
+  Eigen::Vector3d gravity_upright_B_;  // A e_z [rad/s²]
 };
 
 // J_P = Θ + m(|c|²I − c cᵀ): inertia of the block about body point p_BP_B, in B (parallel-axis theorem).
