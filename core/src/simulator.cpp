@@ -907,14 +907,49 @@ HybridRun::Next HybridRun::Fail(FailureReason failure, double t, const EndState&
 
 }  // namespace
 
-Trajectory Simulate(const Block& block, const ModelParameters& params, const SimulationOptions& options) {
+void Trajectory::Clear() {
+  // Take the vectors out, reset every other field to its default, and put the emptied vectors back.
+  std::vector<double> kept_t_s = std::move(t_s);
+  std::vector<Eigen::Vector3d> kept_w_B = std::move(w_B);
+  std::vector<Eigen::Quaterniond> kept_q_WB = std::move(q_WB);
+  std::vector<Eigen::Vector3d> kept_euler_zyx = std::move(euler_zyx);
+  std::vector<Mode> kept_mode = std::move(mode);
+  std::vector<ImpactRecord> kept_impacts = std::move(impacts);
+  std::vector<SegmentDiagnostics> kept_segments = std::move(segments);
+  std::string kept_message = std::move(message);
+  *this = Trajectory();
+  kept_t_s.clear();
+  kept_w_B.clear();
+  kept_q_WB.clear();
+  kept_euler_zyx.clear();
+  kept_mode.clear();
+  kept_impacts.clear();
+  kept_segments.clear();
+  kept_message.clear();
+  t_s = std::move(kept_t_s);
+  w_B = std::move(kept_w_B);
+  q_WB = std::move(kept_q_WB);
+  euler_zyx = std::move(kept_euler_zyx);
+  mode = std::move(kept_mode);
+  impacts = std::move(kept_impacts);
+  segments = std::move(kept_segments);
+  message = std::move(kept_message);
+}
+
+void SimulateInto(const Block& block, const ModelParameters& params, const SimulationOptions& options,
+                  Trajectory* out) {
   const auto wall_start = std::chrono::steady_clock::now();
+  out->Clear();
   options.Validate();
   params.Validate(!options.initial_state.has_value());
-  Trajectory trajectory;
-  HybridRun run(block, params, options, &trajectory);
+  HybridRun run(block, params, options, out);
   run.Run();
-  trajectory.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  out->wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+}
+
+Trajectory Simulate(const Block& block, const ModelParameters& params, const SimulationOptions& options) {
+  Trajectory trajectory;
+  SimulateInto(block, params, options, &trajectory);
   return trajectory;
 }
 

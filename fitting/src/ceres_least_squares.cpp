@@ -14,6 +14,7 @@
 // the model gives sensitivities and CeresOptions::exact_jacobian asks for them (residual_jacobian.hpp), otherwise
 // limited central differences with per-parameter steps (one-sided at a bound).
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -116,11 +117,19 @@ class ResidualEvaluator {
   const double* Lookup(const double* x) {
     const std::size_t n = objective_.num_free();
     ++clock_;
-    for (Entry& e : cache_) {
+    // Keys are distinct (an entry is added only when none matches), so the scan may start anywhere: it starts
+    // after the last hit, since the residual blocks ask for the same points in the same order (x, then its 2n
+    // perturbed points) one block after the other, and the next point asked for is then usually the next entry.
+    const std::size_t size = cache_.size();
+    for (std::size_t k = 0; k < size; ++k) {
+      std::size_t index = next_scan_ + k;
+      if (index >= size) index -= size;
+      Entry& e = cache_[index];
       if (std::equal(e.key.begin(), e.key.end(), x)) {
         e.last_used = clock_;
         last_num_nodes_ = e.num_nodes;
         last_entry_ = &e;
+        next_scan_ = index + 1 < size ? index + 1 : 0;
         return e.ok ? e.residuals.data() : nullptr;
       }
     }
@@ -134,6 +143,8 @@ class ResidualEvaluator {
     }
     ++evaluations_;
     last_entry_ = entry;
+    const auto entry_index = static_cast<std::size_t>(entry - cache_.data());
+    next_scan_ = entry_index + 1 < cache_.size() ? entry_index + 1 : 0;
     entry->jacobian_ok = false;
     entry->key.assign(x, x + n);
     entry->last_used = clock_;
@@ -185,6 +196,7 @@ class ResidualEvaluator {
   bool differenced_ = false;
   std::vector<Entry> cache_;  // reserved to capacity_: entries never move, so last_entry_ stays valid
   Entry* last_entry_ = nullptr;
+  std::size_t next_scan_ = 0;  // where the next Lookup starts its scan of cache_
   ErrorNodes nodes_;
   ModelOutput output_;
   std::vector<NodeResidual> node_residuals_;
@@ -212,7 +224,11 @@ class SlotCost final : public ceres::CostFunction {
       return true;
     }
     evaluator_->NoteDifferenced();
-    std::vector<double> xp(x, x + n), xm(x, x + n);
+    // The perturbed points, on the stack (this runs for every slot at every Jacobian).
+    std::array<double, kNumParameters> xp{};
+    std::array<double, kNumParameters> xm{};
+    std::copy(x, x + n, xp.begin());
+    std::copy(x, x + n, xm.begin());
     for (std::size_t j = 0; j < n; ++j) {
       const auto k = static_cast<Eigen::Index>(j);
       xp[j] = std::min(x[j] + step_[k], upper_[k]);

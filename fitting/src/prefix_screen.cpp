@@ -38,15 +38,16 @@ PrefixBound PrefixScreen::Bound(const ParameterSet& values) const {
   const MeasuredSignal& signal = window_->signal();
   const double t0_s = values.value(ParameterId::kT0);
   const double t_end_s = window_->t_end_s();
-  ErrorNodes full;
+  // Scratch reused by each thread (a fit screens thousands of points): the nodes of the window and of the prefix.
+  thread_local ErrorNodes full;
+  thread_local ErrorNodes prefix_nodes;
   if (!BuildErrorNodes(signal, t0_s, t_end_s, &full) || !(full.weighted_duration_s() > 0.0)) return trivial;
   // The prefix ends at a sample time strictly inside the window.
   const double t_wanted_s = t0_s + prefix_fraction_ * (t_end_s - t0_s);
   const auto it = std::lower_bound(signal.t_s.begin(), signal.t_s.end(), t_wanted_s);
   if (it == signal.t_s.end() || !(*it > t0_s) || !(*it < t_end_s)) return trivial;
-  ErrorNodes prefix_nodes;
   if (!BuildErrorNodes(signal, t0_s, *it, &prefix_nodes) || !(prefix_nodes.weighted_duration_s() > 0.0)) return trivial;
-  const Evaluation e = window_->WithWindowEnd(*it).Evaluate(values);
+  const Evaluation e = window_->EvaluateOnNodes(values, prefix_nodes);  // (28) on the prefix [t0, *it]
   PrefixBound bound;
   bound.feasible = e.feasible;
   if (!e.feasible) return bound;
