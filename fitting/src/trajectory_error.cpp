@@ -143,15 +143,14 @@ Eigen::Vector3d NodeMisfit(const ErrorNodes& nodes, std::size_t i, const Eigen::
 
 double TrajectoryError(const ErrorNodes& nodes, const std::vector<Eigen::Vector3d>& w_s_B) {
   double integral = 0.0;  // ∫ ‖ω_m − ω_s‖ dt [rad]
-  if (nodes.num_censored == 0) {
-    // No node has a censored axis (the usual trial): every misfit is the plain difference, as NodeMisfit gives it.
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
+  const bool any_censored = !nodes.censored_axes.empty();
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (any_censored && nodes.censored_axes[i] != 0) {
+      integral += nodes.weight_s[i] * NodeMisfit(nodes, i, w_s_B[i]).norm();
+    } else {
+      // A plain measurement (every node of the usual trial): NodeMisfit's plain difference, without its tests.
       const Eigen::Vector3d d = nodes.w_m_B[i] - w_s_B[i];
       integral += nodes.weight_s[i] * d.norm();
-    }
-  } else {
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-      integral += nodes.weight_s[i] * NodeMisfit(nodes, i, w_s_B[i]).norm();
     }
   }
   const double covered_s = nodes.weighted_duration_s();
