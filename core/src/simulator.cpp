@@ -18,6 +18,7 @@
 #include "detail/contact_modes.hpp"
 #include "detail/ground_modes.hpp"
 #include "detail/hybrid_segment.hpp"
+#include "detail/lazy_slot.hpp"
 #include "detail/mode_cache.hpp"
 #include "detail/trajectory_sampler.hpp"
 #include "rockfit/core/errors.hpp"
@@ -319,12 +320,12 @@ class HybridRun {
   double t_lift_off_ = std::numeric_limits<double>::infinity();
   double end_lift_t_s_ = -std::numeric_limits<double>::infinity();  // the last Edge → Vertex switch
   RecentTimes recent_impacts_;  // of edge and facet impacts, under ground motion
-  std::array<std::optional<FacetNoSpinOperators>, 4> facet_operators_;  // by pivot vertex b − 1, made when first needed
+  std::array<detail::LazySlot<FacetNoSpinOperators>, 4> facet_operators_;  // by pivot vertex b − 1, made when first needed
   // Free rocking, no-spin rule: the facet outcome of a unit rate about each ordered pre-impact edge (pivot b and the
   // other vertex before or after it) in each sense, made when first needed.
-  std::array<std::optional<ImpactOutcome>, 16> facet_unit_outcomes_;
+  std::array<detail::LazySlot<ImpactOutcome>, 16> facet_unit_outcomes_;
   // The edge map's operators for each ordered pair (pivot, landing), at EdgeOperatorSlot, made when first needed.
-  std::array<std::optional<EdgeImpactOperators>, 8> edge_operators_;
+  std::array<detail::LazySlot<EdgeImpactOperators>, 8> edge_operators_;
   static int EdgeOperatorSlot(int pivot, int landing) {
     const int b = Block::WrapVertex(pivot);
     return 2 * (b - 1) + (Block::WrapVertex(b + 1) == Block::WrapVertex(landing) ? 0 : 1);
@@ -660,7 +661,7 @@ HybridRun::Next HybridRun::AfterEdgeImpact(const VertexMode& mode, double t, con
     // Free rocking: the map in B, its operators made once per ordered pair (pivot, landing) and run (the same
     // outcome to round-off). Under a table the map is built in W afresh, so that the response runs, whose chatter
     // amplifies round-off, stay bit for bit those of the full map.
-    std::optional<EdgeImpactOperators>& operators = edge_operators_[EdgeOperatorSlot(pivot, landing)];
+    detail::LazySlot<EdgeImpactOperators>& operators = edge_operators_[EdgeOperatorSlot(pivot, landing)];
     if (!operators) operators = MakeEdgeImpactOperators(block_, pivot, landing, edge_params);
     map = EdgeImpact(*operators, R_WB, w_minus_B);
   } else {
@@ -769,7 +770,7 @@ HybridRun::Next HybridRun::AfterFacetImpact(const EdgeMode& mode, double t, cons
   ImpactOutcome map;
   if (facet.tau_rule == FacetTauRule::kNoSpin) {
     // The no-spin map is linear in ω⁻: its candidates' operators are computed once per pivot edge and run.
-    std::optional<FacetNoSpinOperators>& operators = facet_operators_[Block::WrapVertex(pivot_b) - 1];
+    detail::LazySlot<FacetNoSpinOperators>& operators = facet_operators_[Block::WrapVertex(pivot_b) - 1];
     if (!operators) operators = MakeFacetNoSpinOperators(block_, pivot_b, facet);
     const double rate = y[1];  // ω⁻ = ψ̇ · a_B: a multiple of the edge axis
     if (ground_ == nullptr && std::isfinite(rate) && rate != 0.0) {
@@ -779,7 +780,7 @@ HybridRun::Next HybridRun::AfterFacetImpact(const EdgeMode& mode, double t, cons
       const int sense = rate > 0.0 ? 1 : 0;
       const bool other_before = Block::WrapVertex(mode.first()) == Block::WrapVertex(pivot_b - 1);
       const int edge_slot = 2 * (Block::WrapVertex(pivot_b) - 1) + (other_before ? 0 : 1);
-      std::optional<ImpactOutcome>& unit = facet_unit_outcomes_[2 * edge_slot + sense];
+      detail::LazySlot<ImpactOutcome>& unit = facet_unit_outcomes_[2 * edge_slot + sense];
       if (!unit) unit = FacetImpact(block_, *operators, (sense == 1 ? 1.0 : -1.0) * mode.dynamics().axis_B(), facet);
       map = ScaledFacetOutcome(*unit, std::abs(rate));
     } else {
@@ -907,14 +908,49 @@ HybridRun::Next HybridRun::Fail(FailureReason failure, double t, const EndState&
 
 }  // namespace
 
-Trajectory Simulate(const Block& block, const ModelParameters& params, const SimulationOptions& options) {
+void Trajectory::Clear() {
+  // Take the vectors out, reset every other field to its default, and put the emptied vectors back.
+  std::vector<double> kept_t_s = std::move(t_s);
+  std::vector<Eigen::Vector3d> kept_w_B = std::move(w_B);
+  std::vector<Eigen::Quaterniond> kept_q_WB = std::move(q_WB);
+  std::vector<Eigen::Vector3d> kept_euler_zyx = std::move(euler_zyx);
+  std::vector<Mode> kept_mode = std::move(mode);
+  std::vector<ImpactRecord> kept_impacts = std::move(impacts);
+  std::vector<SegmentDiagnostics> kept_segments = std::move(segments);
+  std::string kept_message = std::move(message);
+  *this = Trajectory();
+  kept_t_s.clear();
+  kept_w_B.clear();
+  kept_q_WB.clear();
+  kept_euler_zyx.clear();
+  kept_mode.clear();
+  kept_impacts.clear();
+  kept_segments.clear();
+  kept_message.clear();
+  t_s = std::move(kept_t_s);
+  w_B = std::move(kept_w_B);
+  q_WB = std::move(kept_q_WB);
+  euler_zyx = std::move(kept_euler_zyx);
+  mode = std::move(kept_mode);
+  impacts = std::move(kept_impacts);
+  segments = std::move(kept_segments);
+  message = std::move(kept_message);
+}
+
+void SimulateInto(const Block& block, const ModelParameters& params, const SimulationOptions& options,
+                  Trajectory* out) {
   const auto wall_start = std::chrono::steady_clock::now();
+  out->Clear();
   options.Validate();
   params.Validate(!options.initial_state.has_value());
-  Trajectory trajectory;
-  HybridRun run(block, params, options, &trajectory);
+  HybridRun run(block, params, options, out);
   run.Run();
-  trajectory.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  out->wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+}
+
+Trajectory Simulate(const Block& block, const ModelParameters& params, const SimulationOptions& options) {
+  Trajectory trajectory;
+  SimulateInto(block, params, options, &trajectory);
   return trajectory;
 }
 

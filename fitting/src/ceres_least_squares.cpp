@@ -14,6 +14,7 @@
 // the model gives sensitivities and CeresOptions::exact_jacobian asks for them (residual_jacobian.hpp), otherwise
 // limited central differences with per-parameter steps (one-sided at a bound).
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -111,18 +112,36 @@ class ResidualEvaluator {
     std::size_t num_weighted_nodes = 0;
     std::size_t num_unobserved_components = 0;
     std::uint64_t last_used = 0;
+    // The cache_ index of the entry looked up right after this one, the last time (a guess for the next time).
+    std::size_t next = std::numeric_limits<std::size_t>::max();
   };
 
   const double* Lookup(const double* x) {
     const std::size_t n = objective_.num_free();
     ++clock_;
-    for (Entry& e : cache_) {
-      if (std::equal(e.key.begin(), e.key.end(), x)) {
-        e.last_used = clock_;
-        last_num_nodes_ = e.num_nodes;
-        last_entry_ = &e;
-        return e.ok ? e.residuals.data() : nullptr;
+    // Keys are distinct (an entry is added only when none matches), so at most one entry matches and the scan
+    // may start anywhere. The residual blocks ask for the same points in the same order (x, then its 2n perturbed
+    // points) one block after the other: the entry asked for after the last one, the last time, is tried first.
+    const std::size_t size = cache_.size();
+    const std::size_t previous = last_index_;
+    const std::size_t guess = previous < size ? cache_[previous].next : size;
+    auto matches = [&](std::size_t index) { return std::equal(cache_[index].key.begin(), cache_[index].key.end(), x); };
+    std::size_t found = size;
+    if (guess < size && matches(guess)) {
+      found = guess;
+    } else {
+      for (std::size_t index = 0; index < size && found == size; ++index) {
+        if (index != guess && matches(index)) found = index;
       }
+    }
+    if (found < size) {
+      Entry& e = cache_[found];
+      e.last_used = clock_;
+      last_num_nodes_ = e.num_nodes;
+      last_entry_ = &e;
+      if (previous < size) cache_[previous].next = found;
+      last_index_ = found;
+      return e.ok ? e.residuals.data() : nullptr;
     }
     Entry* entry = nullptr;
     if (cache_.size() < capacity_) {
@@ -134,6 +153,9 @@ class ResidualEvaluator {
     }
     ++evaluations_;
     last_entry_ = entry;
+    const auto entry_index = static_cast<std::size_t>(entry - cache_.data());
+    if (previous < cache_.size()) cache_[previous].next = entry_index;
+    last_index_ = entry_index;
     entry->jacobian_ok = false;
     entry->key.assign(x, x + n);
     entry->last_used = clock_;
@@ -185,6 +207,7 @@ class ResidualEvaluator {
   bool differenced_ = false;
   std::vector<Entry> cache_;  // reserved to capacity_: entries never move, so last_entry_ stays valid
   Entry* last_entry_ = nullptr;
+  std::size_t last_index_ = std::numeric_limits<std::size_t>::max();  // cache_ index of the last entry looked up
   ErrorNodes nodes_;
   ModelOutput output_;
   std::vector<NodeResidual> node_residuals_;
@@ -212,7 +235,11 @@ class SlotCost final : public ceres::CostFunction {
       return true;
     }
     evaluator_->NoteDifferenced();
-    std::vector<double> xp(x, x + n), xm(x, x + n);
+    // The perturbed points, on the stack (this runs for every slot at every Jacobian).
+    std::array<double, kNumParameters> xp{};
+    std::array<double, kNumParameters> xm{};
+    std::copy(x, x + n, xp.begin());
+    std::copy(x, x + n, xm.begin());
     for (std::size_t j = 0; j < n; ++j) {
       const auto k = static_cast<Eigen::Index>(j);
       xp[j] = std::min(x[j] + step_[k], upper_[k]);

@@ -132,45 +132,65 @@ Evaluation Objective::Evaluate(const ParameterSet& values) const {
   return EvaluateDetailed(values, &nodes, &output);
 }
 
+Evaluation Objective::EvaluateOnNodes(const ParameterSet& values, const ErrorNodes& nodes) const {
+  thread_local ModelOutput output;  // as in Evaluate
+  output.Clear();
+  for (ParameterId id : kAllParameters) {
+    if (!std::isfinite(values.value(id))) return Infeasible(ModelFailure::kNonFiniteParameter);
+  }
+  return EvaluateBuilt(values, nodes, &output, false);
+}
+
+Evaluation Objective::Infeasible(ModelFailure reason, core::ImpactStatus impact_status) const {
+  Evaluation result;
+  result.feasible = false;
+  result.failure = reason;
+  result.impact_status = impact_status;
+  counters_->CountFailure(result.failure_category());
+  result.epsilon_rad_s = options_.failure_penalty_rad_s;
+  return result;
+}
+
 Evaluation Objective::EvaluateDetailed(const ParameterSet& values, ErrorNodes* nodes, ModelOutput* output,
                                        bool sensitivities) const {
-  Evaluation result;
-  auto infeasible = [&](ModelFailure reason, core::ImpactStatus impact_status = core::ImpactStatus::kOk) {
-    result.feasible = false;
-    result.failure = reason;
-    result.impact_status = impact_status;
-    counters_->CountFailure(result.failure_category());
-    result.epsilon_rad_s = options_.failure_penalty_rad_s;
-    return result;
-  };
   output->Clear();
   for (ParameterId id : kAllParameters) {
-    if (!std::isfinite(values.value(id))) return infeasible(ModelFailure::kNonFiniteParameter);
+    if (!std::isfinite(values.value(id))) return Infeasible(ModelFailure::kNonFiniteParameter);
   }
   const double t0 = values.value(ParameterId::kT0);
-  if (!BuildErrorNodes(*signal_, t0, t_end_s_, nodes)) return infeasible(ModelFailure::kT0OutsideWindow);
-  if (nodes->num_excluded == nodes->size() || !(nodes->weighted_duration_s() > 0.0)) {
-    return infeasible(ModelFailure::kAllSamplesClipped);
+  if (!BuildErrorNodes(*signal_, t0, t_end_s_, nodes)) return Infeasible(ModelFailure::kT0OutsideWindow);
+  return EvaluateBuilt(values, *nodes, output, sensitivities);
+}
+
+Evaluation Objective::EvaluateBuilt(const ParameterSet& values, const ErrorNodes& nodes, ModelOutput* output,
+                                    bool sensitivities) const {
+  if (nodes.num_excluded == nodes.size() || !(nodes.weighted_duration_s() > 0.0)) {
+    return Infeasible(ModelFailure::kAllSamplesClipped);
   }
 
   counters_->CountRun();
   if (sensitivities) {
-    model_->EvaluateWithSensitivities(values.ToModel(), nodes->t_after_release_s, output);
+    model_->EvaluateWithSensitivities(values.ToModel(), nodes.t_after_release_s, output);
   } else {
-    model_->Evaluate(values.ToModel(), nodes->t_after_release_s, output);
+    model_->Evaluate(values.ToModel(), nodes.t_after_release_s, output);
   }
-  if (!output->ok()) return infeasible(output->failure, output->impact_status);
-  if (output->w_B.size() != nodes->size()) {
-    return infeasible(ModelFailure::kWrongSampleCount);
+  if (!output->ok()) return Infeasible(output->failure, output->impact_status);
+  if (output->w_B.size() != nodes.size()) {
+    return Infeasible(ModelFailure::kWrongSampleCount);
   }
+  Evaluation result;
   if (options_.gyro_scale != GyroScaleMode::kOff) {
     // Variable projection (gyro_scale.hpp): the best S for these parameters, and (28) of S·ω_s.
-    result.gyro_scale = ProjectedGyroScale(*nodes, output->w_B, options_.gyro_scale);
+    result.gyro_scale = ProjectedGyroScale(nodes, output->w_B, options_.gyro_scale);
     for (Eigen::Vector3d& w : output->w_B) w = result.gyro_scale.cwiseProduct(w);
     output->dw_B_dparams.clear();
   }
-  const double epsilon = TrajectoryError(*nodes, output->w_B);  // (28)
-  if (!std::isfinite(epsilon)) return infeasible(ModelFailure::kNonFiniteOutput);
+  const double epsilon = TrajectoryError(nodes, output->w_B);  // (28)
+  if (!std::isfinite(epsilon)) {
+    Evaluation failed = Infeasible(ModelFailure::kNonFiniteOutput);
+    failed.gyro_scale = result.gyro_scale;  // the scale that was projected, as before the failure
+    return failed;
+  }
   result.feasible = true;
   result.epsilon_rad_s = epsilon;
   return result;

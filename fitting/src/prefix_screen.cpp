@@ -22,6 +22,16 @@ constexpr double kScreenMarginRelative = 1e-7;
 // enough that few runs are wasted once the best is found, large enough to keep two threads busy.
 constexpr std::size_t kScreenedBatchSize = 8;
 
+// ErrorNodes::weighted_duration_s() of the nodes BuildErrorNodes makes for [t0, t_end] (into *scratch), or 0 when it
+// makes none. Without excluded samples that is the window's length, (t_end − t0) − 0 exactly, known without nodes.
+double WeightedWindowDuration(const MeasuredSignal& signal, double t0_s, double t_end_s, ErrorNodes* scratch) {
+  if (signal.excluded.empty()) {
+    if (!(t0_s >= signal.t_s.front()) || !(t_end_s <= signal.t_s.back()) || !(t0_s < t_end_s)) return 0.0;
+    return t_end_s - t0_s;
+  }
+  return BuildErrorNodes(signal, t0_s, t_end_s, scratch) ? scratch->weighted_duration_s() : 0.0;
+}
+
 }  // namespace
 
 PrefixScreen::PrefixScreen(const Objective& window, double prefix_fraction)
@@ -38,19 +48,21 @@ PrefixBound PrefixScreen::Bound(const ParameterSet& values) const {
   const MeasuredSignal& signal = window_->signal();
   const double t0_s = values.value(ParameterId::kT0);
   const double t_end_s = window_->t_end_s();
-  ErrorNodes full;
-  if (!BuildErrorNodes(signal, t0_s, t_end_s, &full) || !(full.weighted_duration_s() > 0.0)) return trivial;
+  // Scratch reused by each thread (a fit screens thousands of points): the nodes of the window and of the prefix.
+  thread_local ErrorNodes full;
+  thread_local ErrorNodes prefix_nodes;
+  const double full_weighted_s = WeightedWindowDuration(signal, t0_s, t_end_s, &full);
+  if (!(full_weighted_s > 0.0)) return trivial;
   // The prefix ends at a sample time strictly inside the window.
   const double t_wanted_s = t0_s + prefix_fraction_ * (t_end_s - t0_s);
   const auto it = std::lower_bound(signal.t_s.begin(), signal.t_s.end(), t_wanted_s);
   if (it == signal.t_s.end() || !(*it > t0_s) || !(*it < t_end_s)) return trivial;
-  ErrorNodes prefix_nodes;
   if (!BuildErrorNodes(signal, t0_s, *it, &prefix_nodes) || !(prefix_nodes.weighted_duration_s() > 0.0)) return trivial;
-  const Evaluation e = window_->WithWindowEnd(*it).Evaluate(values);
+  const Evaluation e = window_->EvaluateOnNodes(values, prefix_nodes);  // (28) on the prefix [t0, *it]
   PrefixBound bound;
   bound.feasible = e.feasible;
   if (!e.feasible) return bound;
-  bound.epsilon_lower_rad_s = e.epsilon_rad_s * prefix_nodes.weighted_duration_s() / full.weighted_duration_s();
+  bound.epsilon_lower_rad_s = e.epsilon_rad_s * prefix_nodes.weighted_duration_s() / full_weighted_s;
   return bound;
 }
 

@@ -60,9 +60,9 @@ void SimulatorModel::Run(const core::ModelParameters& params, const std::vector<
   run.stop = core::StopCondition::kTMax;
   run.t_max_s = std::max(times.back(), 1e-9);
   run.sample_attitude = false;
-  core::Trajectory trajectory;
+  core::Trajectory& trajectory = out->scratch_trajectory;
   try {
-    trajectory = core::Simulate(block_, params, run);
+    core::SimulateInto(block_, params, run, &trajectory);
   } catch (const InvalidArgument& e) {
     out->failure = ModelFailure::kInvalidParameters;
     out->failure_detail = e.what();
@@ -104,7 +104,7 @@ void SimulatorModel::Run(const core::ModelParameters& params, const std::vector<
       if (spatial.available) out->dw_B_dparams = std::move(spatial.dw_B);
     }
   }
-  out->w_B = std::move(trajectory.w_B);
+  out->w_B.swap(trajectory.w_B);  // the scratch gets out's old storage for the next run
   out->events.reserve(trajectory.impacts.size());
   for (const core::ImpactRecord& impact : trajectory.impacts) out->events.push_back({impact.t_s, impact.kind});
 }

@@ -143,8 +143,15 @@ Eigen::Vector3d NodeMisfit(const ErrorNodes& nodes, std::size_t i, const Eigen::
 
 double TrajectoryError(const ErrorNodes& nodes, const std::vector<Eigen::Vector3d>& w_s_B) {
   double integral = 0.0;  // ∫ ‖ω_m − ω_s‖ dt [rad]
+  const bool any_censored = !nodes.censored_axes.empty();
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    integral += nodes.weight_s[i] * NodeMisfit(nodes, i, w_s_B[i]).norm();
+    if (any_censored && nodes.censored_axes[i] != 0) {
+      integral += nodes.weight_s[i] * NodeMisfit(nodes, i, w_s_B[i]).norm();
+    } else {
+      // A plain measurement (every node of the usual trial): NodeMisfit's plain difference, without its tests.
+      const Eigen::Vector3d d = nodes.w_m_B[i] - w_s_B[i];
+      integral += nodes.weight_s[i] * d.norm();
+    }
   }
   const double covered_s = nodes.weighted_duration_s();
   if (nodes.num_excluded == nodes.size() || !(covered_s > 0.0)) return std::numeric_limits<double>::infinity();

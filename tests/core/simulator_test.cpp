@@ -7,6 +7,8 @@
 #include <array>
 #include <cmath>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -661,6 +663,76 @@ TEST(Simulator, TooManyImpactsEndAsFailedWithAMessage) {
   EXPECT_EQ(tr.failure, FailureReason::kMaxImpacts) << ToString(tr.failure);
   EXPECT_NE(tr.message.find("max_impacts"), std::string::npos) << tr.message;
   EXPECT_EQ(tr.impacts.size(), 3u);
+}
+
+
+// Every field of two trajectories but the wall time, compared exactly.
+void ExpectSameTrajectory(const Trajectory& a, const Trajectory& b) {
+  EXPECT_EQ(a.t_s, b.t_s);
+  EXPECT_EQ(a.w_B, b.w_B);
+  ASSERT_EQ(a.q_WB.size(), b.q_WB.size());
+  for (std::size_t i = 0; i < a.q_WB.size(); ++i) EXPECT_EQ(a.q_WB[i].coeffs(), b.q_WB[i].coeffs()) << "sample " << i;
+  EXPECT_EQ(a.euler_zyx, b.euler_zyx);
+  EXPECT_EQ(a.mode, b.mode);
+  ASSERT_EQ(a.impacts.size(), b.impacts.size());
+  for (std::size_t i = 0; i < a.impacts.size(); ++i) {
+    const ImpactRecord& p = a.impacts[i];
+    const ImpactRecord& q = b.impacts[i];
+    EXPECT_EQ(p.t_s, q.t_s) << "impact " << i;
+    EXPECT_EQ(p.kind, q.kind) << "impact " << i;
+    EXPECT_EQ(p.contact_before, q.contact_before) << "impact " << i;
+    EXPECT_EQ(p.contact_after, q.contact_after) << "impact " << i;
+    EXPECT_EQ(p.w_minus_B, q.w_minus_B) << "impact " << i;
+    EXPECT_EQ(p.w_plus_B, q.w_plus_B) << "impact " << i;
+    EXPECT_EQ(p.w_minus_W, q.w_minus_W) << "impact " << i;
+    EXPECT_EQ(p.w_plus_W, q.w_plus_W) << "impact " << i;
+    EXPECT_EQ(p.tau, q.tau) << "impact " << i;
+    EXPECT_EQ(p.delta_energy_J, q.delta_energy_J) << "impact " << i;
+    EXPECT_EQ(p.status, q.status) << "impact " << i;
+  }
+  ASSERT_EQ(a.segments.size(), b.segments.size());
+  for (std::size_t i = 0; i < a.segments.size(); ++i) {
+    EXPECT_EQ(a.segments[i].t_begin_s, b.segments[i].t_begin_s) << "segment " << i;
+    EXPECT_EQ(a.segments[i].t_end_s, b.segments[i].t_end_s) << "segment " << i;
+    EXPECT_EQ(a.segments[i].mode, b.segments[i].mode) << "segment " << i;
+    EXPECT_EQ(a.segments[i].min_normal_force_N, b.segments[i].min_normal_force_N) << "segment " << i;
+    EXPECT_EQ(a.segments[i].max_friction_ratio, b.segments[i].max_friction_ratio) << "segment " << i;
+    EXPECT_EQ(a.segments[i].energy_drift_rel, b.segments[i].energy_drift_rel) << "segment " << i;
+  }
+  EXPECT_EQ(a.t_end_s, b.t_end_s);
+  EXPECT_EQ(a.end_q_WB.coeffs(), b.end_q_WB.coeffs());
+  EXPECT_EQ(a.end_w_B, b.end_w_B);
+  EXPECT_EQ(a.end_reason, b.end_reason);
+  EXPECT_EQ(a.failure, b.failure);
+  EXPECT_EQ(a.message, b.message);
+  EXPECT_EQ(a.max_discarded_rate_rad_s, b.max_discarded_rate_rad_s);
+  EXPECT_EQ(a.num_steps, b.num_steps);
+  EXPECT_EQ(a.num_evaluations, b.num_evaluations);
+}
+
+TEST(Simulator, SimulateIntoTheTrajectoryOfAnotherRunGivesSimulatesRunBitForBit) {
+  // A fit reuses one trajectory's storage for thousands of runs: what an earlier run left in it (more samples,
+  // more impacts, a failure message, a rest) must not show in the next.
+  const Block block = Fig14Block();
+  SimulationOptions failing;
+  failing.max_impacts = 3;  // fails with a message
+  SimulationOptions with_attitude;
+  with_attitude.t_max_s = 2.0;
+  SimulationOptions sampled;  // as a fit runs: given times, no attitudes, to t_max
+  sampled.sample_attitude = false;
+  sampled.stop = StopCondition::kTMax;
+  for (int k = 0; k < 300; ++k) sampled.sample_times_s.push_back(k / 256.0);
+  sampled.t_max_s = sampled.sample_times_s.back();
+  ModelParameters planar = Fig14Parameters();
+  planar.lambda_lat = 0.0;
+  const std::pair<ModelParameters, SimulationOptions> runs[] = {
+      {Fig14Parameters(), with_attitude}, {Fig14Parameters(), failing}, {WithinBoundsParameters(), sampled},
+      {planar, with_attitude},            {Fig14Parameters(), sampled}, {planar, failing}};
+  Trajectory reused;
+  for (const auto& [params, options] : runs) {
+    SimulateInto(block, params, options, &reused);
+    ExpectSameTrajectory(reused, Simulate(block, params, options));
+  }
 }
 
 }  // namespace

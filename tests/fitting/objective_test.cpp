@@ -2,6 +2,7 @@
 #include "rockfit/fitting/objective.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <memory>
 
 #include <gtest/gtest.h>
@@ -111,6 +112,41 @@ TEST(Objective, WithModelEvaluatesTheOtherModelAndSharesTheCounters) {
 TEST(Objective, RejectsAWindowEndOutsideTheRecording) {
   auto model = std::make_shared<ConstantModel>();
   EXPECT_THROW(Objective(ZeroSignal(), 1.5, model, StartAt(0.1, 0.7, 0.0)), InvalidArgument);
+}
+
+TEST(Objective, EvaluateOnNodesIsTheEvaluationOfTheShorterWindowBitForBit) {
+  // The prefix screen evaluates its shorter windows on nodes it built itself: every outcome (a value, a model
+  // failure, a non-finite output, a non-finite parameter) must be what the objective of that window gives, and be
+  // counted the same. A varying signal with excluded samples, so that the weights and the divisor matter.
+  MeasuredSignal signal = ZeroSignal();
+  signal.excluded.assign(signal.size(), false);
+  for (std::size_t k = 0; k < signal.size(); ++k) {
+    signal.w_B[k] = Eigen::Vector3d(std::sin(7.0 * signal.t_s[k]), 0.3 * signal.t_s[k], -0.2);
+    signal.excluded[k] = k % 17 == 5;
+  }
+  auto model = std::make_shared<ConstantModel>();
+  const Objective objective(signal, 1.0, model, StartAt(0.1, 0.7, 0.0));
+  const double t_end_s = signal.t_s[150];
+  const Objective shorter = objective.WithWindowEnd(t_end_s);
+  for (const ParameterSet& p : {StartAt(0.1, 0.7, 0.0), StartAt(0.2345, -1.3, 0.2), StartAt(0.05, 0.4, 0.9),
+                                StartAt(0.3, 0.4, -0.9), StartAt(0.3, std::nan(""), 0.0)}) {
+    ErrorNodes nodes;
+    ASSERT_TRUE(BuildErrorNodes(signal, p.value(ParameterId::kT0), t_end_s, &nodes));
+    // The counters are shared by the two objectives: the counts each evaluation adds.
+    const EvaluationCounters& counters = objective.counters();
+    const std::int64_t runs_before = counters.runs();
+    const std::int64_t failures_before = counters.failures();
+    const Evaluation on_nodes = objective.EvaluateOnNodes(p, nodes);
+    const std::int64_t runs_on_nodes = counters.runs() - runs_before;
+    const std::int64_t failures_on_nodes = counters.failures() - failures_before;
+    const Evaluation expected = shorter.Evaluate(p);
+    EXPECT_EQ(on_nodes.feasible, expected.feasible);
+    EXPECT_EQ(on_nodes.epsilon_rad_s, expected.epsilon_rad_s);
+    EXPECT_EQ(on_nodes.failure, expected.failure);
+    EXPECT_EQ(on_nodes.gyro_scale, expected.gyro_scale);
+    EXPECT_EQ(counters.runs() - runs_before - runs_on_nodes, runs_on_nodes);
+    EXPECT_EQ(counters.failures() - failures_before - failures_on_nodes, failures_on_nodes);
+  }
 }
 
 TEST(AnalyticRockingModel, FirstImpactMatchesTheClosedFormOfLinearisedRocking) {

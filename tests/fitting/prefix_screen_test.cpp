@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <random>
@@ -56,6 +57,41 @@ TEST(PrefixScreen, BoundNeverExceedsTheErrorOnTheWholeWindow) {
     }
     EXPECT_GT(feasible, 20);
   }
+}
+
+TEST(PrefixScreen, BoundIsThePrefixErrorScaledByTheCoveredTimesWithOrWithoutExcludedSamples) {
+  // The bound ε(prefix)·W(prefix)/W(window), W the time the weights cover (ErrorNodes::weighted_duration_s), computed
+  // here from the objective of the prefix window and nodes built for both windows: exactly, also with excluded
+  // samples (whose weight both W leave out).
+  ScreenTrial t;
+  MeasuredSignal clipped = t.trial.signal;
+  clipped.excluded.assign(clipped.size(), false);
+  for (std::size_t k = 0; k < clipped.size(); k += 23) clipped.excluded[k] = true;
+  const Objective with_excluded(clipped, 1.8, std::make_shared<SimulatorModel>(t.trial.block), t.trial.truth);
+  constexpr double kFraction = 0.5;
+  std::mt19937_64 rng(11);
+  int compared = 0;
+  for (const Objective* objective : {static_cast<const Objective*>(&t.objective), &with_excluded}) {
+    const PrefixScreen screen(*objective, kFraction);
+    const MeasuredSignal& signal = objective->signal();
+    for (int k = 0; k < 6; ++k) {
+      const ParameterSet p = k == 0 ? t.trial.truth : RandomPoint(t.trial.truth, &rng);
+      const double t0 = p.value(ParameterId::kT0);
+      const double prefix_end =
+          *std::lower_bound(signal.t_s.begin(), signal.t_s.end(), t0 + kFraction * (objective->t_end_s() - t0));
+      ErrorNodes window;
+      ErrorNodes prefix;
+      ASSERT_TRUE(BuildErrorNodes(signal, t0, objective->t_end_s(), &window));
+      ASSERT_TRUE(BuildErrorNodes(signal, t0, prefix_end, &prefix));
+      const Evaluation e = objective->WithWindowEnd(prefix_end).Evaluate(p);
+      const PrefixBound bound = screen.Bound(p);
+      EXPECT_EQ(bound.feasible, e.feasible);
+      if (!e.feasible) continue;
+      ++compared;
+      EXPECT_EQ(bound.epsilon_lower_rad_s, e.epsilon_rad_s * prefix.weighted_duration_s() / window.weighted_duration_s());
+    }
+  }
+  EXPECT_GT(compared, 4);
 }
 
 TEST(PrefixScreen, NeverRulesOutThePointThatSetTheBest) {

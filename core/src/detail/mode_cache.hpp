@@ -4,12 +4,12 @@
 #pragma once
 
 #include <array>
-#include <optional>
 
 #include <Eigen/Geometry>
 
 #include "detail/contact_modes.hpp"
 #include "detail/ground_modes.hpp"
+#include "detail/lazy_slot.hpp"
 #include "rockfit/core/block.hpp"
 #include "rockfit/core/contact.hpp"
 #include "rockfit/core/edge_dynamics.hpp"
@@ -27,12 +27,12 @@ class ModeCache {
 
   // The dynamics about the edge V_iV_j (either order: they do not depend on it).
   const EdgeDynamics& EdgeDynamicsOf(int i, int j) {
-    std::optional<EdgeDynamics>& slot = edge_dynamics_[EdgeSlot(i, j) / 2];
+    LazySlot<EdgeDynamics>& slot = edge_dynamics_[EdgeSlot(i, j) / 2];
     if (!slot) slot.emplace(block_, i, j, gravity_m_s2_);
     return *slot;
   }
   const VertexMode& Vertex(int k) {
-    std::optional<VertexMode>& slot = vertex_modes_[Block::WrapVertex(k) - 1];
+    LazySlot<VertexMode>& slot = vertex_modes_[Block::WrapVertex(k) - 1];
     if (!slot) slot.emplace(block_, k, gravity_m_s2_);
     return *slot;
   }
@@ -40,7 +40,7 @@ class ModeCache {
   // The Edge mode V_iV_j (in this order) with yaw q_yaw. The reference stays valid, with this yaw, until the next
   // call for the same edge.
   const EdgeMode& Edge(int i, int j, const Eigen::Quaterniond& q_yaw) {
-    std::optional<EdgeMode>& slot = edge_modes_[EdgeSlot(i, j)];
+    LazySlot<EdgeMode>& slot = edge_modes_[EdgeSlot(i, j)];
     if (slot) {
       slot->SetYaw(q_yaw);
     } else {
@@ -49,13 +49,13 @@ class ModeCache {
     return *slot;
   }
   const GroundVertexMode& GroundVertex(int k) {
-    std::optional<GroundVertexMode>& slot = ground_vertex_modes_[Block::WrapVertex(k) - 1];
+    LazySlot<GroundVertexMode>& slot = ground_vertex_modes_[Block::WrapVertex(k) - 1];
     if (!slot) slot.emplace(block_, k, gravity_m_s2_, *ground_, falls_on_side_);
     return *slot;
   }
   // As Edge, under ground motion, with the lift margin of GroundEdgeMode.
   const GroundEdgeMode& GroundEdge(int i, int j, const Eigen::Quaterniond& q_yaw, double lift_margin_g) {
-    std::optional<GroundEdgeMode>& slot = ground_edge_modes_[EdgeSlot(i, j)];
+    LazySlot<GroundEdgeMode>& slot = ground_edge_modes_[EdgeSlot(i, j)];
     if (slot) {
       slot->SetYawAndLiftMargin(q_yaw, lift_margin_g);
     } else {
@@ -76,11 +76,11 @@ class ModeCache {
   double gravity_m_s2_;
   const GroundMotion* ground_;
   bool falls_on_side_;
-  std::array<std::optional<EdgeDynamics>, 4> edge_dynamics_;
-  std::array<std::optional<VertexMode>, 4> vertex_modes_;
-  std::array<std::optional<EdgeMode>, 8> edge_modes_;
-  std::array<std::optional<GroundVertexMode>, 4> ground_vertex_modes_;
-  std::array<std::optional<GroundEdgeMode>, 8> ground_edge_modes_;
+  std::array<LazySlot<EdgeDynamics>, 4> edge_dynamics_;
+  std::array<LazySlot<VertexMode>, 4> vertex_modes_;
+  std::array<LazySlot<EdgeMode>, 8> edge_modes_;
+  std::array<LazySlot<GroundVertexMode>, 4> ground_vertex_modes_;
+  std::array<LazySlot<GroundEdgeMode>, 8> ground_edge_modes_;
 };
 
 }  // namespace rockfit::core::detail

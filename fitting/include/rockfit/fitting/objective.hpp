@@ -106,7 +106,18 @@ class Objective {
   Evaluation EvaluateDetailed(const ParameterSet& values, ErrorNodes* nodes, ModelOutput* output,
                               bool sensitivities = false) const;
 
+  // (28) on `nodes`, built by BuildErrorNodes from this signal for the t0 of `values` and an end inside the
+  // recording: the evaluation WithWindowEnd(that end).Evaluate(values) gives, without copying the problem or
+  // building the nodes again (the prefix screen's shorter windows, prefix_screen.hpp).
+  Evaluation EvaluateOnNodes(const ParameterSet& values, const ErrorNodes& nodes) const;
+
  private:
+  // An infeasible evaluation for `reason`, counted.
+  Evaluation Infeasible(ModelFailure reason, core::ImpactStatus impact_status = core::ImpactStatus::kOk) const;
+  // EvaluateDetailed from the nodes on (they are built): runs the model into *output and evaluates (28).
+  Evaluation EvaluateBuilt(const ParameterSet& values, const ErrorNodes& nodes, ModelOutput* output,
+                           bool sensitivities) const;
+
   std::shared_ptr<const MeasuredSignal> signal_;
   double t_end_s_;
   std::vector<double> later_window_ends_s_;

@@ -33,6 +33,9 @@ struct ModelOutput {
   ModelFailure failure = ModelFailure::kNone;
   core::ImpactStatus impact_status = core::ImpactStatus::kOk;
   std::string failure_detail;
+  // Working storage of the model, not output: a model that simulates keeps its trajectory here between runs, so
+  // that the runs of one caller (an objective's per-thread output) reuse its vectors. Clear() leaves it alone.
+  core::Trajectory scratch_trajectory;
   bool ok() const { return failure == ModelFailure::kNone; }
   std::string failure_category() const { return FailureCategory(failure, impact_status); }
   void Clear() {
