@@ -157,6 +157,7 @@ struct RefitRule {
   bool exact = false;
   int iterations = 0;
   int evaluations = 0;
+  bool checked = true;  // IntervalOptions::refit_checked: also where Ceres stops at its limit or past check_above_sum_sq
   // An exact re-fit that ends above this S is checked by Nelder–Mead (the profile points past the 95 % crossing,
   // which set the interval's end): Ceres stops where the rippled S is locally flat or on a kink (measured on the
   // analytic test model: S 8 times the simplex's), and the simplex, whose steps span the ripples, goes on there.
@@ -179,8 +180,8 @@ ParameterSet RefitSumOfSquares(const Objective& objective, const ParameterSet& s
   if (!r.exact_at_start && std::isfinite(r.sum_sq_start)) ++stats->without_jacobian;
   // Kept where Ceres converged below the start and, past the crossing, below the check level; otherwise
   // (a failure, the iteration limit: steps rejected on the ripples) Nelder–Mead.
-  const bool kept = r.exact_at_start && !r.failed && r.feasible && r.sum_sq <= r.sum_sq_start && r.converged &&
-                    !(r.sum_sq > rule.check_above_sum_sq);
+  const bool kept = r.exact_at_start && !r.failed && r.feasible && r.sum_sq <= r.sum_sq_start &&
+                    (!rule.checked || (r.converged && !(r.sum_sq > rule.check_above_sum_sq)));
   if (kept) {
     ++stats->exact;
     value->sum_sq = r.sum_sq;
@@ -723,13 +724,13 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
     SumOfSquaresValue centre_value;
     const bool exact = options.profile_refit == ProfileRefit::kExact;
     RefitStats refit_stats;
-    const RefitRule centre_rule{exact, options.centre_iterations, options.centre_evaluations};
+    const RefitRule centre_rule{exact, options.centre_iterations, options.centre_evaluations, options.refit_checked};
     const ParameterSet centre = RefitSumOfSquares(ls, base, refit_step, centre_rule, &centre_value, &best_epsilon,
                                                   &evaluations, &refit_stats);
     // Where the model gives no exact Jacobian at the optimum (clipped samples in the window, a gyro scale estimate,
     // a parameter without derivatives) it gives none at the profile points either: Nelder–Mead throughout.
     const RefitRule profile_rule{exact && refit_stats.without_jacobian == 0, options.refit_iterations,
-                                 options.profile_evaluations};
+                                 options.profile_evaluations, options.refit_checked};
     const double sum_sq_centre = centre_value.sum_sq;
     const double s2_centre = sum_sq_centre / noise_dof;
     linearised_sigma(s2_centre);

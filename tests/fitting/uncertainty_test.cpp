@@ -257,7 +257,7 @@ TEST(Intervals, AimedProfileFindsTheConvergedCrossingsWithFewerRuns) {
 
 // The exact profile re-fits (IntervalOptions::profile_refit kExact: Ceres with the model's Jacobian, here the
 // analytic model's by differences) end where a converged profile does (the fixed grid with Nelder–Mead re-fits run
-// to 2000 evaluations), with far fewer model runs than the Nelder–Mead re-fits at their default.
+// to 2000 evaluations), with fewer model runs than the Nelder–Mead re-fits at their default.
 TEST(Intervals, ExactRefitsFindTheConvergedCrossings) {
   const auto trial = MakeAnalyticTrial(0.2, 0.8, -2.0, 0.6, RealisticDisturbances(23));
   const Objective objective(trial.data.signal, trial.t_end_s,
@@ -267,6 +267,9 @@ TEST(Intervals, ExactRefitsFindTheConvergedCrossings) {
   options.intervals.hull_with_linearised = false;  // the profiles' own crossings
   options.intervals.profile_refit = ProfileRefit::kExact;
   const FitSummary exact = Fit(objective, trial.truth, options);
+  options.intervals.refit_checked = false;
+  const FitSummary unchecked = Fit(objective, trial.truth, options);
+  options.intervals.refit_checked = true;
   options.intervals.profile_refit = ProfileRefit::kNelderMead;
   const FitSummary nelder_mead = Fit(objective, trial.truth, options);
   options.intervals.profile_evaluations = 2000;
@@ -290,6 +293,9 @@ TEST(Intervals, ExactRefitsFindTheConvergedCrossings) {
     EXPECT_NEAR(e[1], c[1], kHalfWidthFraction * (c[1] - v)) << Name(id);
   }
   EXPECT_LT(exact.uncertainty.evaluations, nelder_mead.uncertainty.evaluations);
+  // Without the checks Ceres' ends are kept wherever they lie below their starts: fewer runs still.
+  ASSERT_TRUE(unchecked.feasible);
+  EXPECT_LT(unchecked.uncertainty.evaluations, exact.uncertainty.evaluations);
 }
 
 // Where the model gives no exact Jacobian, the exact option falls back to Nelder–Mead from the same starts: the
