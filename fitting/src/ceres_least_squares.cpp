@@ -51,8 +51,10 @@ enum class ResidualScaling {
 // blocks (and the 2n perturbed points of their Jacobians) share one model run per distinct vector.
 class ResidualEvaluator {
  public:
-  ResidualEvaluator(const Objective& objective, ResidualScaling scaling, double t_ref_s, bool exact_jacobian)
-      : objective_(objective), scaling_(scaling), t_ref_s_(t_ref_s), exact_jacobian_(exact_jacobian) {
+  ResidualEvaluator(const Objective& objective, ResidualScaling scaling, double t_ref_s, bool exact_jacobian,
+                    bool exact_only = false)
+      : objective_(objective), scaling_(scaling), t_ref_s_(t_ref_s), exact_jacobian_(exact_jacobian),
+        exact_only_(exact_only) {
     const MeasuredSignal& s = objective.signal();
     double t0_min = s.t_s.front();
     const Parameter& t0 = objective.parameters()[ParameterId::kT0];
@@ -77,6 +79,15 @@ class ResidualEvaluator {
   // Whether some residual block was differentiated numerically (no exact Jacobian at its point).
   bool differenced() const { return differenced_; }
   void NoteDifferenced() { differenced_ = true; }
+  // Whether a missing exact Jacobian fails the evaluation instead of being differenced.
+  bool exact_only() const { return exact_only_; }
+  // The lowest (28) of the feasible points evaluated, and its point (empty when none).
+  double best_epsilon_rad_s() const { return best_epsilon_rad_s_; }
+  const std::vector<double>& best_epsilon_x() const { return best_epsilon_x_; }
+  // (28) at x (infinite where the model fails).
+  double epsilon_at(const double* x) {
+    return Lookup(x) ? last_entry_->epsilon_rad_s : std::numeric_limits<double>::infinity();
+  }
   double nominal_dt_s() const { return nominal_dt_s_; }
   std::size_t num_nodes_at(const double* x) {
     return Lookup(x) ? last_num_nodes_ : 0;
@@ -108,6 +119,7 @@ class ResidualEvaluator {
     std::vector<double> jacobian;
     bool ok = false;
     bool jacobian_ok = false;
+    double epsilon_rad_s = std::numeric_limits<double>::infinity();  // (28) at the point
     std::size_t num_nodes = 0;
     std::size_t num_weighted_nodes = 0;
     std::size_t num_unobserved_components = 0;
@@ -163,11 +175,16 @@ class ResidualEvaluator {
     Eigen::VectorXd xv = Eigen::Map<const Eigen::VectorXd>(x, static_cast<Eigen::Index>(n));
     const Evaluation e = objective_.EvaluateDetailed(objective_.WithFree(xv), &nodes_, &output_, exact_jacobian_);
     entry->ok = e.feasible && nodes_.size() >= 2 && nodes_.first_sample >= first_slot_sample_;
+    entry->epsilon_rad_s = e.epsilon_rad_s;
     entry->num_nodes = entry->ok ? nodes_.size() : 0;
     entry->num_weighted_nodes = entry->ok ? nodes_.size() - nodes_.num_excluded : 0;
     entry->num_unobserved_components = entry->ok ? NumSatisfiedCensoredComponents(nodes_, output_.w_B) : 0;
     last_num_nodes_ = entry->num_nodes;
     if (!entry->ok) return nullptr;
+    if (e.epsilon_rad_s < best_epsilon_rad_s_) {
+      best_epsilon_rad_s_ = e.epsilon_rad_s;
+      best_epsilon_x_ = entry->key;
+    }
     ResidualScale scale;
     scale.kind = scaling_ == ResidualScaling::kSoftL1 ? ResidualScale::Kind::kSoftL1 : ResidualScale::Kind::kLeastSquares;
     scale.t_ref_s = t_ref_s_;
@@ -196,6 +213,9 @@ class ResidualEvaluator {
   ResidualScaling scaling_;
   double t_ref_s_;
   bool exact_jacobian_ = false;
+  bool exact_only_ = false;
+  double best_epsilon_rad_s_ = std::numeric_limits<double>::infinity();
+  std::vector<double> best_epsilon_x_;
   std::size_t first_slot_sample_ = 0;
   std::size_t num_slots_ = 0;
   double nominal_dt_s_ = 0.0;
@@ -234,6 +254,7 @@ class SlotCost final : public ceres::CostFunction {
       std::copy(exact + 3 * slot_ * n, exact + 3 * (slot_ + 1) * n, jacobians[0]);
       return true;
     }
+    if (evaluator_->exact_only()) return false;
     evaluator_->NoteDifferenced();
     // The perturbed points, on the stack (this runs for every slot at every Jacobian).
     std::array<double, kNumParameters> xp{};
@@ -378,6 +399,70 @@ class CeresLeastSquares final : public LocalOptimizer {
 
 std::unique_ptr<LocalOptimizer> MakeCeres(const CeresOptions& options) {
   return std::make_unique<CeresLeastSquares>(options);
+}
+
+ExactLeastSquaresResult MinimizeSumOfSquaresExact(const Objective& objective, const Eigen::VectorXd& x0,
+                                                  int max_iterations) {
+  SilenceCeresLogging();
+  ExactLeastSquaresResult result;
+  Eigen::VectorXd x = x0.cwiseMax(objective.FreeLower()).cwiseMin(objective.FreeUpper());
+  result.x = x;
+  ResidualEvaluator evaluator(objective, ResidualScaling::kLeastSquares, 1.0, /*exact_jacobian=*/true,
+                              /*exact_only=*/true);
+  auto finish = [&] {
+    result.runs = evaluator.evaluations();
+    result.best_epsilon_rad_s = evaluator.best_epsilon_rad_s();
+    if (!evaluator.best_epsilon_x().empty()) {
+      result.best_epsilon_x = Eigen::Map<const Eigen::VectorXd>(evaluator.best_epsilon_x().data(), x.size());
+    }
+    return result;
+  };
+  const auto sum_of_squares = [&](const double* r) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < 3 * evaluator.num_slots(); ++i) sum += r[i] * r[i];
+    return sum;
+  };
+  // The start: its S, and whether the model gives the exact Jacobian there (from the same run).
+  const double* r_start = evaluator.Residuals(x.data());
+  if (r_start == nullptr) {
+    result.failed = true;
+    return finish();
+  }
+  result.sum_sq_start = sum_of_squares(r_start);
+  result.sum_sq = result.sum_sq_start;
+  result.feasible = true;
+  result.epsilon_rad_s = evaluator.epsilon_at(x.data());
+  result.exact_at_start = evaluator.Jacobian(x.data()) != nullptr;
+  if (!result.exact_at_start || x.size() == 0 || max_iterations < 1) {
+    result.failed = !result.exact_at_start;
+    return finish();
+  }
+  ceres::Problem problem;
+  BuildProblem(objective, &evaluator, CeresOptions{}, nullptr, true, &x, &problem);
+  ceres::Solver::Options solver;
+  // The tolerances of the Ceres back end (CeresOptions' defaults): relative changes below them are round-off of S.
+  const CeresOptions tolerances;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = max_iterations;
+  solver.function_tolerance = tolerances.function_tolerance;
+  solver.parameter_tolerance = tolerances.parameter_tolerance;
+  solver.gradient_tolerance = tolerances.gradient_tolerance;
+  solver.logging_type = ceres::SILENT;
+  solver.minimizer_progress_to_stdout = false;
+  solver.num_threads = 1;  // the evaluator is not thread-safe
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  result.failed = summary.termination_type == ceres::FAILURE || summary.termination_type == ceres::USER_FAILURE;
+  result.converged = summary.termination_type == ceres::CONVERGENCE;
+  // Ceres leaves x at the best point it accepted; S and (28) there come from the evaluator's cache.
+  const double* r_end = evaluator.Residuals(x.data());
+  result.feasible = r_end != nullptr;
+  if (result.feasible) {
+    result.x = x;
+    result.sum_sq = sum_of_squares(r_end);
+    result.epsilon_rad_s = evaluator.epsilon_at(x.data());
+  }
+  return finish();
 }
 
 StandardErrors ComputeStandardErrors(const Objective& objective, const Eigen::VectorXd& x_in,

@@ -29,6 +29,9 @@ const double kDefaultT0FloorSamples = 0.5;
 // the fits of the coverage study did not stay within 0.1 % of ε (fitting/README.md, "Exact derivatives (3D fits)").
 const bool kDefaultExactJacobian = false;
 
+// The profile re-fits by Nelder–Mead (fitting/README.md, "Intervals", says what the exact ones were measured to do).
+const ProfileRefit kDefaultProfileRefit = ProfileRefit::kNelderMead;
+
 namespace {
 
 // The shared checks (rockfit/core/checks.hpp) with the option's name as the user writes it.
@@ -136,6 +139,19 @@ bool FromString(std::string_view text, IntervalMethod* value) {
   return core::FromStringAmong(text, kAll, value);
 }
 
+const char* ToString(ProfileRefit refit) {
+  switch (refit) {
+    case ProfileRefit::kNelderMead: return "nelder-mead";
+    case ProfileRefit::kExact: return "exact";
+  }
+  return "?";
+}
+
+bool FromString(std::string_view text, ProfileRefit* value) {
+  static constexpr ProfileRefit kAll[] = {ProfileRefit::kNelderMead, ProfileRefit::kExact};
+  return core::FromStringAmong(text, kAll, value);
+}
+
 IntervalMethod ParseIntervalMethod(const std::string& name) {
   IntervalMethod method = IntervalMethod::kNone;
   if (FromString(name, &method)) return method;
@@ -159,6 +175,12 @@ void IntervalOptions::Validate() const {
   RequireAtLeast(profile_evaluations, 1, FitOption("intervals.profile_evaluations"));
   RequireAtLeast(centre_evaluations, 0, FitOption("intervals.centre_evaluations"));
   RequireAtLeast(profile_points, 2, FitOption("intervals.profile_points"));
+  if (profile_refit != ProfileRefit::kNelderMead && profile_refit != ProfileRefit::kExact) {
+    throw InvalidArgument(fmt::format("fit option intervals.profile_refit must be nelder-mead or exact, got the value {}",
+                                      static_cast<int>(profile_refit)));
+  }
+  RequireAtLeast(refit_iterations, 1, FitOption("intervals.refit_iterations"));
+  RequireAtLeast(centre_iterations, 0, FitOption("intervals.centre_iterations"));
   if (!(profile_growth > 1.0 && std::isfinite(profile_growth))) {
     throw InvalidArgument(fmt::format("fit option intervals.profile_growth must be above 1, got {}", profile_growth));
   }

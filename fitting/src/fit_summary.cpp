@@ -85,8 +85,10 @@ std::string FitSummary::FullReport() const {
                        s.evaluations, s.wall_time_s, s.termination);
   }
   out << fmt::format("termination {} (kept: {})\n", termination, kept_stage);
-  out << fmt::format("intervals   {} ({} simulations, {:.3f} s)\n", uncertainty.description, uncertainty.evaluations,
-                     uncertainty.wall_time_s);
+  const std::string with_sensitivities =
+      uncertainty.sensitivity_runs > 0 ? fmt::format(", {} with sensitivities", uncertainty.sensitivity_runs) : "";
+  out << fmt::format("intervals   {} ({} simulations{}, {:.3f} s)\n", uncertainty.description, uncertainty.evaluations,
+                     with_sensitivities, uncertainty.wall_time_s);
   for (const std::string& s : uncertainty.statements) out << "data fix    " << s << "\n";
   for (const FitWarning& w : warnings) out << "warning     " << w.message << "\n";
   return out.str();
@@ -127,6 +129,12 @@ std::string FitSummary::ToJson(const std::string& trial) const {
                       {"wall_s", uncertainty.wall_time_s}};
   // Only with clipped samples (censored_noise_level.hpp): the documents of other fits keep their keys.
   if (uncertainty.censored_noise_factor != 1.0) j["uncertainty"]["censored_noise_factor"] = uncertainty.censored_noise_factor;
+  // Only with the exact profile re-fits (IntervalOptions::profile_refit): the documents of other fits keep their keys.
+  if (uncertainty.sensitivity_runs > 0) {
+    j["uncertainty"]["simulations_with_sensitivities"] = uncertainty.sensitivity_runs;
+    j["uncertainty"]["exact_refits"] = uncertainty.exact_refits;
+    j["uncertainty"]["nelder_mead_refits"] = uncertainty.nelder_mead_refits;
+  }
   j["lateral_motion"] = nlohmann::json::parse(LateralMotionJson(lateral_motion));
   j["model_error"] = nlohmann::json::parse(ModelErrorJson(model_error));
   // Only when estimated: the documents of fits without it keep their keys.

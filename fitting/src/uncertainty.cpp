@@ -14,6 +14,7 @@
 
 #include "parallel_for.hpp"
 #include "rockfit/fitting/censored_noise_level.hpp"
+#include "rockfit/fitting/local_optimizer.hpp"
 #include "rockfit/fitting/profile_steps.hpp"
 #include "rockfit/core/enum_names.hpp"
 
@@ -135,6 +136,74 @@ ParameterSet MinimizeSumOfSquares(const Objective& objective, const ParameterSet
   return problem.best;
 }
 
+// What the exact re-fits did (IntervalOptions::profile_refit kExact).
+struct RefitStats {
+  std::int64_t sensitivity_runs = 0;  // model runs with sensitivities (Ceres)
+  std::int64_t exact = 0;             // re-fits ended by Ceres
+  std::int64_t fallback = 0;          // re-fits by Nelder–Mead (after Ceres, or without exact Jacobian)
+  std::int64_t without_jacobian = 0;  // Ceres re-fits whose start had no exact Jacobian
+  void Merge(const RefitStats& other) {
+    sensitivity_runs += other.sensitivity_runs;
+    without_jacobian += other.without_jacobian;
+    exact += other.exact;
+    fallback += other.fallback;
+  }
+};
+
+// How to re-fit S: Nelder–Mead with `evaluations`, or first Ceres with the exact Jacobian (`exact`) for
+// `iterations`, and Nelder–Mead from the same start where Ceres fails, stops at its iteration limit, ends above its
+// start or ends above check_above_sum_sq.
+struct RefitRule {
+  bool exact = false;
+  int iterations = 0;
+  int evaluations = 0;
+  bool checked = true;  // IntervalOptions::refit_checked: also where Ceres stops at its limit or past check_above_sum_sq
+  // An exact re-fit that ends above this S is checked by Nelder–Mead (the profile points past the 95 % crossing,
+  // which set the interval's end): Ceres stops where the rippled S is locally flat or on a kink (measured on the
+  // analytic test model: S 8 times the simplex's), and the simplex, whose steps span the ripples, goes on there.
+  double check_above_sum_sq = std::numeric_limits<double>::infinity();
+};
+
+// Re-fits the free parameters of `objective` from `start` by `rule`; returns the point, its S in `value` (never
+// above the start's: Ceres' trust region and the simplex keep the best point met).
+ParameterSet RefitSumOfSquares(const Objective& objective, const ParameterSet& start, const PerParameter& step,
+                               const RefitRule& rule, SumOfSquaresValue* value, BestEpsilon* best_epsilon,
+                               std::int64_t* evaluations, RefitStats* stats) {
+  if (!rule.exact || objective.num_free() == 0) {
+    if (rule.exact) ++stats->fallback;
+    return MinimizeSumOfSquares(objective, start, step, rule.evaluations, value, best_epsilon, evaluations);
+  }
+  const ExactLeastSquaresResult r = MinimizeSumOfSquaresExact(objective, objective.FreeValues(start), rule.iterations);
+  *evaluations += r.runs;
+  stats->sensitivity_runs += r.runs;
+  if (r.best_epsilon_x.size() > 0) best_epsilon->Offer(r.best_epsilon_rad_s, objective.WithFree(r.best_epsilon_x));
+  if (!r.exact_at_start && std::isfinite(r.sum_sq_start)) ++stats->without_jacobian;
+  // Kept where Ceres converged below the start and, past the crossing, below the check level; otherwise
+  // (a failure, the iteration limit: steps rejected on the ripples) Nelder–Mead.
+  const bool kept = r.exact_at_start && !r.failed && r.feasible && r.sum_sq <= r.sum_sq_start &&
+                    (!rule.checked || (r.converged && !(r.sum_sq > rule.check_above_sum_sq)));
+  if (kept) {
+    ++stats->exact;
+    value->sum_sq = r.sum_sq;
+    value->epsilon_rad_s = r.epsilon_rad_s;
+    value->feasible = std::isfinite(r.sum_sq);
+    if (!value->feasible) value->sum_sq = kInfeasibleSumOfSquares;
+    return objective.WithFree(r.x);
+  }
+  // Nelder–Mead from the warm start (Ceres' end may sit on a kink the simplex does not leave either); the better of
+  // its end and Ceres'.
+  ++stats->fallback;
+  const ParameterSet simplex_end =
+      MinimizeSumOfSquares(objective, start, step, rule.evaluations, value, best_epsilon, evaluations);
+  if (r.feasible && std::isfinite(r.sum_sq) && r.sum_sq < value->sum_sq) {
+    value->sum_sq = r.sum_sq;
+    value->epsilon_rad_s = r.epsilon_rad_s;
+    value->feasible = true;
+    return objective.WithFree(r.x);
+  }
+  return simplex_end;
+}
+
 struct ProfilePoint {
   double value = 0.0;
   double sum_sq = kInfeasibleSumOfSquares;
@@ -165,8 +234,9 @@ ParameterSet HeldAt(const Objective& objective, const ParameterSet& from, Parame
 // until S rises above 1.5·z²·κ_j·s² (margin to interpolate the crossing), the model fails, or the bound is reached.
 std::vector<ProfilePoint> ProfileSideOnGrid(const Objective& objective, const ParameterSet& centre, ParameterId id,
                                             double direction, double step, const ProfileScale& scale,
-                                            const PerParameter& refit_step, const IntervalOptions& options,
-                                            BestEpsilon* best_epsilon, std::int64_t* evaluations) {
+                                            const PerParameter& refit_step, const RefitRule& rule,
+                                            const IntervalOptions& options, BestEpsilon* best_epsilon,
+                                            std::int64_t* evaluations, RefitStats* stats) {
   const double stop_sum_sq = scale.sum_sq_centre + 1.5 * kZ95 * kZ95 * scale.s2_eff;
   std::vector<ProfilePoint> points;
   const Parameter& p = objective.parameters()[id];
@@ -184,7 +254,9 @@ std::vector<ProfilePoint> ProfileSideOnGrid(const Objective& objective, const Pa
     const ParameterSet set = HeldAt(objective, previous, id, point.value);
     const Objective held = objective.WithParameters(set);
     SumOfSquaresValue v;
-    previous = MinimizeSumOfSquares(held, set, refit_step, options.profile_evaluations, &v, best_epsilon, evaluations);
+    RefitRule checked = rule;
+    checked.check_above_sum_sq = scale.sum_sq_centre + kZ95 * kZ95 * scale.s2_eff;  // ρ past z
+    previous = RefitSumOfSquares(held, set, refit_step, checked, &v, best_epsilon, evaluations, stats);
     point.sum_sq = v.sum_sq;
     point.feasible = v.feasible;
     points.push_back(point);
@@ -203,8 +275,8 @@ std::vector<ProfilePoint> ProfileSideOnGrid(const Objective& objective, const Pa
 std::vector<ProfilePoint> ProfileSideAimed(const Objective& objective, const ParameterSet& centre, ParameterId id,
                                            double direction, double step, double min_offset, const ProfileScale& scale,
                                            const PerParameter& ridge_slope, const PerParameter& refit_step,
-                                           const IntervalOptions& options, BestEpsilon* best_epsilon,
-                                           std::int64_t* evaluations) {
+                                           const RefitRule& rule, const IntervalOptions& options,
+                                           BestEpsilon* best_epsilon, std::int64_t* evaluations, RefitStats* stats) {
   struct Point {
     ProfilePoint profile;
     ProfileStepPoint step;
@@ -246,7 +318,9 @@ std::vector<ProfilePoint> ProfileSideAimed(const Objective& objective, const Par
       }
     }
     SumOfSquaresValue v;
-    point.refit = MinimizeSumOfSquares(held, start, refit_step, options.profile_evaluations, &v, best_epsilon, evaluations);
+    RefitRule checked = rule;
+    checked.check_above_sum_sq = scale.sum_sq_centre + kZ95 * kZ95 * scale.s2_eff;  // ρ past z
+    point.refit = RefitSumOfSquares(held, start, refit_step, checked, &v, best_epsilon, evaluations, stats);
     point.profile.sum_sq = v.sum_sq;
     point.profile.feasible = v.feasible;
     point.step.rho = scale.Rho(v);
@@ -648,8 +722,15 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
       if (std::isfinite(sigma[k])) refit_step[k] = std::clamp(sigma[k], options.min_step[k], kFallbackStep[k]);
     }
     SumOfSquaresValue centre_value;
-    const ParameterSet centre = MinimizeSumOfSquares(ls, base, refit_step, options.centre_evaluations, &centre_value,
-                                                     &best_epsilon, &evaluations);
+    const bool exact = options.profile_refit == ProfileRefit::kExact;
+    RefitStats refit_stats;
+    const RefitRule centre_rule{exact, options.centre_iterations, options.centre_evaluations, options.refit_checked};
+    const ParameterSet centre = RefitSumOfSquares(ls, base, refit_step, centre_rule, &centre_value, &best_epsilon,
+                                                  &evaluations, &refit_stats);
+    // Where the model gives no exact Jacobian at the optimum (clipped samples in the window, a gyro scale estimate,
+    // a parameter without derivatives) it gives none at the profile points either: Nelder–Mead throughout.
+    const RefitRule profile_rule{exact && refit_stats.without_jacobian == 0, options.refit_iterations,
+                                 options.profile_evaluations, options.refit_checked};
     const double sum_sq_centre = centre_value.sum_sq;
     const double s2_centre = sum_sq_centre / noise_dof;
     linearised_sigma(s2_centre);
@@ -668,6 +749,7 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
     std::vector<std::vector<ProfilePoint>> points(sides);
     std::vector<BestEpsilon> side_best(sides);
     std::vector<std::int64_t> side_evaluations(sides, 0);
+    std::vector<RefitStats> side_stats(sides);
     ParallelFor(sides, num_threads, [&](std::size_t s) {
       const ParameterId id = profiled[s / 2];
       const std::size_t k = static_cast<std::size_t>(id);
@@ -677,21 +759,25 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
       const ProfileScale scale{sum_sq_centre, kappa[k] * s2_centre};
       const double direction = s % 2 == 0 ? -1.0 : +1.0;
       if (options.profile_aimed) {
-        points[s] = ProfileSideAimed(ls, centre, id, direction, unit, options.min_step[k] / unit, scale, ridge_slope[s / 2], refit_step, options,
-                                     &side_best[s], &side_evaluations[s]);
+        points[s] = ProfileSideAimed(ls, centre, id, direction, unit, options.min_step[k] / unit, scale, ridge_slope[s / 2], refit_step, profile_rule,
+                                     options, &side_best[s], &side_evaluations[s], &side_stats[s]);
       } else {
-        points[s] = ProfileSideOnGrid(ls, centre, id, direction, step, scale, refit_step, options, &side_best[s],
-                                      &side_evaluations[s]);
+        points[s] = ProfileSideOnGrid(ls, centre, id, direction, step, scale, refit_step, profile_rule, options,
+                                      &side_best[s], &side_evaluations[s], &side_stats[s]);
       }
     });
     sum_sq_min = sum_sq_centre;
     for (std::size_t s = 0; s < sides; ++s) {
       evaluations += side_evaluations[s];
+      refit_stats.Merge(side_stats[s]);
       best_epsilon.Merge(side_best[s]);
       for (const ProfilePoint& pt : points[s]) {
         if (pt.feasible) sum_sq_min = std::min(sum_sq_min, pt.sum_sq);
       }
     }
+    u.sensitivity_runs = refit_stats.sensitivity_runs;
+    u.exact_refits = refit_stats.exact;
+    u.nelder_mead_refits = exact ? refit_stats.fallback : 0;
     u.noise_rms_rad_s = std::sqrt(sum_sq_min / noise_dof / dt_s);
     linearised_sigma(sum_sq_min / noise_dof);
     const PerParameter linear_sigma = sigma;
@@ -739,6 +825,10 @@ UncertaintySummary ComputeUncertainty(const Objective& objective, const Paramete
                                 u.noise_rms_rad_s, u.correlation_factor,
                                 options.hull_with_linearised ? ", at least as wide as the linearised ones" : "",
                                 Describe68(u.bulk_inflation, options.profile_68 ? "from the profile" : "linearised"));
+    if (exact) {
+      u.description += fmt::format("; the re-fits by Ceres with exact derivatives ({} of {}, the others by Nelder–Mead)",
+                                   u.exact_refits, u.exact_refits + u.nelder_mead_refits);
+    }
     if (best_epsilon.at && best_epsilon.epsilon_rad_s < (1.0 - kBetterPointFraction) * fitted_epsilon_rad_s) {
       u.better_point = best_epsilon.at;
       u.better_epsilon_rad_s = best_epsilon.epsilon_rad_s;

@@ -85,5 +85,26 @@ TEST(IntervalOptions, RejectsAnAimThatCannotBracketTheCrossing) {
   EXPECT_NO_THROW(options.Validate());
 }
 
+
+// IntervalOptions::profile_refit and its iteration counts: an unknown refit or no iterations is refused.
+TEST(IntervalOptions, RejectsAnUnknownRefitAndNoIterations) {
+  IntervalOptions options;
+  options.profile_refit = static_cast<ProfileRefit>(7);
+  EXPECT_THROW(options.Validate(), InvalidArgument);
+  options = IntervalOptions{};
+  options.refit_iterations = 0;
+  EXPECT_THROW(options.Validate(), InvalidArgument);
+  options = IntervalOptions{};
+  options.centre_iterations = -1;
+  EXPECT_THROW(options.Validate(), InvalidArgument);
+  options = IntervalOptions{};
+  options.profile_refit = ProfileRefit::kExact;
+  EXPECT_NO_THROW(options.Validate());
+  ProfileRefit parsed = ProfileRefit::kNelderMead;
+  ASSERT_TRUE(FromString(ToString(ProfileRefit::kExact), &parsed));
+  EXPECT_EQ(parsed, ProfileRefit::kExact);
+  EXPECT_FALSE(FromString("gauss-newton", &parsed));
+}
+
 }  // namespace
 }  // namespace rockfit::fitting

@@ -136,9 +136,21 @@ const char* ToString(IntervalMethod method);                // "none", "fast", "
 bool FromString(std::string_view text, IntervalMethod* value);  // the inverse of ToString
 IntervalMethod ParseIntervalMethod(const std::string& name);  // throws InvalidArgument
 
-// The calibrated defaults of IntervalOptions::model_error_widening and t0_floor_samples (fit_options.cpp).
+// How kThorough re-fits the other parameters at a profile point (and minimises S from the fit first):
+//  kNelderMead  NLopt's simplex, IntervalOptions::profile_evaluations (centre_evaluations) evaluations;
+//  kExact       Ceres (Levenberg–Marquardt) on the least-squares residuals with the model's exact Jacobian,
+//               warm-started as the simplex is; Nelder–Mead as above, from the same start, where the model gives no
+//               exact Jacobian, Ceres fails, stops at its iteration limit, or ends above its start or past the
+//               profile's 95 % crossing (the better of the two ends is kept). fitting/README.md, "Intervals".
+enum class ProfileRefit { kNelderMead, kExact };
+const char* ToString(ProfileRefit refit);                     // "nelder-mead", "exact"
+bool FromString(std::string_view text, ProfileRefit* value);  // the inverse of ToString
+
+// The calibrated defaults of IntervalOptions::model_error_widening and t0_floor_samples, and the default of
+// IntervalOptions::profile_refit (fit_options.cpp).
 extern const double kDefaultModelErrorWidening;
 extern const double kDefaultT0FloorSamples;
+extern const ProfileRefit kDefaultProfileRefit;
 
 struct IntervalOptions {
   IntervalMethod method = IntervalMethod::kFast;  // the command line defaults to kThorough (--intervals)
@@ -179,6 +191,17 @@ struct IntervalOptions {
   int profile_evaluations = 120;
   // Evaluations of the least-squares refinement of the optimum that the profiles start from.
   int centre_evaluations = 300;
+  // How the others are re-fitted at each profile point and the optimum refined (ProfileRefit above), and the
+  // Ceres iterations of one exact re-fit (each a model run with sensitivities, a few plain runs' cost) and of the
+  // exact refinement of the optimum.
+  ProfileRefit profile_refit = kDefaultProfileRefit;
+  int refit_iterations = 20;
+  int centre_iterations = 40;
+  // kExact: Nelder–Mead also where Ceres stops at its iteration limit or ends past the profile's 95 % crossing
+  // (ProfileRefit above). false: Ceres' end is kept wherever it lies below its start — 2–4 times fewer simulations
+  // for the intervals, but Ceres stalls on the ripples of S and ends some profiles early (fitting/README.md,
+  // "Intervals", "Exact re-fits, measured").
+  bool refit_checked = true;
   // Profile points per side at most.
   int profile_points = 14;
   // The profile points aimed at the 95 % crossing of the signed root ρ (profile_steps.hpp): the first at

@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -49,6 +50,26 @@ class LocalOptimizer {
 
 std::unique_ptr<LocalOptimizer> MakeNelderMead(const NelderMeadOptions& options);
 std::unique_ptr<LocalOptimizer> MakeCeres(const CeresOptions& options);
+
+// S = Σ‖r_k‖², r_k = √w_k·(ω_m − ω_s) (the least-squares form of (28), no loss), minimised over the free parameters of
+// `objective` from x0 by Ceres' trust region with the model's exact Jacobian only (residual_jacobian.hpp): a point
+// where the model gives none stops the search (no differences are taken). For the profile re-fits of the intervals.
+struct ExactLeastSquaresResult {
+  Eigen::VectorXd x;  // the best point accepted (x0 clamped into the bounds when none)
+  double sum_sq_start = std::numeric_limits<double>::infinity();  // S at x0 (infinite where the model fails there)
+  double sum_sq = std::numeric_limits<double>::infinity();        // S at x
+  double epsilon_rad_s = std::numeric_limits<double>::infinity(); // (28) at x
+  bool feasible = false;         // the model runs at x
+  bool exact_at_start = false;   // the model gave the exact Jacobian at x0 (otherwise nothing was searched)
+  bool failed = false;           // Ceres ended in failure (a point without exact Jacobian, a model failure at x0)
+  bool converged = false;
+  // The lowest (28) of every point evaluated, and its point (free parameters; empty when none was feasible).
+  double best_epsilon_rad_s = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd best_epsilon_x;
+  std::int64_t runs = 0;              // model runs, every one with sensitivities
+};
+ExactLeastSquaresResult MinimizeSumOfSquaresExact(const Objective& objective, const Eigen::VectorXd& x0,
+                                                  int max_iterations);
 
 // Standard errors of the free parameters of `objective` at x from the Gauss–Newton covariance
 // κ·s²·(JᵀJ)⁻¹ of the residuals √w_k·(ω_m − ω_s) (ceres::Covariance, dense SVD), with

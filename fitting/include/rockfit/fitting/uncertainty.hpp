@@ -18,7 +18,7 @@
 //  thorough  95 %: profile intervals of S = Σ w_k‖ω_m − ω_s‖² (the least-squares form of (28)): parameter j
 //            is stepped outwards from the least-squares optimum (a fixed grid of multiples of σ_j, or aimed at the
 //            crossing: IntervalOptions::profile_aimed, profile_steps.hpp), the others re-fitted by Nelder–Mead at
-//            every step (warm-started), and the interval ends where S_profile − S_min = z²·s²_eff (z = 1.96, the
+//            every step (warm-started; or by Ceres with the exact Jacobian, IntervalOptions::profile_refit), and the interval ends where S_profile − S_min = z²·s²_eff (z = 1.96, the
 //            χ²₁ quantile), widened to the linearised one. Curved valleys (t0 + T(α) near θ_c, λ–λ_lat with weak
 //            lateral motion) are followed by the re-fits instead of linearised. 68 %: linearised at the bulk
 //            level, as in fast (or the profile's crossing at z = 1, IntervalOptions::profile_68).
@@ -75,6 +75,11 @@ struct UncertaintySummary {
   // Sentences: what the data fix ("t0 and alpha: only t0 + T(α) is fixed (correlation −0.998)", …).
   std::vector<std::string> statements;
   std::int64_t evaluations = 0;
+  // IntervalOptions::profile_refit kExact: the model runs of `evaluations` that computed sensitivities too (each
+  // costs a few plain runs), the re-fits Ceres ended and those left to Nelder–Mead. 0 otherwise.
+  std::int64_t sensitivity_runs = 0;
+  std::int64_t exact_refits = 0;
+  std::int64_t nelder_mead_refits = 0;
   double wall_time_s = 0.0;
   // A point with a lower (28) met on the way (a profile that left the fit's basin); the fitter restarts there.
   std::optional<ParameterSet> better_point;
