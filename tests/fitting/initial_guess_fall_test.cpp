@@ -1,6 +1,6 @@
 // The tabulated planar fall of the phase-1 fit (fitting/src/initial_guess_fall.cpp) against independent computations:
-// energy at the angle swept by the tabulated rates, the fall time by quadrature (core/planar_rocking.hpp), and a
-// fine RK4 integration of the edge's equation of motion.
+// energy at the angles the tabulated rates sweep, the fall time by quadrature (core/planar_rocking.hpp), and a fine
+// RK4 integration of the edge's equation of motion.
 #include "rockfit/fitting/initial_guess_fall.hpp"
 
 #include <gtest/gtest.h>
@@ -17,17 +17,11 @@ namespace {
 
 // T(α): QAWS is exact to ~1e-14 s, the closed form to round-off.
 constexpr double kFallTimeToleranceS = 1e-12;
-// Energy: ω² against K(cos(θ_c − α) − cos(θ_c − ψ)) with ψ = α − ∫ω dτ by Simpson's rule (exact on the cubic pieces);
-// the Hermite error and round-off leave ~1e-11 rad²/s².
-constexpr double kEnergyTolerance_rad2_s2 = 1e-10;
-// The slope at the nodes against (K/2)·sin(θ_c − ψ) at the same angles (~1e-11 rad/s² seen).
-constexpr double kSlopeToleranceRadS2 = 1e-9;
-// ω between the nodes against a fixed-step RK4 integration at 1e-5 s (its error ~1e-15 rad/s): ~5e-12 rad/s seen.
-constexpr double kRateToleranceRadS = 1e-10;
-// The angle swept over the fall is α.
-constexpr double kSweptToleranceRad = 1e-11;
-// Simpson panels per node interval.
-constexpr int kPanels = 8;
+// Energy: ω² against K(cos(θ_c − α) − cos(θ_c − ψ)) at the even nodes, ψ = α − ∫ω dτ by Simpson's rule over the nodes
+// (error ~h⁴/180·|d⁴ω/dτ⁴|·T, ~1e-14 rad): ≤ 1.2e-12 rad²/s² seen.
+constexpr double kEnergyTolerance_rad2_s2 = 1e-11;
+// The nodes against a fixed-step RK4 integration at 1e-5 s (its error ~1e-15 rad/s): ≤ 8e-13 rad/s seen.
+constexpr double kRateToleranceRadS = 1e-11;
 
 struct Case {
   double b1_m, b2_m, h_m;  // half-dimensions of the block
@@ -38,70 +32,67 @@ core::PlanarRocker RockerOf(const Case& c) {
   return core::PlanarRockerAboutEdge(core::Block::FromDensity(c.b1_m, c.b2_m, c.h_m, 2692.0), 1, 2);
 }
 
-// ψ at each node time of `fall`: α − ∫₀^τ ω dτ by Simpson's rule over kPanels panels per interval.
-std::vector<double> TiltsAtNodes(const PlanarFallTable& fall, double alpha_rad) {
+// ψ at the even nodes: α − ∫₀^τ ω dτ by Simpson's rule over pairs of node intervals.
+std::vector<double> TiltsAtEvenNodes(const PlanarFallTable& fall, double alpha_rad) {
+  const double h = PlanarFallTable::kStepS;
   std::vector<double> psi{alpha_rad};
-  for (std::size_t i = 0; i + 1 < fall.nodes(); ++i) {
-    const double a = fall.node_time_s(i), b = fall.node_time_s(i + 1);
-    const double step = (b - a) / kPanels;
-    double sum = fall.Rate(a) + fall.Rate(b);
-    for (int j = 1; j < kPanels; ++j) sum += (j % 2 == 1 ? 4.0 : 2.0) * fall.Rate(a + step * j);
-    psi.push_back(psi.back() - sum * step / 3.0);
+  for (std::size_t i = 0; i + 2 < fall.nodes(); i += 2) {
+    const double swept = h / 3.0 * (fall.node_rate_rad_s(i) + 4.0 * fall.node_rate_rad_s(i + 1) + fall.node_rate_rad_s(i + 2));
+    psi.push_back(psi.back() - swept);
   }
   return psi;
 }
 
 class PlanarFallTableCases : public ::testing::TestWithParam<Case> {};
 
-TEST_P(PlanarFallTableCases, RatesAndSlopesObeyEnergyAtTheAnglesTheySweep) {
+TEST_P(PlanarFallTableCases, NodeRatesObeyEnergyAtTheAnglesTheySweep) {
   const core::PlanarRocker rocker = RockerOf(GetParam());
   const double alpha = GetParam().alpha_fraction * rocker.critical_angle_rad;
   const PlanarFallTable fall(rocker, alpha);
   ASSERT_TRUE(fall.closed_form());
-  const std::vector<double> psi = TiltsAtNodes(fall, alpha);
+  const std::vector<double> psi = TiltsAtEvenNodes(fall, alpha);
   const double theta_c = rocker.critical_angle_rad, K = rocker.K();
-  for (std::size_t i = 0; i < fall.nodes(); ++i) {
-    const double tau = fall.node_time_s(i);
-    const FallRate w = fall.RateAndSlope(tau);
-    const double energy = K * (std::cos(theta_c - alpha) - std::cos(theta_c - psi[i]));
-    EXPECT_NEAR(w.rate_rad_s * w.rate_rad_s, energy, kEnergyTolerance_rad2_s2) << "τ = " << tau;
-    EXPECT_NEAR(w.slope_rad_s2, 0.5 * K * std::sin(theta_c - psi[i]), kSlopeToleranceRadS2) << "τ = " << tau;
+  for (std::size_t j = 0; j < psi.size(); ++j) {
+    const double w = fall.node_rate_rad_s(2 * j);
+    const double energy = K * (std::cos(theta_c - alpha) - std::cos(theta_c - psi[j]));
+    ASSERT_NEAR(w * w, energy, kEnergyTolerance_rad2_s2) << "node " << 2 * j;
   }
-  EXPECT_NEAR(psi.back(), 0.0, kSweptToleranceRad) << "the fall sweeps α";
 }
 
-TEST_P(PlanarFallTableCases, FallTimeAndLandingRateAreTheQuadratureAndEnergy) {
+TEST_P(PlanarFallTableCases, TableEndsAtTheFirstNodeAfterTheQuadratureFallTime) {
   const core::PlanarRocker rocker = RockerOf(GetParam());
   const double alpha = GetParam().alpha_fraction * rocker.critical_angle_rad;
   const PlanarFallTable fall(rocker, alpha);
-  EXPECT_NEAR(fall.fall_time_s(), core::FallTime(rocker, alpha), kFallTimeToleranceS);
-  EXPECT_NEAR(fall.landing_rate_rad_s(), core::LandingRate(rocker, alpha), 1e-12);
-  EXPECT_EQ(fall.Rate(-1e-3), 0.0);
-  EXPECT_EQ(fall.Rate(fall.fall_time_s() + 0.1), fall.landing_rate_rad_s());
+  const double T = core::FallTime(rocker, alpha);
+  EXPECT_NEAR(fall.fall_time_s(), T, kFallTimeToleranceS);
+  EXPECT_GE(fall.table_end_s(), T - kFallTimeToleranceS);
+  EXPECT_LT(fall.table_end_s() - PlanarFallTable::kStepS, T);
+  // The last node is just past flat: its rate is the landing rate plus at most one step of the fall's acceleration.
+  const double landing = core::LandingRate(rocker, alpha);
+  EXPECT_GE(fall.node_rate_rad_s(fall.nodes() - 1), landing - 1e-12);
+  EXPECT_LE(fall.node_rate_rad_s(fall.nodes() - 1), landing + 0.5 * rocker.K() * PlanarFallTable::kStepS);
 }
 
-TEST_P(PlanarFallTableCases, RatesBetweenNodesMatchAFineIntegration) {
+TEST_P(PlanarFallTableCases, NodeRatesMatchAFineIntegration) {
   const core::PlanarRocker rocker = RockerOf(GetParam());
   const double alpha = GetParam().alpha_fraction * rocker.critical_angle_rad;
   const PlanarFallTable fall(rocker, alpha);
-  // RK4 of ψ̈ = −(K/2)·sin(θ_c − ψ) from rest at α, compared every 37 steps (off the table's nodes).
-  const double h = 1e-5, half_k = 0.5 * rocker.K(), theta_c = rocker.critical_angle_rad;
+  // RK4 of ψ̈ = −(K/2)·sin(θ_c − ψ) from rest at α, ten steps per node.
+  constexpr int kSubsteps = 10;
+  const double h = PlanarFallTable::kStepS / kSubsteps, half_k = 0.5 * rocker.K(), theta_c = rocker.critical_angle_rad;
   auto accel = [&](double p) { return -half_k * std::sin(theta_c - p); };
   double psi = alpha, psi_dot = 0.0;
-  int compared = 0;
-  for (int n = 1; h * n < fall.fall_time_s(); ++n) {
-    const double k1p = psi_dot, k1v = accel(psi);
-    const double k2p = psi_dot + 0.5 * h * k1v, k2v = accel(psi + 0.5 * h * k1p);
-    const double k3p = psi_dot + 0.5 * h * k2v, k3v = accel(psi + 0.5 * h * k2p);
-    const double k4p = psi_dot + h * k3v, k4v = accel(psi + h * k3p);
-    psi += h / 6.0 * (k1p + 2.0 * k2p + 2.0 * k3p + k4p);
-    psi_dot += h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
-    if (n % 37 == 0) {
-      ASSERT_NEAR(fall.Rate(h * n), -psi_dot, kRateToleranceRadS) << "τ = " << h * n;
-      ++compared;
+  for (std::size_t i = 1; i < fall.nodes(); ++i) {
+    for (int n = 0; n < kSubsteps; ++n) {
+      const double k1p = psi_dot, k1v = accel(psi);
+      const double k2p = psi_dot + 0.5 * h * k1v, k2v = accel(psi + 0.5 * h * k1p);
+      const double k3p = psi_dot + 0.5 * h * k2v, k3v = accel(psi + 0.5 * h * k2p);
+      const double k4p = psi_dot + h * k3v, k4v = accel(psi + h * k3p);
+      psi += h / 6.0 * (k1p + 2.0 * k2p + 2.0 * k3p + k4p);
+      psi_dot += h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
     }
+    ASSERT_NEAR(fall.node_rate_rad_s(i), -psi_dot, kRateToleranceRadS) << "node " << i;
   }
-  EXPECT_GT(compared, 100);
 }
 
 INSTANTIATE_TEST_SUITE_P(Blocks, PlanarFallTableCases,
@@ -109,19 +100,30 @@ INSTANTIATE_TEST_SUITE_P(Blocks, PlanarFallTableCases,
                                            Case{0.05000453, 0.06, 0.2, 0.2}, Case{0.05, 0.0695, 0.1506, 0.5},
                                            Case{0.05, 0.035, 0.2, 0.995}));  // slow start near the critical angle
 
+TEST(PlanarFallTable, RateIsZeroBeforeTheReleaseLinearBetweenNodesAndTheLastNodeAfter) {
+  const core::PlanarRocker rocker = RockerOf({0.05000453, 0.035, 0.2, 0.0});
+  const PlanarFallTable fall(rocker, 0.2);
+  const double h = PlanarFallTable::kStepS;
+  EXPECT_EQ(fall.Rate(-1e-3), 0.0);
+  EXPECT_EQ(fall.Rate(0.0), 0.0);
+  EXPECT_NEAR(fall.Rate(100.25 * h), 0.75 * fall.node_rate_rad_s(100) + 0.25 * fall.node_rate_rad_s(101), 1e-15);
+  EXPECT_EQ(fall.Rate(fall.table_end_s() + 0.1), fall.node_rate_rad_s(fall.nodes() - 1));
+}
+
 TEST(PlanarFallTable, NextToTheCriticalAngleTheIntegratedNodesObeyEnergyToo) {
   const core::PlanarRocker rocker = RockerOf({0.05000453, 0.035, 0.2, 0.0});
   const double alpha = rocker.critical_angle_rad - 1e-5;  // k² ≈ 2.5e-11: no closed form
   const PlanarFallTable fall(rocker, alpha);
   EXPECT_FALSE(fall.closed_form());
   EXPECT_NEAR(fall.fall_time_s(), core::FallTime(rocker, alpha), kFallTimeToleranceS);
-  const std::vector<double> psi = TiltsAtNodes(fall, alpha);
+  EXPECT_GE(fall.table_end_s(), fall.fall_time_s() - 1e-9);
+  EXPECT_LT(fall.table_end_s() - PlanarFallTable::kStepS, fall.fall_time_s() + 1e-9);
+  const std::vector<double> psi = TiltsAtEvenNodes(fall, alpha);
   const double theta_c = rocker.critical_angle_rad, K = rocker.K();
-  for (std::size_t i = 0; i < fall.nodes(); i += 97) {
-    const double w = fall.Rate(fall.node_time_s(i));
-    EXPECT_NEAR(w * w, K * (std::cos(theta_c - alpha) - std::cos(theta_c - psi[i])), kEnergyTolerance_rad2_s2);
+  for (std::size_t j = 0; j < psi.size(); j += 97) {
+    const double w = fall.node_rate_rad_s(2 * j);
+    EXPECT_NEAR(w * w, K * (std::cos(theta_c - alpha) - std::cos(theta_c - psi[j])), kEnergyTolerance_rad2_s2);
   }
-  EXPECT_NEAR(psi.back(), 0.0, 1e-9) << "the fall sweeps α (RK4 nodes: ~h⁴ over a long fall)";
 }
 
 TEST(PlanarFallTable, TiltOutsideZeroToCriticalAngleIsInvalid) {
