@@ -3,8 +3,8 @@
 //
 //  * First base impact: the first peak of |ω_y| (io impact detection) that reaches a fraction of the largest.
 //  * Release (t0, α): the planar phase 1 (rocking about the release edge V1V2, core/planar_rocking.hpp) fitted
-//    to the measured ω_y from well before the release up to the last sample before the first impact (the fall in
-//    closed form, tabulated once per α: initial_guess_fall.hpp; t0 and α by Brent's method). α is
+//    to the measured ω_y from well before the release up to the last sample before the first impact (the fall
+//    tabulated from its closed form, initial_guess_fall.hpp). α is
 //    searched around two estimates: the landing rate (LandingRate(α) = peak ω_y, inverted by bisection) and the
 //    swept angle ∫ω_y dt up to the impact (robust near the critical angle); t0 = t_impact − T(α).
 //  * λ_lon: from the first jump of ω_y, r = ω_y⁺/ω_y⁻ (ω_y keeps its sign when the block rocks on about the
