@@ -25,27 +25,70 @@ constexpr double kLandingSamples = 2.0;
 // the landing rate read from one sample before the impact is low by at most one sample of angular
 // acceleration (≈ 5 % in α away from the critical angle).
 constexpr double kAlphaSearchHalfWidthRad = 0.03;
-// Points of the α scan before the golden section: a step of 2 mrad over the ±0.03 rad interval.
+// Points of the α scan before the Brent search: a step of 2 mrad over the ±0.03 rad interval.
 constexpr int kAlphaScanPoints = 30;
-// Golden-section iterations: (0.618)^40 of the interval, far below the resolution of the data.
-constexpr int kGoldenIterations = 40;
+// The minimisations of the phase-1 fit stop when the minimum is bracketed to within four times these: far below
+// the data's resolution (a sample is 3.9 ms at 256 Hz; α moves the landing rate by ~10 rad/s per rad), and at the
+// resolution of the cost itself (the model is linear between nodes, so its minimum in t0 is defined to ~1e-9 s).
+constexpr double kPhase1T0ToleranceS = 1e-11;
+constexpr double kPhase1AlphaToleranceRad = 1e-11;
 // The phase-1 fit looks at the data from this multiple of T(α) before the impact (it sees the release).
 constexpr double kPhase1WindowFactor = 1.5;
 
+// The minimum of f on [lo, hi] by Brent's method: golden-section steps, and parabolic steps through the three best
+// points when they fall inside the bracket and shrink it fast enough; it stops when the minimum is bracketed to
+// within 4·tolerance (at least tolerance between evaluations). A smooth f needs ~10 evaluations where golden
+// sections alone need ~40.
 template <typename F>
-double GoldenMinimum(double lo, double hi, F&& f) {
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+double BrentMinimum(double lo, double hi, double tolerance, F&& f) {
+  const double golden = 0.5 * (3.0 - std::sqrt(5.0));  // 0.382: the golden section of the larger part
   double a = lo, b = hi;
-  double c = b - g * (b - a), d = a + g * (b - a);
-  double fc = f(c), fd = f(d);
-  for (int i = 0; i < kGoldenIterations; ++i) {
-    if (fc < fd) {
-      b = d; d = c; fd = fc; c = b - g * (b - a); fc = f(c);
+  double x = a + golden * (b - a), w = x, v = x;  // the best point, the second best, the previous second best
+  double fx = f(x), fw = fx, fv = fx;
+  double step = 0.0, previous_step = 0.0;         // the last step and the one before it
+  for (;;) {
+    const double middle = 0.5 * (a + b);
+    if (std::abs(x - middle) <= 2.0 * tolerance - 0.5 * (b - a)) break;
+    bool parabolic = false;
+    if (std::abs(previous_step) > tolerance) {
+      // The vertex of the parabola through (v, fv), (w, fw), (x, fx), as x + p/q.
+      const double r = (x - w) * (fx - fv);
+      double q = (x - v) * (fx - fw);
+      double p = (x - v) * q - (x - w) * r;
+      q = 2.0 * (q - r);
+      if (q > 0.0) p = -p;
+      q = std::abs(q);
+      // Taken when it lies inside the bracket and moves less than half the step before last (it converges).
+      if (std::abs(p) < std::abs(0.5 * q * previous_step) && p > q * (a - x) && p < q * (b - x)) {
+        previous_step = step;
+        step = p / q;
+        parabolic = true;
+        const double u = x + step;
+        if (u - a < 2.0 * tolerance || b - u < 2.0 * tolerance) step = middle > x ? tolerance : -tolerance;
+      }
+    }
+    if (!parabolic) {
+      previous_step = x >= middle ? a - x : b - x;
+      step = golden * previous_step;
+    }
+    const double u = std::abs(step) >= tolerance ? x + step : x + (step > 0.0 ? tolerance : -tolerance);
+    const double fu = f(u);
+    if (fu <= fx) {
+      (u >= x ? a : b) = x;
+      v = w, fv = fw;
+      w = x, fw = fx;
+      x = u, fx = fu;
     } else {
-      a = c; c = d; fc = fd; d = a + g * (b - a); fd = f(d);
+      (u < x ? a : b) = u;
+      if (fu <= fw || w == x) {
+        v = w, fv = fw;
+        w = u, fw = fu;
+      } else if (fu <= fv || v == x || v == w) {
+        v = u, fv = fu;
+      }
     }
   }
-  return 0.5 * (a + b);
+  return x;
 }
 
 // Inverse of LandingRate by bisection on [0, θ_c].
@@ -255,8 +298,8 @@ Phase1Fit FitPhase1(const MeasuredSignal& signal, const core::PlanarRocker& rock
   auto best_t0_for = [&](double alpha, double* cost) {
     const PlanarFallTable fall(rocker, alpha);
     const double t0_center = signal.t_s[k_peak] - fall.table_end_s();
-    const double t0 = GoldenMinimum(t0_center - 1.5 * dt, t0_center + 1.5 * dt,
-                                    [&](double t) { return cost_at(fall, t); });
+    const double t0 = BrentMinimum(t0_center - 1.5 * dt, t0_center + 1.5 * dt, kPhase1T0ToleranceS,
+                                   [&](double t) { return cost_at(fall, t); });
     *cost = cost_at(fall, t0);
     return t0;
   };
@@ -281,8 +324,8 @@ Phase1Fit FitPhase1(const MeasuredSignal& signal, const core::PlanarRocker& rock
       best_scan = a;
     }
   }
-  fit.alpha_rad = GoldenMinimum(std::max(alpha_lo, best_scan - alpha_step), std::min(alpha_hi, best_scan + alpha_step),
-                                cost_of_alpha);
+  fit.alpha_rad = BrentMinimum(std::max(alpha_lo, best_scan - alpha_step), std::min(alpha_hi, best_scan + alpha_step),
+                               kPhase1AlphaToleranceRad, cost_of_alpha);
   double cost = 0.0;
   fit.t0_s = best_t0_for(fit.alpha_rad, &cost);
   fit.alpha_landing_rate_rad = alpha_coarse;
