@@ -25,15 +25,34 @@ constexpr double kLandingSamples = 2.0;
 // the landing rate read from one sample before the impact is low by at most one sample of angular
 // acceleration (≈ 5 % in α away from the critical angle).
 constexpr double kAlphaSearchHalfWidthRad = 0.03;
-// Points of the α scan before the Brent search: a step of 2 mrad over the ±0.03 rad interval.
+// Points of the α scan before the golden section (or Brent's method): a step of 2 mrad over the ±0.03 rad interval.
 constexpr int kAlphaScanPoints = 30;
-// The minimisations of the phase-1 fit stop when the minimum is bracketed to within four times these: far below
-// the data's resolution (a sample is 3.9 ms at 256 Hz; α moves the landing rate by ~10 rad/s per rad), and at the
-// resolution of the cost itself (the model is linear between nodes, so its minimum in t0 is defined to ~1e-9 s).
+// Golden-section iterations: (0.618)^40 of the interval, far below the resolution of the data.
+constexpr int kGoldenIterations = 40;
+// With InitialGuessOptions::closed_form_fall, Brent's method stops when the minimum is bracketed to within four
+// times these: far below the data's resolution (a sample is 3.9 ms at 256 Hz; α moves the landing rate by ~10 rad/s
+// per rad), and at the resolution of the cost itself (the model is linear between nodes, so its minimum in t0 is
+// defined to ~1e-9 s).
 constexpr double kPhase1T0ToleranceS = 1e-11;
 constexpr double kPhase1AlphaToleranceRad = 1e-11;
 // The phase-1 fit looks at the data from this multiple of T(α) before the impact (it sees the release).
 constexpr double kPhase1WindowFactor = 1.5;
+
+template <typename F>
+double GoldenMinimum(double lo, double hi, F&& f) {
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double a = lo, b = hi;
+  double c = b - g * (b - a), d = a + g * (b - a);
+  double fc = f(c), fd = f(d);
+  for (int i = 0; i < kGoldenIterations; ++i) {
+    if (fc < fd) {
+      b = d; d = c; fd = fc; c = b - g * (b - a); fc = f(c);
+    } else {
+      a = c; c = d; fc = fd; d = a + g * (b - a); fd = f(d);
+    }
+  }
+  return 0.5 * (a + b);
+}
 
 // The minimum of f on [lo, hi] by Brent's method: golden-section steps, and parabolic steps through the three best
 // points when they fall inside the bracket and shrink it fast enough; it stops when the minimum is bracketed to
@@ -261,7 +280,8 @@ struct Phase1Fit {
   double alpha_swept_rad = 0.0;         // the coarse estimate from the angle swept before the impact
 };
 
-Phase1Fit FitPhase1(const MeasuredSignal& signal, const core::PlanarRocker& rocker, std::size_t k_peak, double sign) {
+Phase1Fit FitPhase1(const MeasuredSignal& signal, const core::PlanarRocker& rocker, std::size_t k_peak, double sign,
+                    bool closed_form_fall) {
   Phase1Fit fit;
   const double dt = (signal.t_s.back() - signal.t_s.front()) / static_cast<double>(signal.size() - 1);
   const double alpha_max = rocker.critical_angle_rad * (1.0 - 1e-6);
@@ -295,11 +315,17 @@ Phase1Fit FitPhase1(const MeasuredSignal& signal, const core::PlanarRocker& rock
     }
     return sum;
   };
+  // The minimum of f on [lo, hi]: by Brent's method with the closed-form fall, else by golden sections.
+  auto minimum = [&](double lo, double hi, double tolerance, auto&& f) {
+    return closed_form_fall ? BrentMinimum(lo, hi, tolerance, f) : GoldenMinimum(lo, hi, f);
+  };
+  const PlanarFallTable::Nodes nodes =
+      closed_form_fall ? PlanarFallTable::Nodes::kClosedForm : PlanarFallTable::Nodes::kIntegrated;
   auto best_t0_for = [&](double alpha, double* cost) {
-    const PlanarFallTable fall(rocker, alpha);
+    const PlanarFallTable fall(rocker, alpha, nodes);
     const double t0_center = signal.t_s[k_peak] - fall.table_end_s();
-    const double t0 = BrentMinimum(t0_center - 1.5 * dt, t0_center + 1.5 * dt, kPhase1T0ToleranceS,
-                                   [&](double t) { return cost_at(fall, t); });
+    const double t0 = minimum(t0_center - 1.5 * dt, t0_center + 1.5 * dt, kPhase1T0ToleranceS,
+                              [&](double t) { return cost_at(fall, t); });
     *cost = cost_at(fall, t0);
     return t0;
   };
@@ -324,8 +350,8 @@ Phase1Fit FitPhase1(const MeasuredSignal& signal, const core::PlanarRocker& rock
       best_scan = a;
     }
   }
-  fit.alpha_rad = BrentMinimum(std::max(alpha_lo, best_scan - alpha_step), std::min(alpha_hi, best_scan + alpha_step),
-                               kPhase1AlphaToleranceRad, cost_of_alpha);
+  fit.alpha_rad = minimum(std::max(alpha_lo, best_scan - alpha_step), std::min(alpha_hi, best_scan + alpha_step),
+                          kPhase1AlphaToleranceRad, cost_of_alpha);
   double cost = 0.0;
   fit.t0_s = best_t0_for(fit.alpha_rad, &cost);
   fit.alpha_landing_rate_rad = alpha_coarse;
@@ -425,7 +451,7 @@ InitialGuess EstimateInitialGuess(const MeasuredSignal& signal, const core::Bloc
 
   // Phase 1: a coarse α from the landing rate, then the planar fall fitted to the samples before the impact.
   const core::PlanarRocker rocker = core::PlanarRockerAboutEdge(block, 1, 2);
-  const Phase1Fit phase1 = FitPhase1(signal, rocker, k_peak, sign);
+  const Phase1Fit phase1 = FitPhase1(signal, rocker, k_peak, sign, options.closed_form_fall);
   const double t_impact = phase1.t0_s + core::FallTime(rocker, phase1.alpha_rad);
   guess.landing_rate_rad_s = core::LandingRate(rocker, phase1.alpha_rad);
   SetValue(&guess.parameters, ParameterId::kT0, phase1.t0_s);

@@ -19,14 +19,16 @@ constexpr std::size_t kExactEvery = 1000;
 
 }  // namespace
 
-PlanarFallTable::PlanarFallTable(const core::PlanarRocker& rocker, double alpha_rad) {
+PlanarFallTable::PlanarFallTable(const core::PlanarRocker& rocker, double alpha_rad, Nodes nodes)
+    : rocker_(rocker), alpha_rad_(alpha_rad) {
   const double theta_c = rocker.critical_angle_rad;
   if (!(std::isfinite(alpha_rad) && alpha_rad > 0.0 && alpha_rad < theta_c)) {
     throw InvalidArgument("the planar fall needs a release tilt 0 < α < θ_c = " + std::to_string(theta_c) + " rad, got " +
                           std::to_string(alpha_rad));
   }
   const double K = rocker.K();
-  const std::optional<core::ConservativeEdgePhase> phase = core::ConservativeEdgePhase::Make(K, theta_c, alpha_rad, 0.0);
+  const std::optional<core::ConservativeEdgePhase> phase =
+      nodes == Nodes::kClosedForm ? core::ConservativeEdgePhase::Make(K, theta_c, alpha_rad, 0.0) : std::nullopt;
   closed_form_ = phase.has_value();
   rates_.push_back(0.0);
   if (closed_form_) {
@@ -44,7 +46,6 @@ PlanarFallTable::PlanarFallTable(const core::PlanarRocker& rocker, double alpha_
     return;
   }
   // ψ̈ = −(K/2)·sin(θ_c − ψ) from rest at α (the edge's equation of motion), by RK4 until ψ ≤ 0.
-  fall_time_s_ = core::FallTime(rocker, alpha_rad);
   const double half_k = 0.5 * K;
   auto accel = [&](double psi) { return -half_k * std::sin(theta_c - psi); };
   const double h = kStepS;
@@ -58,6 +59,10 @@ PlanarFallTable::PlanarFallTable(const core::PlanarRocker& rocker, double alpha_
     psi_dot += h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
     rates_.push_back(-psi_dot);
   }
+}
+
+double PlanarFallTable::fall_time_s() const {
+  return closed_form_ ? fall_time_s_ : core::FallTime(rocker_, alpha_rad_);
 }
 
 }  // namespace rockfit::fitting

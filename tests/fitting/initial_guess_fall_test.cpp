@@ -95,6 +95,19 @@ TEST_P(PlanarFallTableCases, NodeRatesMatchAFineIntegration) {
   }
 }
 
+TEST_P(PlanarFallTableCases, IntegratedNodesAreTheClosedFormOnesToRoundOff) {
+  const core::PlanarRocker rocker = RockerOf(GetParam());
+  const double alpha = GetParam().alpha_fraction * rocker.critical_angle_rad;
+  const PlanarFallTable closed(rocker, alpha);
+  const PlanarFallTable integrated(rocker, alpha, PlanarFallTable::Nodes::kIntegrated);
+  EXPECT_FALSE(integrated.closed_form());
+  ASSERT_EQ(integrated.nodes(), closed.nodes());
+  for (std::size_t i = 0; i < closed.nodes(); ++i) {
+    ASSERT_NEAR(integrated.node_rate_rad_s(i), closed.node_rate_rad_s(i), kRateToleranceRadS) << "node " << i;
+  }
+  EXPECT_NEAR(integrated.fall_time_s(), closed.fall_time_s(), kFallTimeToleranceS);
+}
+
 INSTANTIATE_TEST_SUITE_P(Blocks, PlanarFallTableCases,
                          ::testing::Values(Case{0.05000453, 0.035, 0.2, 0.85},  // the sample blocks' release
                                            Case{0.05000453, 0.06, 0.2, 0.2}, Case{0.05, 0.0695, 0.1506, 0.5},

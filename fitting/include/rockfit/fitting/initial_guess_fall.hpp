@@ -4,10 +4,10 @@
 //
 // The phase-1 fit's model of ω is a table: nodes every kStepS from the release up to the first node at or after the
 // landing (the motion continued past flat for that last node), linear between the nodes, the last node's value
-// after it. The nodes come from the closed form of the swing (core/conservative_edge_phase.hpp: sn, cn, dn stepped
-// by their addition theorem with exact evaluations every 64 nodes; a few flops and one division per node, no
-// trigonometric call), exact to round-off; they used to come from RK4 at the same step (4 sines per node), whose
-// error (~h⁴) is near round-off too, so the model is the same and the fit's answer moves by ~1e-9 s at most.
+// after it. The nodes come either from RK4 at kStepS (4 sines a node; the default of the starting point) or from
+// the closed form of the swing (core/conservative_edge_phase.hpp: sn, cn, dn stepped by their addition theorem with
+// an exact evaluation every 1000 nodes; a few flops and one division a node, no trigonometric call), exact to
+// round-off. RK4's error (~h⁴) is near round-off too: the two tables agree to ~1e-12 rad/s.
 #pragma once
 
 #include <cstddef>
@@ -23,13 +23,16 @@ class PlanarFallTable {
   // for the sample blocks (|ω̈| ≲ 50 rad/s³), four orders below the gyro noise (0.1 °/s).
   static constexpr double kStepS = 1e-4;
 
+  enum class Nodes { kIntegrated, kClosedForm };
+
   // The fall from rest at α ∈ (0, θ_c) about the edge of `rocker`; throws InvalidArgument otherwise. Within
   // core::ConservativeEdgePhase::kMinApexK2 of the separatrix (α within ~2e-4 rad of θ_c) the closed form is not set
-  // up and the nodes are integrated by RK4 at kStepS.
-  PlanarFallTable(const core::PlanarRocker& rocker, double alpha_rad);
+  // up and the nodes are integrated whatever `nodes` asks.
+  PlanarFallTable(const core::PlanarRocker& rocker, double alpha_rad, Nodes nodes = Nodes::kClosedForm);
 
-  double fall_time_s() const { return fall_time_s_; }  // T(α): from the release to landing flat, exact to round-off
-  bool closed_form() const { return closed_form_; }    // false: the nodes were integrated
+  // T(α): from the release to landing flat, exact to round-off (the closed form, or QAWS for integrated nodes).
+  double fall_time_s() const;
+  bool closed_form() const { return closed_form_; }  // false: the nodes were integrated
   std::size_t nodes() const { return rates_.size(); }
   double node_rate_rad_s(std::size_t i) const { return rates_[i]; }
   // The last node's time, (nodes − 1)·kStepS: the first node at or after T(α).
@@ -46,7 +49,9 @@ class PlanarFallTable {
   }
 
  private:
-  double fall_time_s_ = 0.0;
+  core::PlanarRocker rocker_;
+  double alpha_rad_ = 0.0;
+  double fall_time_s_ = 0.0;  // of the closed form
   bool closed_form_ = true;
   std::vector<double> rates_;  // ω at the nodes i·kStepS [rad/s]
 };
