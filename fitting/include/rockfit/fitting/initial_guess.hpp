@@ -47,7 +47,7 @@ struct InitialGuessOptions {
   // Samples after an impact used for ω⁺ (the median damps the gyro's ringing).
   int post_impact_samples = 3;
   // The phase-1 fit with the fall's nodes from its closed form and t0, α by Brent's method instead of RK4 and
-  // golden sections: ~15 ms less a fit (the estimate from 17 % of a fit to 6 %), the same t0 and α to ~4e-9 s and
+  // golden sections: ~13 ms less a fit (the estimate from 17 % of a fit to 6 %), the same t0 and α to ~4e-9 s and
   // 3e-10 rad. Off by default: the fits after a start moved by that round-off move too, a few by more than the
   // 0.1 % in ε that a change keeping the fits may (fitting/README.md, "Starting point from the data").
   bool closed_form_fall = false;
