@@ -11,6 +11,7 @@
 #include "rockfit/core/facet_impact.hpp"
 #include "rockfit/core/planar_avrf.hpp"
 #include "rockfit/core/planar_rocking.hpp"
+#include "rockfit/fitting/initial_guess_fall.hpp"
 #include "rockfit/io/peak_finding.hpp"
 
 namespace rockfit::fitting {
@@ -20,48 +21,22 @@ namespace {
 // samples of an |ω_y| peak: one because the peak sample may be on either side of the impact, one more for the
 // drift of the integrated attitude (a gyro bias of 0.3 °/s tilts it by 2 mrad in 0.4 s).
 constexpr double kLandingSamples = 2.0;
-// Step of the RK4 integration of the planar phase 1 [s]: its error (~h⁴) is far below one gyro sample.
-constexpr double kPhase1StepS = 1e-4;
 // The planar fit searches α within this distance of the landing-rate estimate and of the swept angle [rad]:
 // the landing rate read from one sample before the impact is low by at most one sample of angular
 // acceleration (≈ 5 % in α away from the critical angle).
 constexpr double kAlphaSearchHalfWidthRad = 0.03;
-// Points of the α scan before the golden section: a step of 2 mrad over the ±0.03 rad interval.
+// Points of the α scan before the golden section (or Brent's method): a step of 2 mrad over the ±0.03 rad interval.
 constexpr int kAlphaScanPoints = 30;
 // Golden-section iterations: (0.618)^40 of the interval, far below the resolution of the data.
 constexpr int kGoldenIterations = 40;
+// With InitialGuessOptions::closed_form_fall, Brent's method stops when the minimum is bracketed to within four
+// times these: far below the data's resolution (a sample is 3.9 ms at 256 Hz; α moves the landing rate by ~10 rad/s
+// per rad), and at the resolution of the cost itself (the model is linear between nodes, so its minimum in t0 is
+// defined to ~1e-9 s).
+constexpr double kPhase1T0ToleranceS = 1e-11;
+constexpr double kPhase1AlphaToleranceRad = 1e-11;
 // The phase-1 fit looks at the data from this multiple of T(α) before the impact (it sees the release).
 constexpr double kPhase1WindowFactor = 1.5;
-
-// ω(τ) of the planar fall from rest at α about the release edge: ψ̈ = −(K/2)·sin(θ_c − ψ) (energy of
-// planar_rocking.hpp differentiated), sampled every kPhase1StepS until ψ reaches 0; ω = −ψ̇ ≥ 0.
-std::vector<double> PlanarFallRates(const core::PlanarRocker& rocker, double alpha_rad) {
-  const double half_k = 0.5 * rocker.K();
-  const double theta_c = rocker.critical_angle_rad;
-  auto accel = [&](double psi) { return -half_k * std::sin(theta_c - psi); };
-  std::vector<double> rates{0.0};
-  double psi = alpha_rad, rate = 0.0;  // rate = ψ̇
-  const double h = kPhase1StepS;
-  while (psi > 0.0 && rates.size() < 200000) {
-    const double k1p = rate, k1v = accel(psi);
-    const double k2p = rate + 0.5 * h * k1v, k2v = accel(psi + 0.5 * h * k1p);
-    const double k3p = rate + 0.5 * h * k2v, k3v = accel(psi + 0.5 * h * k2p);
-    const double k4p = rate + h * k3v, k4v = accel(psi + h * k3p);
-    psi += h / 6.0 * (k1p + 2 * k2p + 2 * k3p + k4p);
-    rate += h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
-    rates.push_back(-rate);
-  }
-  return rates;
-}
-
-double InterpolateRate(const std::vector<double>& rates, double tau_s) {
-  if (tau_s <= 0.0) return 0.0;
-  const double u = tau_s / kPhase1StepS;
-  const std::size_t i = static_cast<std::size_t>(u);
-  if (i + 1 >= rates.size()) return rates.back();
-  const double f = u - static_cast<double>(i);
-  return rates[i] + f * (rates[i + 1] - rates[i]);
-}
 
 template <typename F>
 double GoldenMinimum(double lo, double hi, F&& f) {
@@ -77,6 +52,62 @@ double GoldenMinimum(double lo, double hi, F&& f) {
     }
   }
   return 0.5 * (a + b);
+}
+
+// The minimum of f on [lo, hi] by Brent's method: golden-section steps, and parabolic steps through the three best
+// points when they fall inside the bracket and shrink it fast enough; it stops when the minimum is bracketed to
+// within 4·tolerance (at least tolerance between evaluations). A smooth f needs ~10 evaluations where golden
+// sections alone need ~40.
+template <typename F>
+double BrentMinimum(double lo, double hi, double tolerance, F&& f) {
+  const double golden = 0.5 * (3.0 - std::sqrt(5.0));  // 0.382: the golden section of the larger part
+  double a = lo, b = hi;
+  double x = a + golden * (b - a), w = x, v = x;  // the best point, the second best, the previous second best
+  double fx = f(x), fw = fx, fv = fx;
+  double step = 0.0, previous_step = 0.0;         // the last step and the one before it
+  for (;;) {
+    const double middle = 0.5 * (a + b);
+    if (std::abs(x - middle) <= 2.0 * tolerance - 0.5 * (b - a)) break;
+    bool parabolic = false;
+    if (std::abs(previous_step) > tolerance) {
+      // The vertex of the parabola through (v, fv), (w, fw), (x, fx), as x + p/q.
+      const double r = (x - w) * (fx - fv);
+      double q = (x - v) * (fx - fw);
+      double p = (x - v) * q - (x - w) * r;
+      q = 2.0 * (q - r);
+      if (q > 0.0) p = -p;
+      q = std::abs(q);
+      // Taken when it lies inside the bracket and moves less than half the step before last (it converges).
+      if (std::abs(p) < std::abs(0.5 * q * previous_step) && p > q * (a - x) && p < q * (b - x)) {
+        previous_step = step;
+        step = p / q;
+        parabolic = true;
+        const double u = x + step;
+        if (u - a < 2.0 * tolerance || b - u < 2.0 * tolerance) step = middle > x ? tolerance : -tolerance;
+      }
+    }
+    if (!parabolic) {
+      previous_step = x >= middle ? a - x : b - x;
+      step = golden * previous_step;
+    }
+    const double u = std::abs(step) >= tolerance ? x + step : x + (step > 0.0 ? tolerance : -tolerance);
+    const double fu = f(u);
+    if (fu <= fx) {
+      (u >= x ? a : b) = x;
+      v = w, fv = fw;
+      w = x, fw = fx;
+      x = u, fx = fu;
+    } else {
+      (u < x ? a : b) = u;
+      if (fu <= fw || w == x) {
+        v = w, fv = fw;
+        w = u, fw = fu;
+      } else if (fu <= fv || v == x || v == w) {
+        v = u, fv = fu;
+      }
+    }
+  }
+  return x;
 }
 
 // Inverse of LandingRate by bisection on [0, θ_c].
@@ -249,7 +280,8 @@ struct Phase1Fit {
   double alpha_swept_rad = 0.0;         // the coarse estimate from the angle swept before the impact
 };
 
-Phase1Fit FitPhase1(const MeasuredSignal& signal, const core::PlanarRocker& rocker, std::size_t k_peak, double sign) {
+Phase1Fit FitPhase1(const MeasuredSignal& signal, const core::PlanarRocker& rocker, std::size_t k_peak, double sign,
+                    bool closed_form_fall) {
   Phase1Fit fit;
   const double dt = (signal.t_s.back() - signal.t_s.front()) / static_cast<double>(signal.size() - 1);
   const double alpha_max = rocker.critical_angle_rad * (1.0 - 1e-6);
@@ -268,22 +300,33 @@ Phase1Fit FitPhase1(const MeasuredSignal& signal, const core::PlanarRocker& rock
   std::size_t k_first = 0;
   while (k_first < k_last && signal.t_s[k_first] < signal.t_s[k_peak] - window_s) ++k_first;
 
-  auto cost_at = [&](const std::vector<double>& rates, double t0) {
+  // The samples of the window (clipped ones only say "at least this fast", gyro_clipping.hpp: left out).
+  std::vector<double> t_fit_s, w_fit_rad_s;
+  for (std::size_t k = k_first; k <= k_last; ++k) {
+    if (signal.is_excluded(k)) continue;
+    t_fit_s.push_back(signal.t_s[k]);
+    w_fit_rad_s.push_back(sign * signal.w_B[k][1]);
+  }
+  auto cost_at = [&](const PlanarFallTable& fall, double t0) {
     double sum = 0.0;
-    for (std::size_t k = k_first; k <= k_last; ++k) {
-      if (signal.is_excluded(k)) continue;  // clipped: only "at least this fast" (gyro_clipping.hpp)
-      const double d = sign * signal.w_B[k][1] - InterpolateRate(rates, signal.t_s[k] - t0);
+    for (std::size_t n = 0; n < t_fit_s.size(); ++n) {
+      const double d = w_fit_rad_s[n] - fall.Rate(t_fit_s[n] - t0);
       sum += d * d;
     }
     return sum;
   };
+  // The minimum of f on [lo, hi]: by Brent's method with the closed-form fall, else by golden sections.
+  auto minimum = [&](double lo, double hi, double tolerance, auto&& f) {
+    return closed_form_fall ? BrentMinimum(lo, hi, tolerance, f) : GoldenMinimum(lo, hi, f);
+  };
+  const PlanarFallTable::Nodes nodes =
+      closed_form_fall ? PlanarFallTable::Nodes::kClosedForm : PlanarFallTable::Nodes::kIntegrated;
   auto best_t0_for = [&](double alpha, double* cost) {
-    const std::vector<double> rates = PlanarFallRates(rocker, alpha);
-    const double fall = static_cast<double>(rates.size() - 1) * kPhase1StepS;
-    const double t0_center = signal.t_s[k_peak] - fall;
-    const double t0 = GoldenMinimum(t0_center - 1.5 * dt, t0_center + 1.5 * dt,
-                                    [&](double t) { return cost_at(rates, t); });
-    *cost = cost_at(rates, t0);
+    const PlanarFallTable fall(rocker, alpha, nodes);
+    const double t0_center = signal.t_s[k_peak] - fall.table_end_s();
+    const double t0 = minimum(t0_center - 1.5 * dt, t0_center + 1.5 * dt, kPhase1T0ToleranceS,
+                              [&](double t) { return cost_at(fall, t); });
+    *cost = cost_at(fall, t0);
     return t0;
   };
   // A scan first: near the critical angle the fall is slow and the cost has several shallow minima in α.
@@ -307,8 +350,8 @@ Phase1Fit FitPhase1(const MeasuredSignal& signal, const core::PlanarRocker& rock
       best_scan = a;
     }
   }
-  fit.alpha_rad = GoldenMinimum(std::max(alpha_lo, best_scan - alpha_step), std::min(alpha_hi, best_scan + alpha_step),
-                                cost_of_alpha);
+  fit.alpha_rad = minimum(std::max(alpha_lo, best_scan - alpha_step), std::min(alpha_hi, best_scan + alpha_step),
+                          kPhase1AlphaToleranceRad, cost_of_alpha);
   double cost = 0.0;
   fit.t0_s = best_t0_for(fit.alpha_rad, &cost);
   fit.alpha_landing_rate_rad = alpha_coarse;
@@ -408,7 +451,7 @@ InitialGuess EstimateInitialGuess(const MeasuredSignal& signal, const core::Bloc
 
   // Phase 1: a coarse α from the landing rate, then the planar fall fitted to the samples before the impact.
   const core::PlanarRocker rocker = core::PlanarRockerAboutEdge(block, 1, 2);
-  const Phase1Fit phase1 = FitPhase1(signal, rocker, k_peak, sign);
+  const Phase1Fit phase1 = FitPhase1(signal, rocker, k_peak, sign, options.closed_form_fall);
   const double t_impact = phase1.t0_s + core::FallTime(rocker, phase1.alpha_rad);
   guess.landing_rate_rad_s = core::LandingRate(rocker, phase1.alpha_rad);
   SetValue(&guess.parameters, ParameterId::kT0, phase1.t0_s);

@@ -19,6 +19,10 @@ constexpr double kT0ToleranceS = 3e-3;
 constexpr double kAlphaToleranceRad = 0.01;
 // t_end: the second base impact is a sample of the peak of |ω_y|, within one sample of the true impact.
 constexpr double kWindowEndToleranceS = 1.0 / 256.0 + 1e-9;
+// The phase-1 fit with the closed-form fall and Brent's method against RK4 and golden sections: the same model to
+// round-off, whose minimum is defined to ~1e-9 s (≤ 3.7e-9 s and 2.6e-10 rad on the 16 sample trials).
+constexpr double kSameStartT0ToleranceS = 1e-8;
+constexpr double kSameStartAlphaToleranceRad = 1e-9;
 
 core::Block PaperBlock(double b2_m) { return core::Block::FromDensity(0.05, b2_m, 0.2, 2692.0); }
 
@@ -67,6 +71,20 @@ TEST_P(InitialGuessOnSynthetic, RecoversReleaseTimeTiltAndSignOfLambdaLat) {
   // The first impact is where the planar fall from the true release lands.
   const double t_impact = truth.t0_s + core::FallTime(core::PlanarRockerAboutEdge(block, 1, 2), truth.alpha_rad);
   EXPECT_NEAR(g.t_first_impact_s, t_impact, kWindowEndToleranceS);
+}
+
+TEST_P(InitialGuessOnSynthetic, ClosedFormFallGivesTheSameReleaseToRoundOff) {
+  const Truth truth = GetParam();
+  const core::Block block = PaperBlock(0.035);
+  const testing::SyntheticSignal trial = MakeTrial(block, truth, 11);
+  InitialGuessOptions closed_form;
+  closed_form.closed_form_fall = true;
+  const InitialGuess integrated = EstimateInitialGuess(trial.signal, block, ParameterSet::Defaults());
+  const InitialGuess fast = EstimateInitialGuess(trial.signal, block, ParameterSet::Defaults(), closed_form);
+  EXPECT_NEAR(fast.parameters.value(ParameterId::kT0), integrated.parameters.value(ParameterId::kT0),
+              kSameStartT0ToleranceS);
+  EXPECT_NEAR(fast.parameters.value(ParameterId::kAlpha), integrated.parameters.value(ParameterId::kAlpha),
+              kSameStartAlphaToleranceRad);
 }
 
 TEST_P(InitialGuessOnSynthetic, WindowEndIsTheImpactEndingPhase4) {

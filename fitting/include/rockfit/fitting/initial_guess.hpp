@@ -3,7 +3,8 @@
 //
 //  * First base impact: the first peak of |ω_y| (io impact detection) that reaches a fraction of the largest.
 //  * Release (t0, α): the planar phase 1 (rocking about the release edge V1V2, core/planar_rocking.hpp) fitted
-//    to the measured ω_y from well before the release up to the last sample before the first impact. α is
+//    to the measured ω_y from well before the release up to the last sample before the first impact (the fall
+//    tabulated, initial_guess_fall.hpp). α is
 //    searched around two estimates: the landing rate (LandingRate(α) = peak ω_y, inverted by bisection) and the
 //    swept angle ∫ω_y dt up to the impact (robust near the critical angle); t0 = t_impact − T(α).
 //  * λ_lon: from the first jump of ω_y, r = ω_y⁺/ω_y⁻ (ω_y keeps its sign when the block rocks on about the
@@ -45,6 +46,11 @@ struct InitialGuessOptions {
   double default_lambda = 1.0;
   // Samples after an impact used for ω⁺ (the median damps the gyro's ringing).
   int post_impact_samples = 3;
+  // The phase-1 fit with the fall's nodes from its closed form and t0, α by Brent's method instead of RK4 and
+  // golden sections: ~13 ms less a fit (the estimate from 17 % of a fit to 6 %), the same t0 and α to ~4e-9 s and
+  // 3e-10 rad. Off by default: the fits after a start moved by that round-off move too, a few by more than the
+  // 0.1 % in ε that a change keeping the fits may (fitting/README.md, "Starting point from the data").
+  bool closed_form_fall = false;
   void Validate() const;  // throws InvalidArgument
 };
 
