@@ -293,6 +293,7 @@ class HybridRun {
   void AddCounts(const Outcome& outcome) {
     out_->num_steps += outcome.num_steps;
     out_->num_evaluations += outcome.num_evaluations;
+    out_->num_guard_evaluations += outcome.num_guard_evaluations;
     step_hint_s_ = outcome.next_step_hint_s;
   }
 

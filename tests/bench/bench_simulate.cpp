@@ -24,6 +24,7 @@ void Run(benchmark::State& state, const ModelParameters& params, bool sample_att
   std::size_t impacts = 0;
   std::size_t samples = 0;
   long evaluations = 0;
+  long guard_evaluations = 0;
   long steps = 0;
   double t_end = 0.0;
   const Block block = rockfit::testing::Fig14Block();  // built once, outside the timed loop
@@ -34,12 +35,14 @@ void Run(benchmark::State& state, const ModelParameters& params, bool sample_att
     impacts = tr.impacts.size();
     samples = tr.t_s.size();
     evaluations = tr.num_evaluations;
+    guard_evaluations = tr.num_guard_evaluations;
     steps = tr.num_steps;
     t_end = tr.t_end_s;
   }
   state.SetItemsProcessed(state.iterations());  // simulations
   state.counters["impacts"] = static_cast<double>(impacts);
   state.counters["rhs_evaluations"] = static_cast<double>(evaluations);
+  state.counters["guard_evaluations"] = static_cast<double>(guard_evaluations);
   state.counters["steps"] = static_cast<double>(steps);
   state.counters["samples"] = static_cast<double>(samples);
   state.counters["t_end_s"] = t_end;
@@ -75,7 +78,7 @@ void BM_SimulateFitWindow(benchmark::State& state) {
   const Block block = rockfit::testing::Fig14Block();
   const ModelParameters params = Fig14Parameters();
   std::size_t impacts = 0, segments = 0;
-  long evaluations = 0, steps = 0;
+  long evaluations = 0, steps = 0, guard_evaluations = 0;
   for (auto _ : state) {
     const Trajectory tr = rockfit::core::Simulate(block, params, options);
     benchmark::DoNotOptimize(tr.w_B.data());
@@ -83,11 +86,13 @@ void BM_SimulateFitWindow(benchmark::State& state) {
     impacts = tr.impacts.size();
     segments = tr.segments.size();
     evaluations = tr.num_evaluations;
+    guard_evaluations = tr.num_guard_evaluations;
     steps = tr.num_steps;
   }
   state.counters["impacts"] = static_cast<double>(impacts);
   state.counters["segments"] = static_cast<double>(segments);
   state.counters["rhs_evaluations"] = static_cast<double>(evaluations);
+  state.counters["guard_evaluations"] = static_cast<double>(guard_evaluations);
   state.counters["steps"] = static_cast<double>(steps);
 }
 BENCHMARK(BM_SimulateFitWindow)->Arg(12)->Arg(9)->Arg(7)->Unit(benchmark::kMicrosecond);

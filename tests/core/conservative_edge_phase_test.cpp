@@ -254,6 +254,8 @@ TEST(ConservativeEdgePhase, SimulatorWithClosedFormSwingsMatchesTheIntegratedRun
     EXPECT_EQ(closed.mode[k], integrated.mode[k]) << k;
   }
   EXPECT_EQ(closed.num_steps, 0);  // no phase needed the integrator
+  EXPECT_EQ(closed.num_guard_evaluations, 0);  // nor the integrator's event search
+  EXPECT_GT(integrated.num_guard_evaluations, 0);  // which located every impact of the integrated run
   for (const SegmentDiagnostics& s : closed.segments) EXPECT_LT(s.energy_drift_rel, 1e-13);
 }
 

@@ -708,6 +708,7 @@ void ExpectSameTrajectory(const Trajectory& a, const Trajectory& b) {
   EXPECT_EQ(a.max_discarded_rate_rad_s, b.max_discarded_rate_rad_s);
   EXPECT_EQ(a.num_steps, b.num_steps);
   EXPECT_EQ(a.num_evaluations, b.num_evaluations);
+  EXPECT_EQ(a.num_guard_evaluations, b.num_guard_evaluations);
 }
 
 TEST(Simulator, SimulateIntoTheTrajectoryOfAnotherRunGivesSimulatesRunBitForBit) {

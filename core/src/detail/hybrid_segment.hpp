@@ -38,6 +38,7 @@ struct SegmentOutcome {
   double next_step_hint_s = 0.0;
   long num_steps = 0;        // accepted integrator steps
   long num_evaluations = 0;  // right-hand-side evaluations
+  long num_guard_evaluations = 0;  // guards evaluated on the dense output while locating events
 };
 
 // All guards of `mode` at (t, y): by its Guards() where it has one (one evaluation of what the guards share), else
@@ -88,6 +89,7 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
     }
   };
   const double energy_start = mode.Energy(y_start);
+  long guard_evaluations = 0;
   const auto finish = [&](SegmentEnd end, int guard, double t, const State& y) {
     outcome.end = end;
     outcome.guard = guard;
@@ -95,6 +97,7 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
     outcome.y = y;
     outcome.num_steps = integrator.num_accepted();
     outcome.num_evaluations = integrator.num_evaluations();
+    outcome.num_guard_evaluations = guard_evaluations;
     State dydt;
     mode(t, y, dydt);
     record_force(t, y, dydt);
@@ -151,7 +154,10 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
     double t_event = std::numeric_limits<double>::infinity();
     int fired = -1;
     for (int i = 0; i < kGuards; ++i) {
-      const auto eval = [&](double t) { return mode.Guard(i, t, interpolate(t)); };
+      const auto eval = [&](double t) {
+        ++guard_evaluations;
+        return mode.Guard(i, t, interpolate(t));
+      };
       const std::optional<double> root = FindFirstDescent(eval, t0, g0[i], t1, g1[i], polisher, settings.event_time_tol_s);
       if (root && *root < t_event) {
         t_event = *root;

@@ -201,6 +201,7 @@ struct Trajectory {
   double wall_time_s = 0.0;  // of Simulate() itself
   long num_steps = 0;        // accepted integrator steps over all segments
   long num_evaluations = 0;  // right-hand-side evaluations over all segments
+  long num_guard_evaluations = 0;  // guards evaluated on the dense output to locate events (integrated segments)
 
   // Every field as a default-constructed Trajectory has it, with the vectors' storage kept (for SimulateInto).
   void Clear();
