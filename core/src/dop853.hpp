@@ -116,6 +116,7 @@ class Dop853 {
   double t_previous_ = 0.0;
   double h_ = 0.0;       // size of the last accepted step
   double h_next_ = 0.0;  // proposed size of the next step
+  double inverse_h_ = 0.0;  // 1/h_ of the step whose dense output is ready (0 for a step of size 0)
   Vector y_ = Vector::Zero();
   Vector y_previous_ = Vector::Zero();
   // k_[j] holds stage j+1 of the current step; k_[12] = f(t+h, y1). After acceptance the new f(t, y) is
@@ -316,12 +317,13 @@ void Dop853<N>::PrepareDense(const Rhs& rhs) {
       for (int i = 0; i < N; ++i) dense_[4 + d][i] = h * sum[i];
     }
   }
+  inverse_h_ = h > 0.0 ? 1.0 / h : 0.0;
   dense_ready_ = true;
 }
 
 template <int N>
 void Dop853<N>::Interpolate(double t, Vector* y) const {
-  const double theta = h_ > 0.0 ? (t - t_previous_) / h_ : 0.0;
+  const double theta = (t - t_previous_) * inverse_h_;  // by the reciprocal: one division a step, not a call
   const double theta1 = 1.0 - theta;
   // Horner form of the continuous extension (see detail/dop853_tableau.hpp).
   for (int i = 0; i < N; ++i) {
