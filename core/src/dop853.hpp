@@ -75,6 +75,12 @@ class Dop853 {
     ++num_evaluations_;
   }
   double ScaledRms(const Vector& v, const Vector& y_a, const Vector& y_b) const;
+  // The mean squares of a/scale and b/scale, scale = abs_tol + rel_tol·max(|y_a|, |y_b|) per component.
+  void ScaledMeanSquares(const Vector& a, const Vector& b, const Vector& y_a, const Vector& y_b, double* mean_a,
+                         double* mean_b) const;
+  // x^(1/8) for x ≥ 0, the step-size controller's exponent for an 8th-order method: three square roots
+  // (correctly rounded each) instead of std::pow, the same value to a few units of round-off and cheaper.
+  static double EighthRoot(double x) { return std::sqrt(std::sqrt(std::sqrt(x))); }
   // *out = base + h·Σ_{j<count} weights[j]·k_j.
   template <std::size_t M>
   void Combine(const std::array<double, M>& weights, int count, double h, const Vector& base, Vector* out) const {
@@ -104,13 +110,13 @@ class Dop853 {
   static constexpr double kSafety = 0.9;        // step-size controller safety factor
   static constexpr double kMinFactor = 0.333;   // smallest step change per step
   static constexpr double kMaxFactor = 6.0;     // largest step growth per step
-  static constexpr double kErrorExponent = 1.0 / 8.0;
 
   Dop853Options options_;
   double t_ = 0.0;
   double t_previous_ = 0.0;
   double h_ = 0.0;       // size of the last accepted step
   double h_next_ = 0.0;  // proposed size of the next step
+  double inverse_h_ = 0.0;  // 1/h_ of the step whose dense output is ready (0 for a step of size 0)
   Vector y_ = Vector::Zero();
   Vector y_previous_ = Vector::Zero();
   // k_[j] holds stage j+1 of the current step; k_[12] = f(t+h, y1). After acceptance the new f(t, y) is
@@ -141,6 +147,23 @@ double Dop853<N>::ScaledRms(const Vector& v, const Vector& y_a, const Vector& y_
 }
 
 template <int N>
+void Dop853<N>::ScaledMeanSquares(const Vector& a, const Vector& b, const Vector& y_a, const Vector& y_b,
+                                  double* mean_a, double* mean_b) const {
+  double sum_a = 0.0;
+  double sum_b = 0.0;
+  for (int i = 0; i < N; ++i) {
+    const double inverse_scale =
+        1.0 / (options_.abs_tol + options_.rel_tol * std::max(std::abs(y_a[i]), std::abs(y_b[i])));
+    const double ratio_a = a[i] * inverse_scale;
+    const double ratio_b = b[i] * inverse_scale;
+    sum_a += ratio_a * ratio_a;
+    sum_b += ratio_b * ratio_b;
+  }
+  *mean_a = sum_a / N;
+  *mean_b = sum_b / N;
+}
+
+template <int N>
 template <class Rhs>
 void Dop853<N>::Reset(const Rhs& rhs, double t, const Vector& y, double step_hint) {
   t_ = t;
@@ -165,7 +188,7 @@ void Dop853<N>::Reset(const Rhs& rhs, double t, const Vector& y, double step_hin
   Evaluate(rhs, t_ + h0, work_, k_[1]);
   const double norm_second = ScaledRms(k_[1] - k_[0], y_, y_) / h0;
   const double larger = std::max(norm_second, norm_f);
-  const double h1 = larger <= 1e-15 ? std::max(1e-6, 1e-3 * h0) : std::pow(0.01 / larger, kErrorExponent);
+  const double h1 = larger <= 1e-15 ? std::max(1e-6, 1e-3 * h0) : EighthRoot(0.01 / larger);
   h_next_ = std::min({100.0 * h0, h1, options_.max_step});
 }
 
@@ -218,11 +241,13 @@ StepStatus Dop853<N>::Step(const Rhs& rhs, double t_limit) {
         err3[i] = sum3;
       }
     }
-    // Combined error estimate of DOP853: h·|err5|² / sqrt(|err5|² + 0.01·|err3|²), RMS-scaled.
-    const double e5 = ScaledRms(err5, y_, y_new);
-    const double e3 = ScaledRms(err3, y_, y_new);
-    const double denominator = e5 * e5 + 0.01 * e3 * e3;
-    double err = denominator > 0.0 ? h * e5 * e5 / std::sqrt(denominator) : 0.0;
+    // Combined error estimate of DOP853: h·|err5|² / sqrt(|err5|² + 0.01·|err3|²), RMS-scaled. Both mean
+    // squares in one pass over the components (one scale each), without the square roots of the norms.
+    double e5_squared = 0.0;
+    double e3_squared = 0.0;
+    ScaledMeanSquares(err5, err3, y_, y_new, &e5_squared, &e3_squared);
+    const double denominator = e5_squared + 0.01 * e3_squared;
+    double err = denominator > 0.0 ? h * e5_squared / std::sqrt(denominator) : 0.0;
     bool finite = std::isfinite(err) && y_new.allFinite();
     if (finite && err <= 1.0) {
       Evaluate(rhs, t_ + h, y_new, k_[12]);
@@ -235,7 +260,7 @@ StepStatus Dop853<N>::Step(const Rhs& rhs, double t_limit) {
       continue;
     }
     if (err <= 1.0) {
-      double factor = err > 0.0 ? kSafety * std::pow(err, -kErrorExponent) : kMaxFactor;
+      double factor = err > 0.0 ? kSafety / EighthRoot(err) : kMaxFactor;
       factor = std::clamp(factor, kMinFactor, kMaxFactor);
       if (rejected_before) factor = std::min(factor, 1.0);
       t_previous_ = t_;
@@ -250,7 +275,7 @@ StepStatus Dop853<N>::Step(const Rhs& rhs, double t_limit) {
       ++num_accepted_;
       return StepStatus::kOk;
     }
-    h_next_ = h * std::max(kMinFactor, kSafety * std::pow(err, -kErrorExponent));
+    h_next_ = h * std::max(kMinFactor, kSafety / EighthRoot(err));
     ++num_rejected_;
     rejected_before = true;
   }
@@ -292,12 +317,13 @@ void Dop853<N>::PrepareDense(const Rhs& rhs) {
       for (int i = 0; i < N; ++i) dense_[4 + d][i] = h * sum[i];
     }
   }
+  inverse_h_ = h > 0.0 ? 1.0 / h : 0.0;
   dense_ready_ = true;
 }
 
 template <int N>
 void Dop853<N>::Interpolate(double t, Vector* y) const {
-  const double theta = h_ > 0.0 ? (t - t_previous_) / h_ : 0.0;
+  const double theta = (t - t_previous_) * inverse_h_;  // by the reciprocal: one division a step, not a call
   const double theta1 = 1.0 - theta;
   // Horner form of the continuous extension (see detail/dop853_tableau.hpp).
   for (int i = 0; i < N; ++i) {
