@@ -184,9 +184,11 @@ void InitialGuessOptions::Validate() const {
   if (post_impact_samples < 1) throw InvalidArgument("post_impact_samples must be at least 1");
 }
 
-std::vector<double> DetectBaseImpactTimes(const MeasuredSignal& signal, const InitialGuessOptions& options) {
-  options.Validate();
-  signal.Validate();
+namespace {
+
+// The base impacts of DetectBaseImpactTimes; with `first_only` the first alone (it does not depend on the later
+// ones), without the attitude integration that only the later ones need.
+std::vector<double> BaseImpactTimes(const MeasuredSignal& signal, const InitialGuessOptions& options, bool first_only) {
   const std::vector<io::Peak> peaks = RatePeaks(signal, 1, options.detection);
   double largest = 0.0;
   for (const io::Peak& p : peaks) largest = std::max(largest, p.value);
@@ -201,6 +203,7 @@ std::vector<double> DetectBaseImpactTimes(const MeasuredSignal& signal, const In
         const std::size_t k_impact = top.clipped && DropsAfter(signal, top.last, options.min_jump_fraction) ? top.last
                                                                                                               : p.index;
         times.push_back(signal.t_s[k_impact]);
+        if (first_only) break;
         first_value = p.value;
         first_sign = signal.w_B[p.index][1] >= 0.0 ? 1.0 : -1.0;
         // The attitude since the first impact (the base flat there: R = I), integrated with the exponential map
@@ -262,6 +265,14 @@ std::vector<double> DetectBaseImpactTimes(const MeasuredSignal& signal, const In
                                options.detection.min_prominence_rad_s));
   }
   return times;
+}
+
+}  // namespace
+
+std::vector<double> DetectBaseImpactTimes(const MeasuredSignal& signal, const InitialGuessOptions& options) {
+  options.Validate();
+  signal.Validate();
+  return BaseImpactTimes(signal, options, false);
 }
 
 double DetectWindowEnd(const MeasuredSignal& signal, const InitialGuessOptions& options) {
@@ -430,7 +441,41 @@ double FitFacetPairToJump(const core::Block& block, const ParameterSet& paramete
   return best;
 }
 
+// The release from the first impact: the peak's sample, the sense of the fall and the phase-1 fit. Throws BadInput
+// when the peak is at the start of the recording.
+struct Release {
+  std::size_t k_peak = 0;
+  double sign = 1.0;
+  Phase1Fit phase1;
+};
+
+Release FitRelease(const MeasuredSignal& signal, const core::PlanarRocker& rocker, double t_first_impact_s,
+                   bool closed_form_fall) {
+  Release release;
+  release.k_peak = static_cast<std::size_t>(
+      std::lower_bound(signal.t_s.begin(), signal.t_s.end(), t_first_impact_s) - signal.t_s.begin());
+  if (release.k_peak < 3) throw BadInput("the first impact is at the start of the recording: the release is not recorded");
+  release.sign = signal.w_B[release.k_peak][1] >= 0.0 ? 1.0 : -1.0;
+  // Phase 1: a coarse α from the landing rate, then the planar fall fitted to the samples before the impact.
+  release.phase1 = FitPhase1(signal, rocker, release.k_peak, release.sign, closed_form_fall);
+  return release;
+}
+
 }  // namespace
+
+ReleaseEstimate EstimateRelease(const MeasuredSignal& signal, const core::Block& block, const ParameterSet& base,
+                                const InitialGuessOptions& options) {
+  options.Validate();
+  signal.Validate();
+  ReleaseEstimate estimate;
+  estimate.t_first_impact_s = BaseImpactTimes(signal, options, true).front();
+  const core::PlanarRocker rocker = core::PlanarRockerAboutEdge(block, 1, 2);
+  const Release release = FitRelease(signal, rocker, estimate.t_first_impact_s, options.closed_form_fall);
+  // As SetValue in EstimateInitialGuess: the fixed value, else the fit clamped to the bounds.
+  const Parameter& t0 = base[ParameterId::kT0];
+  estimate.t0_s = t0.fixed ? t0.value : Clamp(t0, release.phase1.t0_s);
+  return estimate;
+}
 
 InitialGuess EstimateInitialGuess(const MeasuredSignal& signal, const core::Block& block, const ParameterSet& base,
                                   const InitialGuessOptions& options) {
@@ -438,20 +483,16 @@ InitialGuess EstimateInitialGuess(const MeasuredSignal& signal, const core::Bloc
   signal.Validate();
   InitialGuess guess;
   guess.parameters = base;
-  const std::vector<double> impacts = DetectBaseImpactTimes(signal, options);
+  const std::vector<double> impacts = BaseImpactTimes(signal, options, false);
   guess.t_first_impact_s = impacts.front();
   const std::size_t n_end = static_cast<std::size_t>(options.window_end_impact);
   guess.t_end_s = impacts.size() >= n_end ? impacts[n_end - 1] : signal.t_s.back();
   if (impacts.size() > n_end) guess.later_impacts_s.assign(impacts.begin() + static_cast<std::ptrdiff_t>(n_end), impacts.end());
 
-  const std::size_t k_peak = static_cast<std::size_t>(
-      std::lower_bound(signal.t_s.begin(), signal.t_s.end(), guess.t_first_impact_s) - signal.t_s.begin());
-  if (k_peak < 3) throw BadInput("the first impact is at the start of the recording: the release is not recorded");
-  const double sign = signal.w_B[k_peak][1] >= 0.0 ? 1.0 : -1.0;
-
-  // Phase 1: a coarse α from the landing rate, then the planar fall fitted to the samples before the impact.
   const core::PlanarRocker rocker = core::PlanarRockerAboutEdge(block, 1, 2);
-  const Phase1Fit phase1 = FitPhase1(signal, rocker, k_peak, sign, options.closed_form_fall);
+  const Release release = FitRelease(signal, rocker, guess.t_first_impact_s, options.closed_form_fall);
+  const Phase1Fit& phase1 = release.phase1;
+  const double sign = release.sign;
   const double t_impact = phase1.t0_s + core::FallTime(rocker, phase1.alpha_rad);
   guess.landing_rate_rad_s = core::LandingRate(rocker, phase1.alpha_rad);
   SetValue(&guess.parameters, ParameterId::kT0, phase1.t0_s);

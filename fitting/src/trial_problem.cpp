@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -9,6 +11,52 @@
 #include "rockfit/fitting/rest_noise.hpp"
 
 namespace rockfit::fitting {
+namespace {
+
+// The closed-form phase-1 fit's t0 agrees with the default's (RK4 nodes, golden sections) to 3.7e-9 s on the 16
+// sample trials (initial_guess.hpp, closed_form_fall; the tests allow 1e-8 s on synthetic ones); its rest segment is
+// used only when every t0 within this distance of it places the same one: 270 times the largest difference measured,
+// and far below a sample period (3.9 ms at 256 Hz), so that the fallback to the default fit is rare.
+constexpr double kReleaseRoundOffS = 1e-6;
+// Either phase-1 fit puts the landing t0 + T(α) at most 1.5 sample periods after the first impact's peak (t0 is
+// searched within 1.5 periods of the peak less the fall table's end, which is at or after T(α)). With a usable
+// sample this many periods after the peak, neither finds the recording ending at the impact (half a period spare).
+constexpr double kPeriodsAfterPeak = 2.0;
+
+// The duration of the rest segment as the note shows it.
+std::string RestDurationText(double duration_s) { return fmt::format("{:.2f}", duration_s); }
+
+}  // namespace
+
+std::optional<RestNoise> RestBeforeClosedFormRelease(const MeasuredSignal& signal, const core::Block& block,
+                                                     const ParameterSet& parameters, const TrialProblemOptions& options) {
+  InitialGuessOptions closed_form = options.guess;
+  closed_form.closed_form_fall = true;
+  const ReleaseEstimate release = EstimateRelease(signal, block, parameters, closed_form);
+  // The default estimate looks at the samples after its landing (the first jump) and fails without one.
+  const double period_s = (signal.t_s.back() - signal.t_s.front()) / static_cast<double>(signal.size() - 1);
+  const double t_sure_after_s = release.t_first_impact_s + kPeriodsAfterPeak * period_s;
+  bool sample_after = false;
+  for (std::size_t k = signal.size(); k-- > 0 && signal.t_s[k] > t_sure_after_s;) {
+    if (!signal.is_excluded(k)) {
+      sample_after = true;
+      break;
+    }
+  }
+  if (!sample_after) return std::nullopt;
+  // Everything the rest segment passes on is a monotone function of t0: the samples t_k < t0 − margin (their mean
+  // is the bias), its duration t0 − margin − t_first (floating-point subtraction is monotone), hence its comparison
+  // with the minimum and its rounding to the note's 2 decimals. The same at both ends of [t0 − δ, t0 + δ] is the
+  // same at the default fit's t0, which lies inside.
+  const RestSegmentOptions segment{options.rest_margin_s, options.rest_min_duration_s};
+  const RestNoise early = MeasureRestNoise(signal, release.t0_s - kReleaseRoundOffS, segment);
+  const RestNoise late = MeasureRestNoise(signal, release.t0_s + kReleaseRoundOffS, segment);
+  // Without a rest segment the default estimate is the one used: it is made in full.
+  if (!early.available || !late.available) return std::nullopt;
+  if (early.samples != late.samples) return std::nullopt;
+  if (RestDurationText(early.duration_s) != RestDurationText(late.duration_s)) return std::nullopt;
+  return MeasureRestNoise(signal, release.t0_s, segment);
+}
 
 void TrialProblemOptions::Validate() const {
   guess.Validate();
@@ -39,25 +87,31 @@ TrialProblem PrepareTrialProblem(const MeasuredSignal& recorded, const core::Blo
                                 options.clipping.censored ? "enter (28) as censored: \"at least this fast\""
                                                           : "are left out of (28)"));
   }
-  InitialGuess guess = EstimateInitialGuess(signal, block, parameters, options.guess);
-
-  // The gyro bias at rest, then the estimate again on the corrected signal.
+  // The gyro bias at rest before the release, then the estimate on the corrected signal. The rest segment needs t0
+  // alone: from the cheap closed-form fit where that provably places the default fit's segment, else from the full
+  // estimate (the one used when there is no rest segment).
+  std::optional<RestNoise> rest;
+  if (options.subtract_rest_bias) rest = RestBeforeClosedFormRelease(signal, block, parameters, options);
+  InitialGuess guess;
+  if (!rest) {
+    guess = EstimateInitialGuess(signal, block, parameters, options.guess);
+    if (options.subtract_rest_bias) {
+      rest = MeasureRestNoise(signal, guess.parameters.value(ParameterId::kT0),
+                              {options.rest_margin_s, options.rest_min_duration_s});
+    }
+  }
   Eigen::Vector3d bias = Eigen::Vector3d::Zero();
   bool subtracted = false;
-  if (options.subtract_rest_bias) {
-    const RestNoise rest = MeasureRestNoise(signal, guess.parameters.value(ParameterId::kT0),
-                                            {options.rest_margin_s, options.rest_min_duration_s});
-    if (rest.available) {
-      bias = rest.mean_rad_s;
-      for (Eigen::Vector3d& w : signal.w_B) w -= bias;
-      subtracted = true;
-      guess = EstimateInitialGuess(signal, block, parameters, options.guess);
-      notes.push_back(fmt::format("gyro bias at rest over {:.2f} s before the release: ({:.4f}, {:.4f}, {:.4f}) rad/s, "
-                                  "subtracted",
-                                  rest.duration_s, bias.x(), bias.y(), bias.z()));
-    } else {
-      notes.push_back("gyro bias not measured: the recording starts too close to the release");
-    }
+  if (rest && rest->available) {
+    bias = rest->mean_rad_s;
+    for (Eigen::Vector3d& w : signal.w_B) w -= bias;
+    subtracted = true;
+    guess = EstimateInitialGuess(signal, block, parameters, options.guess);
+    notes.push_back(fmt::format("gyro bias at rest over {} s before the release: ({:.4f}, {:.4f}, {:.4f}) rad/s, "
+                                "subtracted",
+                                RestDurationText(rest->duration_s), bias.x(), bias.y(), bias.z()));
+  } else if (options.subtract_rest_bias) {
+    notes.push_back("gyro bias not measured: the recording starts too close to the release");
   }
   notes.insert(notes.begin(), guess.notes.begin(), guess.notes.end());
 

@@ -87,6 +87,20 @@ TEST_P(InitialGuessOnSynthetic, ClosedFormFallGivesTheSameReleaseToRoundOff) {
               kSameStartAlphaToleranceRad);
 }
 
+TEST_P(InitialGuessOnSynthetic, ReleaseAloneIsTheFullEstimatesReleaseBitForBit) {
+  const Truth truth = GetParam();
+  const core::Block block = PaperBlock(0.035);
+  const testing::SyntheticSignal trial = MakeTrial(block, truth, 11);
+  for (const bool closed_form_fall : {false, true}) {
+    InitialGuessOptions options;
+    options.closed_form_fall = closed_form_fall;
+    const InitialGuess full = EstimateInitialGuess(trial.signal, block, ParameterSet::Defaults(), options);
+    const ReleaseEstimate alone = EstimateRelease(trial.signal, block, ParameterSet::Defaults(), options);
+    EXPECT_EQ(alone.t0_s, full.parameters.value(ParameterId::kT0)) << "closed form " << closed_form_fall;
+    EXPECT_EQ(alone.t_first_impact_s, full.t_first_impact_s) << "closed form " << closed_form_fall;
+  }
+}
+
 TEST_P(InitialGuessOnSynthetic, WindowEndIsTheImpactEndingPhase4) {
   const Truth truth = GetParam();
   const core::Block block = PaperBlock(0.035);
@@ -142,6 +156,20 @@ TEST(InitialGuess, FixedParametersKeepTheirValues) {
   EXPECT_EQ(EstimateInitialGuess(trial.signal, block, base).parameters.value(ParameterId::kLambdaLon), 0.3);
 }
 
+TEST(InitialGuess, ReleaseAloneIsClampedAndKeepsAFixedValueAsTheFullEstimate) {
+  const core::Block block = PaperBlock(0.035);
+  const testing::SyntheticSignal trial = MakeTrial(block, {0.5, 0.197, 2.185, -2.032, 0.197}, 13);
+  ParameterSet bounded = ParameterSet::Defaults();
+  bounded[ParameterId::kT0].upper = 0.45;  // before the fitted release (≈ 0.5 s): the estimate is clamped to it
+  EXPECT_EQ(EstimateRelease(trial.signal, block, bounded).t0_s, 0.45);
+  EXPECT_EQ(EstimateRelease(trial.signal, block, bounded).t0_s,
+            EstimateInitialGuess(trial.signal, block, bounded).parameters.value(ParameterId::kT0));
+  ParameterSet fixed = ParameterSet::Defaults();
+  fixed[ParameterId::kT0].value = 0.123;
+  fixed[ParameterId::kT0].fixed = true;
+  EXPECT_EQ(EstimateRelease(trial.signal, block, fixed).t0_s, 0.123);
+}
+
 TEST(InitialGuess, RecordingWithoutImpactIsBadInput) {
   MeasuredSignal quiet;
   for (int k = 0; k < 512; ++k) {
@@ -149,6 +177,7 @@ TEST(InitialGuess, RecordingWithoutImpactIsBadInput) {
     quiet.w_B.push_back(Eigen::Vector3d(0.0, 1e-4 * (k % 3), 0.0));
   }
   EXPECT_THROW(EstimateInitialGuess(quiet, PaperBlock(0.035), ParameterSet::Defaults()), BadInput);
+  EXPECT_THROW(EstimateRelease(quiet, PaperBlock(0.035), ParameterSet::Defaults()), BadInput);
 }
 
 }  // namespace

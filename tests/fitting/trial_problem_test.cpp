@@ -5,14 +5,19 @@
 // only; EveryStageRunsOnTheSimulator covers the same code cheaply in every build.
 #include "rockfit/fitting/trial_problem.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "build_type.hpp"
 #include "fit_acceptance.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/fitting/fitter.hpp"
+#include "rockfit/fitting/rest_noise.hpp"
 #include "synth_trial.hpp"
 
 namespace rockfit::fitting {
@@ -75,6 +80,94 @@ TEST(TrialProblem, TheGyroBiasAtRestIsMeasuredAndSubtracted) {
   const TrialProblem raw = PrepareTrialProblem(trial.signal, trial.block, ParameterSet::Defaults(), keep);
   EXPECT_FALSE(raw.bias_subtracted);
   EXPECT_EQ(raw.objective.signal().w_B[10], trial.signal.w_B[10]);
+}
+
+// The rest segment that the default phase-1 fit's t0 places (the first estimate before the bias is known).
+RestNoise RestBeforeDefaultRelease(const testing::SynthTrial& trial, const TrialProblemOptions& options) {
+  const InitialGuess guess = EstimateInitialGuess(trial.signal, trial.block, ParameterSet::Defaults(), options.guess);
+  return MeasureRestNoise(trial.signal, guess.parameters.value(ParameterId::kT0),
+                          {options.rest_margin_s, options.rest_min_duration_s});
+}
+
+void ExpectSameRest(const RestNoise& a, const RestNoise& b) {
+  EXPECT_EQ(a.available, b.available);
+  EXPECT_EQ(a.samples, b.samples);
+  EXPECT_EQ(a.mean_rad_s, b.mean_rad_s);  // bit for bit: the same samples summed in the same order
+  EXPECT_EQ(fmt::format("{:.2f}", a.duration_s), fmt::format("{:.2f}", b.duration_s));  // as the note shows it
+}
+
+TEST(TrialProblem, TheClosedFormReleasePlacesTheDefaultFitsRestSegment) {
+  for (const std::uint64_t seed : {3, 4, 5, 6}) {
+    const auto trial = MakeSynthTrial(0.18 + 0.01 * static_cast<double>(seed), 0.8, -2.0, 0.6, seed);
+    const TrialProblemOptions options;
+    const std::optional<RestNoise> rest =
+        RestBeforeClosedFormRelease(trial.signal, trial.block, ParameterSet::Defaults(), options);
+    ASSERT_TRUE(rest.has_value()) << "seed " << seed;
+    ExpectSameRest(*rest, RestBeforeDefaultRelease(trial, options));
+    // The problem subtracts that segment's mean.
+    const TrialProblem p = PrepareTrialProblem(trial.signal, trial.block, ParameterSet::Defaults(), options);
+    EXPECT_EQ(p.rest_bias_rad_s, rest->mean_rad_s);
+  }
+}
+
+TEST(TrialProblem, ASampleAtTheEndOfTheRestSegmentFallsBackToTheDefaultFit) {
+  const auto trial = MakeSynthTrial(0.2, 0.8, -2.0, 0.6, 3);
+  InitialGuessOptions closed_form;
+  closed_form.closed_form_fall = true;
+  const double t0_s = EstimateRelease(trial.signal, trial.block, ParameterSet::Defaults(), closed_form).t0_s;
+  // The margin that ends the segment on a sample 0.3 s before the release: the closed-form t0 and the default's
+  // (~1e-9 s apart) may keep it on either side.
+  const auto k = static_cast<std::size_t>(
+      std::lower_bound(trial.signal.t_s.begin(), trial.signal.t_s.end(), t0_s - 0.3) - trial.signal.t_s.begin());
+  TrialProblemOptions options;
+  options.rest_margin_s = t0_s - trial.signal.t_s[k];
+  EXPECT_FALSE(RestBeforeClosedFormRelease(trial.signal, trial.block, ParameterSet::Defaults(), options).has_value());
+  // The problem then places the segment from the default fit, as it always did.
+  const TrialProblem p = PrepareTrialProblem(trial.signal, trial.block, ParameterSet::Defaults(), options);
+  const RestNoise rest = RestBeforeDefaultRelease(trial, options);
+  ASSERT_TRUE(rest.available);
+  EXPECT_EQ(p.rest_bias_rad_s, rest.mean_rad_s);
+}
+
+// How far the nearest sample lies from t [s].
+double DistanceToNearestSample(const MeasuredSignal& signal, double t_s) {
+  double d = std::numeric_limits<double>::infinity();
+  for (double t : signal.t_s) d = std::min(d, std::abs(t - t_s));
+  return d;
+}
+
+TEST(TrialProblem, ADurationNearTheMinimumOrANoteRoundingFallsBackToTheDefaultFit) {
+  const auto trial = MakeSynthTrial(0.2, 0.8, -2.0, 0.6, 3);
+  InitialGuessOptions closed_form;
+  closed_form.closed_form_fall = true;
+  const double t0_s = EstimateRelease(trial.signal, trial.block, ParameterSet::Defaults(), closed_form).t0_s;
+  const TrialProblemOptions defaults;
+  const double duration_s = t0_s - defaults.rest_margin_s - trial.signal.t_s.front();
+  TrialProblemOptions at_minimum;
+  at_minimum.rest_min_duration_s = duration_s;  // the comparison with the minimum is in doubt
+  ASSERT_GT(DistanceToNearestSample(trial.signal, t0_s - defaults.rest_margin_s), 1e-5) << "the samples are not in doubt";
+  EXPECT_FALSE(RestBeforeClosedFormRelease(trial.signal, trial.block, ParameterSet::Defaults(), at_minimum));
+  // A margin that puts the duration on a rounding boundary of the note's 2 decimals (…5 exactly, ± round-off).
+  TrialProblemOptions on_rounding;
+  on_rounding.rest_margin_s = t0_s - trial.signal.t_s.front() - (std::floor(duration_s * 100.0) + 0.5) / 100.0;
+  ASSERT_GT(DistanceToNearestSample(trial.signal, t0_s - on_rounding.rest_margin_s), 1e-5) << "the samples are not in doubt";
+  EXPECT_FALSE(RestBeforeClosedFormRelease(trial.signal, trial.block, ParameterSet::Defaults(), on_rounding));
+  TrialProblemOptions off_rounding = on_rounding;  // a millisecond away from that boundary: no doubt
+  off_rounding.rest_margin_s += 1e-3;
+  ASSERT_GT(DistanceToNearestSample(trial.signal, t0_s - off_rounding.rest_margin_s), 1e-5);
+  EXPECT_TRUE(RestBeforeClosedFormRelease(trial.signal, trial.block, ParameterSet::Defaults(), off_rounding));
+}
+
+TEST(TrialProblem, WithoutARestSegmentTheFullDefaultEstimateIsUsed) {
+  // Released 0.1 s into the recording: the segment before it lasts 0.05 s, less than the minimum of 0.1 s.
+  const auto trial = MakeSynthTrial(0.2, 0.8, -2.0, 0.6, 3, 0.1, 1.6);
+  EXPECT_FALSE(RestBeforeClosedFormRelease(trial.signal, trial.block, ParameterSet::Defaults(), {}).has_value());
+  const TrialProblem p = PrepareTrialProblem(trial.signal, trial.block, ParameterSet::Defaults());
+  EXPECT_FALSE(p.bias_subtracted);
+  const InitialGuess full = EstimateInitialGuess(trial.signal, trial.block, ParameterSet::Defaults());
+  EXPECT_EQ(p.guess.parameters.value(ParameterId::kT0), full.parameters.value(ParameterId::kT0));
+  EXPECT_EQ(p.guess.parameters.value(ParameterId::kLambdaLat), full.parameters.value(ParameterId::kLambdaLat));
+  EXPECT_EQ(p.guess.notes, full.notes);
 }
 
 TEST(TrialProblem, TheWindowEndsJustBeforeTheImpactThatEndsPhaseFour) {

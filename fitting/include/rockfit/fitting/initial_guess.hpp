@@ -74,6 +74,19 @@ std::vector<double> DetectBaseImpactTimes(const MeasuredSignal& signal, const In
 // there are fewer impacts.
 double DetectWindowEnd(const MeasuredSignal& signal, const InitialGuessOptions& options);
 
+// The release time alone, for a caller that needs t0 only (the rest segment before the release, trial_problem.cpp):
+// the first impact and the phase-1 fit of EstimateInitialGuess, without the later base impacts, the first jump and
+// the facet map's (λ_lat, λ_lon) grid. With the same options, t0_s is EstimateInitialGuess's t0 bit for bit.
+struct ReleaseEstimate {
+  double t0_s = 0.0;              // the fit's t0 clamped to the bounds of `base`, or its value when fixed
+  double t_first_impact_s = 0.0;  // sample time of the first impact peak (as InitialGuess)
+};
+
+// Throws BadInput as EstimateInitialGuess does before it looks after the first impact (no impact; the impact at the
+// start of the recording); unlike it, never for a recording that ends at the first impact.
+ReleaseEstimate EstimateRelease(const MeasuredSignal& signal, const core::Block& block, const ParameterSet& base,
+                                const InitialGuessOptions& options = {});
+
 // The estimate above. `base` supplies bounds and fixed values: fixed parameters keep their values.
 // Throws BadInput when the recording shows no release (no impact, nothing before it).
 InitialGuess EstimateInitialGuess(const MeasuredSignal& signal, const core::Block& block, const ParameterSet& base,

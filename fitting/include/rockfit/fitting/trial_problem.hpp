@@ -15,6 +15,7 @@
 #include "rockfit/fitting/initial_guess.hpp"
 #include "rockfit/fitting/objective.hpp"
 #include "rockfit/fitting/release_roll_choice.hpp"
+#include "rockfit/fitting/rest_noise.hpp"
 #include "rockfit/fitting/simulator_model.hpp"
 #include "rockfit/fitting/trajectory_model.hpp"
 
@@ -53,6 +54,15 @@ struct TrialProblem {
   ReleaseRollChoice release_roll;  // whether β is fitted, why, and its start
   std::vector<std::string> notes;  // the guess's notes and the bias
 };
+
+// The rest segment before the release (rest_noise.hpp, with the options' margin and minimum duration) placed from the
+// release of the closed-form phase-1 fit (EstimateRelease with InitialGuessOptions::closed_form_fall), when it is
+// provably the segment that the default fit's t0 would place: the same samples, the same verdict on the minimum
+// duration and the same duration to the note's 2 decimals for every t0 within 1e-6 s of it (the two fits agree to
+// ~1e-8 s), and a usable sample after the first impact. nullopt when in doubt or without a rest segment: the caller
+// then places it from EstimateInitialGuess. Throws BadInput as EstimateRelease does.
+std::optional<RestNoise> RestBeforeClosedFormRelease(const MeasuredSignal& signal, const core::Block& block,
+                                                     const ParameterSet& parameters, const TrialProblemOptions& options);
 
 // The objective carries the later window ends, just before the later return impacts (none for a given t_end).
 // `model` defaults to the hybrid simulator for `block`. t0 bounds left open in `parameters` are narrowed to
