@@ -9,6 +9,16 @@
 #include "rockfit/core/errors.hpp"
 
 namespace rockfit::fitting {
+namespace {
+
+bool AllFinite(const ParameterSet& values) {
+  for (ParameterId id : kAllParameters) {
+    if (!std::isfinite(values.value(id))) return false;
+  }
+  return true;
+}
+
+}  // namespace
 
 void EvaluationCounters::CountFailure(const std::string& reason) {
   std::lock_guard<std::mutex> lock(mutex_);
@@ -135,9 +145,7 @@ Evaluation Objective::Evaluate(const ParameterSet& values) const {
 Evaluation Objective::EvaluateOnNodes(const ParameterSet& values, const ErrorNodes& nodes) const {
   thread_local ModelOutput output;  // as in Evaluate
   output.Clear();
-  for (ParameterId id : kAllParameters) {
-    if (!std::isfinite(values.value(id))) return Infeasible(ModelFailure::kNonFiniteParameter);
-  }
+  if (!AllFinite(values)) return Infeasible(ModelFailure::kNonFiniteParameter);
   return EvaluateBuilt(values, nodes, &output, false);
 }
 
@@ -154,9 +162,7 @@ Evaluation Objective::Infeasible(ModelFailure reason, core::ImpactStatus impact_
 Evaluation Objective::EvaluateDetailed(const ParameterSet& values, ErrorNodes* nodes, ModelOutput* output,
                                        bool sensitivities) const {
   output->Clear();
-  for (ParameterId id : kAllParameters) {
-    if (!std::isfinite(values.value(id))) return Infeasible(ModelFailure::kNonFiniteParameter);
-  }
+  if (!AllFinite(values)) return Infeasible(ModelFailure::kNonFiniteParameter);
   const double t0 = values.value(ParameterId::kT0);
   if (!BuildErrorNodes(*signal_, t0, t_end_s_, nodes)) return Infeasible(ModelFailure::kT0OutsideWindow);
   return EvaluateBuilt(values, *nodes, output, sensitivities);

@@ -218,6 +218,12 @@ struct ProfileScale {
   double Rho(const SumOfSquaresValue& v) const {
     return v.feasible ? std::sqrt(std::max(0.0, v.sum_sq - sum_sq_centre) / s2_eff) : std::numeric_limits<double>::infinity();
   }
+  // `rule` with its check level at ρ = z₉₅: the profile points past the crossing set the interval's end.
+  RefitRule CheckedPast95(const RefitRule& rule) const {
+    RefitRule checked = rule;
+    checked.check_above_sum_sq = sum_sq_centre + kZ95 * kZ95 * s2_eff;
+    return checked;
+  }
 };
 
 // `from` with `id` moved to `value` and held, the others as `from` (the profile point's problem and start).
@@ -254,9 +260,7 @@ std::vector<ProfilePoint> ProfileSideOnGrid(const Objective& objective, const Pa
     const ParameterSet set = HeldAt(objective, previous, id, point.value);
     const Objective held = objective.WithParameters(set);
     SumOfSquaresValue v;
-    RefitRule checked = rule;
-    checked.check_above_sum_sq = scale.sum_sq_centre + kZ95 * kZ95 * scale.s2_eff;  // ρ past z
-    previous = RefitSumOfSquares(held, set, refit_step, checked, &v, best_epsilon, evaluations, stats);
+    previous = RefitSumOfSquares(held, set, refit_step, scale.CheckedPast95(rule), &v, best_epsilon, evaluations, stats);
     point.sum_sq = v.sum_sq;
     point.feasible = v.feasible;
     points.push_back(point);
@@ -318,9 +322,8 @@ std::vector<ProfilePoint> ProfileSideAimed(const Objective& objective, const Par
       }
     }
     SumOfSquaresValue v;
-    RefitRule checked = rule;
-    checked.check_above_sum_sq = scale.sum_sq_centre + kZ95 * kZ95 * scale.s2_eff;  // ρ past z
-    point.refit = RefitSumOfSquares(held, start, refit_step, checked, &v, best_epsilon, evaluations, stats);
+    point.refit = RefitSumOfSquares(held, start, refit_step, scale.CheckedPast95(rule), &v, best_epsilon, evaluations,
+                                    stats);
     point.profile.sum_sq = v.sum_sq;
     point.profile.feasible = v.feasible;
     point.step.rho = scale.Rho(v);
