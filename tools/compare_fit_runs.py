@@ -11,7 +11,8 @@ and the share of fits with ε ≤ 1.02 × ε(truth), for both. Exit status 1 whe
 
 Usage (from the repository root):
 
-  nice tools/coverage_study.py --rockfit OLD/rockfit --trials 100 --seed 1 --methods thorough --out build/study/old-1
+  nice tools/coverage_study.py --rockfit OLD/rockfit --synth-rockfit build/tools/rockfit --trials 100 --seed 1 \\
+      --methods thorough --out build/study/old-1   # both fit the recordings of one `synth`
   nice tools/coverage_study.py --rockfit build/tools/rockfit --trials 100 --seed 1 --methods thorough --out build/study/new-1
   tools/compare_fit_runs.py build/study/old-1 build/study/new-1
   OLD/rockfit batch data-samples/manifest.toml -o /tmp/old.h5 --json > /tmp/old.json   # likewise new.json
