@@ -6,12 +6,15 @@ same trials and give both outputs here. Each input is either a coverage study's 
 trials.jsonl; `tools/coverage_study.py`, same --seed and --trials for both) or a `rockfit batch --json` document
 (the same manifest for both). Prints every trial whose ε rose by more than --max-rise (relative), the largest
 rise, and for a coverage study the share of the determined values whose 68 % and 95 % intervals hold the truth
-and the share of fits with ε ≤ 1.02 × ε(truth), for both. Exit status 1 when a trial's ε rose by more than
+and the share of fits with ε ≤ 1.02 × ε(truth), for both; for two batch documents whose HDF5 files (their
+"output") are still there, the largest change of each fitted value over the trials (read with h5py; it does not
+change the exit status). Exit status 1 when a trial's ε rose by more than
 --max-rise, a fit of the reference is missing from the other, or a coverage share of the other is lower.
 
 Usage (from the repository root):
 
-  nice tools/coverage_study.py --rockfit OLD/rockfit --trials 100 --seed 1 --methods thorough --out build/study/old-1
+  nice tools/coverage_study.py --rockfit OLD/rockfit --synth-rockfit build/tools/rockfit --trials 100 --seed 1 \\
+      --methods thorough --out build/study/old-1   # both fit the recordings of one `synth`
   nice tools/coverage_study.py --rockfit build/tools/rockfit --trials 100 --seed 1 --methods thorough --out build/study/new-1
   tools/compare_fit_runs.py build/study/old-1 build/study/new-1
   OLD/rockfit batch data-samples/manifest.toml -o /tmp/old.h5 --json > /tmp/old.json   # likewise new.json
@@ -39,6 +42,39 @@ def load(path):
     with open(path) as f:
         doc = json.load(f)
     return {t["trial"]: {"epsilon": t["epsilon"]} for t in doc["trials"] if t.get("epsilon") is not None}, "batch"
+
+
+def fitted_values(batch_json):
+    """{trial: {parameter: (value, unit)}} of the free parameters in the HDF5 file a `rockfit batch --json` document
+    names as its output; None when the file or h5py is missing."""
+    with open(batch_json) as f:
+        output = json.load(f).get("output")
+    try:
+        import h5py
+    except ImportError:
+        return None
+    if not output or not os.path.exists(output):
+        return None
+    text = lambda x: x.decode() if isinstance(x, bytes) else str(x)
+    values = {}
+    with h5py.File(output, "r") as h5:
+        for trial, group in h5.get("fits", {}).items():
+            p = group["parameters"]
+            values[trial] = {text(n): (float(v), text(u)) for n, v, u, fixed in
+                             zip(p["name"][:], p["value"][:], p["unit"][:], p["fixed"][:]) if not fixed}
+    return values
+
+
+def largest_value_changes(ref, other):
+    """[(parameter, largest |Δ|, its trial, unit)] over the trials and free parameters both fitted."""
+    largest = {}
+    for trial in sorted(set(ref) & set(other)):
+        for name, (value, unit) in ref[trial].items():
+            if name in other[trial]:
+                delta = abs(other[trial][name][0] - value)
+                if name not in largest or delta > largest[name][0]:
+                    largest[name] = (delta, trial, unit)
+    return [(name, *largest[name]) for name in largest]
 
 
 def contains(interval, value):
@@ -90,6 +126,12 @@ def main():
         same = sum(r == 0.0 for r, _ in rises)
         print(f"{len(rises)} trials: ε the same in {same}, largest rise {100 * rises[-1][0]:+.4f} % ({rises[-1][1]}), "
               f"largest fall {100 * rises[0][0]:+.4f} % ({rises[0][1]})")
+    if kind == "batch":
+        ref_values, other_values = fitted_values(args.reference), fitted_values(args.other)
+        if ref_values is not None and other_values is not None:
+            changes = largest_value_changes(ref_values, other_values)
+            print("largest |Δ| of the fitted values: " + ", ".join(
+                f"{name} {delta:.3g} {unit} ({trial})" for name, delta, trial, unit in changes))
     if kind == "study":
         common = [k for k in ref if k in other]  # the shares over the trials both fitted
         c_ref = coverage({k: ref[k] for k in common})

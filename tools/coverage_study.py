@@ -44,6 +44,10 @@ Usage (from the repository root, after building):
   nice tools/coverage_study.py --rockfit build/tools/rockfit --trials 100 --seed 1 \\
       --methods fast,thorough --out build/coverage-1 [--ringing-scale 2]
 
+`--synth-rockfit PATH` makes the recordings with another program than the one that fits them (default: the
+`--rockfit` given), so that two programs compared with tools/compare_fit_runs.py fit the same files: `synth`'s
+output moves with the integrator's round-off from one version to the next.
+
 Writes OUT/trials.jsonl (one line per trial and method: truth, fit JSON, ε of the truth) and prints the tables
 (also in OUT/report.md). `--report-only` re-prints the tables from an existing trials.jsonl. Each fit runs
 on one thread (`--threads 1`); run one study per core at most.
@@ -223,7 +227,7 @@ def gyro_scale_args(args):
 
 def study_trial(args, t, workdir):
     prefix = os.path.join(workdir, f"trial{t['index']:03d}")
-    synth = [args.rockfit, "synth", "-o", prefix, "--t0", repr(t["t0"]), "--duration", repr(t["t0"] + 2.5),
+    synth = [args.synth_rockfit or args.rockfit, "synth", "-o", prefix, "--t0", repr(t["t0"]), "--duration", repr(t["t0"] + 2.5),
              "--alpha", repr(t["alpha"]), "--lambda", repr(t["lambda"]), "--lambda-lat", repr(t["lambda_lat"]),
              "--lambda-lon", repr(t["lambda_lon"]), "--seed", str(t["seed"]), "--no-rotation-matrix",
              "--gyro-bias-dps=" + ",".join(repr(b) for b in t["bias_dps"])] + block_args(t)
@@ -421,6 +425,8 @@ def report(rows, ringing_scale):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--rockfit", default="build/tools/rockfit")
+    parser.add_argument("--synth-rockfit", default=None,
+                        help="the program whose `synth` makes the recordings (default: --rockfit)")
     parser.add_argument("--trials", type=int, default=100)
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--first", type=int, default=0,
