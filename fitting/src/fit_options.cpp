@@ -216,6 +216,7 @@ void FitOptions::Validate() const {
   model_error.Validate();
   lateral_rescan.Validate();
   window_extension.Validate();
+  final_stage.Validate();
   RequireAtLeast(num_threads, 0, FitOption("num_threads"));
   RequirePositive(auto_soft_l1_fraction, FitOption("auto_soft_l1_fraction"));
   if (!(at_bound_fraction >= 0.0 && at_bound_fraction < 0.5)) {

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "rockfit/core/errors.hpp"
+#include "rockfit/fitting/final_stage.hpp"
 #include "rockfit/fitting/global_stage.hpp"
 #include "rockfit/fitting/gyro_scale_estimate.hpp"
 #include "rockfit/fitting/identifiability.hpp"
@@ -145,6 +146,25 @@ std::vector<std::pair<Eigen::VectorXd, double>> RunStages(const Objective& objec
   const Candidate* best = &candidates.front();
   for (const Candidate& c : candidates) {
     if (Better(c, *best)) best = &c;
+  }
+  if (options.final_stage.enabled && best->feasible) {
+    // The grids and short searches around the best point that make its end less dependent on the start
+    // (final_stage.hpp), at the global stage's tolerance as the global stage (they only have to find a basin); the
+    // point they end at is evaluated again at the model's and kept only where (28) is lower there.
+    const Objective loose = GlobalStageObjective(objective, options.global);
+    const FinalStageResult f = RunFinalStage(loose, best->x, loose.EvaluateFree(best->x).epsilon_rad_s, true,
+                                             options.final_stage, options.nelder_mead);
+    const Evaluation at_model = f.improved ? objective.EvaluateFree(f.x) : Evaluation{};
+    const bool lower = f.improved && at_model.feasible && at_model.epsilon_rad_s < best->epsilon_rad_s;
+    summary->stages.push_back({"final", lower ? at_model.epsilon_rad_s : best->epsilon_rad_s,
+                               f.evaluations + 1 + (f.improved ? 1 : 0), f.wall_time_s,
+                               lower ? TerminationType::kConvergence : TerminationType::kNotASearch, f.termination});
+    if (lower) {
+      const Candidate moved{"final", f.x, at_model.epsilon_rad_s, true, best->converged, best->termination_type,
+                            best->termination};
+      candidates.push_back(moved);
+      best = &candidates.back();
+    }
   }
   summary->parameters = objective.WithFree(best->x);
   summary->epsilon_rad_s = best->epsilon_rad_s;

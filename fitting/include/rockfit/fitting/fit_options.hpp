@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "rockfit/fitting/final_stage.hpp"
 #include "rockfit/fitting/gyro_scale.hpp"
 #include "rockfit/fitting/lateral_motion_check.hpp"
 #include "rockfit/fitting/lateral_rescan.hpp"
@@ -239,6 +240,11 @@ struct FitOptions {
   GlobalStageOptions global;
   NelderMeadOptions nelder_mead;
   CeresOptions ceres;
+  // After the local stages: grids around the best point in λ × λ_lat and along the ridge t0 + T(α) = t1, their best
+  // points polished, the lowest (28) kept (final_stage.hpp), so that the fit's end depends less on round-off of its
+  // start. Off: measured (fitting/README.md, "A final stage that does not depend on the start"), it costs more than
+  // the cheaper start it was to allow and the later stages' searches still end by other routes.
+  FinalStageOptions final_stage;
   IdentifiabilityOptions identifiability;
   bool compute_std_errors = true;
   IntervalOptions intervals;
