@@ -19,6 +19,9 @@ Families (one seed gives the same trials):
   mujoco-lively     as `mujoco` with a springy contact (solref damping ratio LIVELY_DAMPING_RATIO instead of 1):
                     the box rocks for several cycles, so that its AVRF and OPMF can be measured (`--metrics`)
 
+`--solref-time-constant S` makes every family's contact stiffer or softer than the generator's 1 ms (MuJoCo needs
+S ≥ 2 × its 1e-4 s timestep): how much of a miss is the contact's softness.
+
 Random ranges: b1 = 0.05000453 m, h = 0.2 m, b2 = 2.5–6 cm, α = 0.5–0.95 θ_c, t0 = 0.8–1.6 s, recording 3 s.
 
 Usage (from the repository root, after building the targets rockfit and rockfit_mujoco_synth):
@@ -79,7 +82,8 @@ def run_trial(args, trial, out_dir):
     subprocess.run([args.generator, "-o", prefix, "--alpha", repr(trial["alpha"]), "--roll", repr(trial["roll"]),
                     "--t0", repr(trial["t0"]), "--duration", "3", "--b2", repr(trial["b2"]),
                     "--com-offset-y", repr(trial["com_offset_y"]), "--proud-vertex", str(trial["proud_vertex"]),
-                    "--seed", str(trial["seed"]), "--solref-damping-ratio", repr(trial.get("damping_ratio", 1.0))],
+                    "--seed", str(trial["seed"]), "--solref-damping-ratio", repr(trial.get("damping_ratio", 1.0))]
+                   + (["--solref-time-constant", repr(args.solref_time_constant)] if args.solref_time_constant else []),
                    check=True, capture_output=True)
     fit = subprocess.run([args.rockfit, "fit", prefix, "--rate", "256", "--b1", repr(B1), "--b2", repr(trial["b2"]),
                           "--h", repr(H), "--density", repr(DENSITY), "--threads", "1", "--json"] + widening_args(args)
@@ -401,6 +405,8 @@ def main():
                         help="rockfit fit --release-roll-mode MODE (default: not given, rockfit's auto: the roll fitted "
                              "when the fall shows one); off gives the fits of the program before the choice")
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--solref-time-constant", type=float, default=None,
+                        help="MuJoCo's contact time constant [s] (default: the generator's 0.001)")
     parser.add_argument("--first", type=int, default=0,
                         help="run only trials FIRST..TRIALS-1 of the seed (the earlier ones are drawn, not run): "
                              "a study split over several processes or continued later")
