@@ -5,8 +5,9 @@ For a change that must keep the fits (a faster search, say): run the reference p
 same trials and give both outputs here. Each input is either a coverage study's output directory (its
 trials.jsonl; `tools/coverage_study.py`, same --seed and --trials for both) or a `rockfit batch --json` document
 (the same manifest for both). Prints every trial whose ε rose by more than --max-rise (relative), the largest
-rise, and for a coverage study the share of the determined values whose 68 % and 95 % intervals hold the truth
-and the share of fits with ε ≤ 1.02 × ε(truth), for both; for two batch documents whose HDF5 files (their
+rise (noting where a study's two fits end their windows at different times, whose ε are then means over
+different windows), and for a coverage study the share of the determined values whose 68 % and 95 % intervals
+hold the truth and the share of fits with ε ≤ 1.02 × ε(truth), for both; for two batch documents whose HDF5 files (their
 "output") are still there, the largest change of each fitted value over the trials (read with h5py; it does not
 change the exit status). Exit status 1 when a trial's ε rose by more than
 --max-rise, a fit of the reference is missing from the other, or a coverage share of the other is lower.
@@ -77,6 +78,15 @@ def largest_value_changes(ref, other):
     return [(name, *largest[name]) for name in largest]
 
 
+def window_note(ref_row, other_row):
+    """For study rows whose fits end their windows at different times (the window extension of one program, say):
+    a note that the two ε are means over different windows, so the rise is no comparison; else ""."""
+    ends = [r.get("fit", {}).get("t_end") for r in (ref_row, other_row)]
+    if None in ends or ends[0] == ends[1]:
+        return ""
+    return f" — the windows differ (t_end {ends[0]:.6g} → {ends[1]:.6g} s): compare them over one window"
+
+
 def contains(interval, value):
     lo, hi = interval
     return (lo is None or lo <= value) and (hi is None or value <= hi)
@@ -119,7 +129,8 @@ def main():
             rise = other[k]["epsilon"] / ref[k]["epsilon"] - 1.0
             rises.append((rise, k))
             if rise > args.max_rise:
-                print(f"ε rose: {k}: {ref[k]['epsilon']:.7g} → {other[k]['epsilon']:.7g} rad/s ({100 * rise:+.3f} %)")
+                print(f"ε rose: {k}: {ref[k]['epsilon']:.7g} → {other[k]['epsilon']:.7g} rad/s ({100 * rise:+.3f} %)"
+                      + window_note(ref[k], other[k]))
                 bad = True
     rises.sort()
     if rises:
