@@ -77,27 +77,6 @@ std::vector<GridPoint> BestRows(std::vector<GridPoint> grid, int count) {
   return best;
 }
 
-// dα/dt0 along the ridge t0 + T(α) = t1: −1/T'(α), T' by a central difference of the model's first impact time;
-// nullopt where α ± h leaves its bounds or the model has no impact there.
-std::optional<double> RidgeAlphaPerT0(const Objective& objective, const Eigen::VectorXd& x_best, Eigen::Index i_alpha,
-                                      double h, std::int64_t* evaluations) {
-  const double alpha = x_best[i_alpha];
-  if (alpha - h < objective.FreeLower()[i_alpha] || alpha + h > objective.FreeUpper()[i_alpha]) return std::nullopt;
-  auto fall_time = [&](double alpha_rad) -> std::optional<double> {
-    Eigen::VectorXd x = x_best;
-    x[i_alpha] = alpha_rad;
-    const ParameterSet at = objective.WithFree(x);
-    ++*evaluations;
-    const std::optional<double> t1 = FirstImpactTime(objective, at);
-    if (!t1) return std::nullopt;
-    return *t1 - at.value(ParameterId::kT0);
-  };
-  const std::optional<double> minus = fall_time(alpha - h);
-  const std::optional<double> plus = fall_time(alpha + h);
-  if (!minus || !plus || !(*plus > *minus)) return std::nullopt;
-  return -2.0 * h / (*plus - *minus);
-}
-
 }  // namespace
 
 void FinalStageOptions::Validate() const {
@@ -140,12 +119,13 @@ std::pair<std::size_t, std::size_t> RunPass(const Objective& objective, const Fi
   const Eigen::Index i_t0 = FreeIndex(objective, ParameterId::kT0);
   const Eigen::Index i_alpha = FreeIndex(objective, ParameterId::kAlpha);
   if (options.ridge_points > 0 && i_t0 >= 0 && i_alpha >= 0) {
-    const std::optional<double> alpha_per_t0 =
-        RidgeAlphaPerT0(objective, x_best, i_alpha, options.ridge_alpha_difference_rad, &result->evaluations);
-    if (alpha_per_t0) {
+    // dα/dt0 = −1/T'(α) keeps the first impact t1 = t0 + T(α).
+    const std::optional<double> fall_slope = FallTimeSlope(objective, objective.WithFree(x_best),
+                                                           options.ridge_alpha_difference_rad, &result->evaluations);
+    if (fall_slope) {
       Eigen::VectorXd along_ridge = Eigen::VectorXd::Zero(n);
       along_ridge[i_t0] = 1.0;
-      along_ridge[i_alpha] = *alpha_per_t0;
+      along_ridge[i_alpha] = -1.0 / *fall_slope;
       const std::vector<GridPoint> ridge_grid =
           RunGrid(objective, x_best, along_ridge, Offsets(options.ridge_t0_half_width_s, options.ridge_points),
                   FreeIndex(objective, ParameterId::kLambdaLon),

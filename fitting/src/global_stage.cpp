@@ -180,19 +180,9 @@ std::optional<ParameterSet> RidgeScan(const Objective& objective, const Paramete
   const Parameter& alpha = objective.parameters()[ParameterId::kAlpha];
   const Parameter& lon = objective.parameters()[ParameterId::kLambdaLon];
   const double alpha0 = at.value(ParameterId::kAlpha);
-  const double h = g.ridge_alpha_difference_rad;
-  if (alpha0 - h < alpha.lower || alpha0 + h > alpha.upper) return std::nullopt;
-  auto fall_time = [&](double alpha_rad) -> std::optional<double> {
-    ParameterSet q = at;
-    q[ParameterId::kAlpha].value = alpha_rad;
-    const std::optional<double> t1 = FirstImpactTime(objective, q);
-    if (!t1) return std::nullopt;
-    return *t1 - q.value(ParameterId::kT0);
-  };
-  const std::optional<double> fall_minus = fall_time(alpha0 - h);
-  const std::optional<double> fall_plus = fall_time(alpha0 + h);
-  if (!fall_minus || !fall_plus || !(*fall_plus > *fall_minus)) return std::nullopt;
-  const double dfall_dalpha = (*fall_plus - *fall_minus) / (2.0 * h);  // T'(α) > 0 [s/rad]
+  const std::optional<double> fall_slope = FallTimeSlope(objective, at, g.ridge_alpha_difference_rad);
+  if (!fall_slope) return std::nullopt;
+  const double dfall_dalpha = *fall_slope;  // T'(α) > 0 [s/rad]
 
   std::optional<ParameterSet> best;
   double best_epsilon = 0.0;
@@ -491,6 +481,25 @@ std::optional<double> FirstImpactTime(const Objective& objective, const Paramete
   ModelOutput output;
   if (!objective.EvaluateDetailed(at, &nodes, &output).feasible || output.events.empty()) return std::nullopt;
   return at.value(ParameterId::kT0) + output.events.front().t_s;
+}
+
+std::optional<double> FallTimeSlope(const Objective& objective, const ParameterSet& at, double h_rad,
+                                    std::int64_t* model_runs) {
+  const Parameter& alpha = objective.parameters()[ParameterId::kAlpha];
+  const double alpha0 = at.value(ParameterId::kAlpha);
+  if (alpha0 - h_rad < alpha.lower || alpha0 + h_rad > alpha.upper) return std::nullopt;
+  auto fall_time = [&](double alpha_rad) -> std::optional<double> {
+    ParameterSet q = at;
+    q[ParameterId::kAlpha].value = alpha_rad;
+    if (model_runs != nullptr) ++*model_runs;
+    const std::optional<double> t1 = FirstImpactTime(objective, q);
+    if (!t1) return std::nullopt;
+    return *t1 - q.value(ParameterId::kT0);
+  };
+  const std::optional<double> fall_minus = fall_time(alpha0 - h_rad);
+  const std::optional<double> fall_plus = fall_time(alpha0 + h_rad);
+  if (!fall_minus || !fall_plus || !(*fall_plus > *fall_minus)) return std::nullopt;
+  return (*fall_plus - *fall_minus) / (2.0 * h_rad);
 }
 
 GlobalStageResult RunGlobalStage(const Objective& objective, const Eigen::VectorXd& estimate_in,

@@ -71,6 +71,12 @@ ParameterSet ScanParameter(const Objective& window, const ParameterSet& at, Para
 // fails there or has no impact in the window.
 std::optional<double> FirstImpactTime(const Objective& objective, const ParameterSet& at);
 
+// T'(α) [s/rad] at `at`: the central difference of the model's fall time T = t1 − t0 over α ± h_rad (two model runs,
+// counted in *model_runs when given). nullopt where α ± h_rad leaves α's bounds, the model has no impact at either,
+// or T does not grow with α. Moving α by −dt0/T'(α) with t0 keeps the first impact t1 = t0 + T(α) to first order.
+std::optional<double> FallTimeSlope(const Objective& objective, const ParameterSet& at, double h_rad,
+                                    std::int64_t* model_runs = nullptr);
+
 // Every scan over a parameter's bounds (steps 2–4) first bounds each point's (28) from below by a run over the first
 // `scan_prefix_fraction` of the window and runs the whole window only where the bound leaves the point a chance
 // (prefix_screen.hpp): the scans' results are those of the unscreened scans.
