@@ -55,6 +55,10 @@ class Dop853 {
 
   // The continuous extension at t ∈ [t_previous(), t()]; requires PrepareDense() after the last Step().
   void Interpolate(double t, Vector* y) const;
+  // Components [First, First + Count) of Interpolate(t) alone, bit for bit (an output sample that needs only some
+  // of the state, such as ω without the attitude).
+  template <int First, int Count>
+  void InterpolateComponents(double t, Eigen::Matrix<double, Count, 1>* y) const;
 
   double t() const { return t_; }
   const Vector& y() const { return y_; }
@@ -81,6 +85,15 @@ class Dop853 {
   // x^(1/8) for x ≥ 0, the step-size controller's exponent for an 8th-order method: three square roots
   // (correctly rounded each) instead of std::pow, the same value to a few units of round-off and cheaper.
   static double EighthRoot(double x) { return std::sqrt(std::sqrt(std::sqrt(x))); }
+  // Component i of the continuous extension at θ = (t − t_previous)/h (Horner form, detail/dop853_tableau.hpp).
+  double DenseComponent(int i, double theta, double theta1) const {
+    return dense_[0][i] +
+           theta * (dense_[1][i] +
+                    theta1 * (dense_[2][i] +
+                              theta * (dense_[3][i] +
+                                       theta1 * (dense_[4][i] +
+                                                 theta * (dense_[5][i] + theta1 * (dense_[6][i] + theta * dense_[7][i]))))));
+  }
   // *out = base + h·Σ_{j<count} weights[j]·k_j.
   template <std::size_t M>
   void Combine(const std::array<double, M>& weights, int count, double h, const Vector& base, Vector* out) const {
@@ -325,16 +338,16 @@ template <int N>
 void Dop853<N>::Interpolate(double t, Vector* y) const {
   const double theta = (t - t_previous_) * inverse_h_;  // by the reciprocal: one division a step, not a call
   const double theta1 = 1.0 - theta;
-  // Horner form of the continuous extension (see detail/dop853_tableau.hpp).
-  for (int i = 0; i < N; ++i) {
-    (*y)[i] = dense_[0][i] +
-              theta * (dense_[1][i] +
-                       theta1 * (dense_[2][i] +
-                                 theta * (dense_[3][i] +
-                                          theta1 * (dense_[4][i] +
-                                                    theta * (dense_[5][i] +
-                                                             theta1 * (dense_[6][i] + theta * dense_[7][i]))))));
-  }
+  for (int i = 0; i < N; ++i) (*y)[i] = DenseComponent(i, theta, theta1);
+}
+
+template <int N>
+template <int First, int Count>
+void Dop853<N>::InterpolateComponents(double t, Eigen::Matrix<double, Count, 1>* y) const {
+  static_assert(First >= 0 && Count > 0 && First + Count <= N, "components outside the state");
+  const double theta = (t - t_previous_) * inverse_h_;
+  const double theta1 = 1.0 - theta;
+  for (int i = 0; i < Count; ++i) (*y)[i] = DenseComponent(First + i, theta, theta1);
 }
 
 }  // namespace rockfit::core

@@ -70,13 +70,13 @@ bool BuildErrorNodes(const MeasuredSignal& signal, double t0_s, double t_end_s, 
   nodes->t_s[n - 1] = t_end_s;
   nodes->w_m_B[n - 1] = signal.Interpolate(t_end_s);
 
-  // Trapezoid weights: w_i = (t_{i+1} − t_{i−1}) / 2, halves at both ends.
-  for (std::size_t i = 0; i < n; ++i) {
-    const double left = i > 0 ? nodes->t_s[i] - nodes->t_s[i - 1] : 0.0;
-    const double right = i + 1 < n ? nodes->t_s[i + 1] - nodes->t_s[i] : 0.0;
-    nodes->weight_s[i] = 0.5 * (left + right);
-    nodes->t_after_release_s[i] = nodes->t_s[i] - t0_s;
-  }
+  // Trapezoid weights: w_i = ((t_i − t_{i−1}) + (t_{i+1} − t_i)) / 2, halves at both ends (n ≥ 2). The end nodes
+  // apart, so that the loop over the interior has no branch and vectorises.
+  const std::vector<double>& t = nodes->t_s;
+  nodes->weight_s[0] = 0.5 * (0.0 + (t[1] - t[0]));
+  for (std::size_t i = 1; i + 1 < n; ++i) nodes->weight_s[i] = 0.5 * ((t[i] - t[i - 1]) + (t[i + 1] - t[i]));
+  nodes->weight_s[n - 1] = 0.5 * ((t[n - 1] - t[n - 2]) + 0.0);
+  for (std::size_t i = 0; i < n; ++i) nodes->t_after_release_s[i] = t[i] - t0_s;
   // Excluded samples: their nodes, and an end node interpolated from one, carry no weight.
   nodes->excluded_weight_s = 0.0;
   nodes->num_excluded = 0;

@@ -37,6 +37,9 @@ class VertexMode {
   static constexpr bool kEulerFromQuaternion = true;
   // A vertex height can fall below zero and rise again within one step: steps stay below max_step_s.
   static constexpr bool kGuardsNeedStepBound = true;
+  // AngularVelocity_B(y) is the state's components [4, 7): a sample without attitude interpolates only those.
+  static constexpr int kAngularVelocityFirst = 4;
+  static_assert(kAngularVelocityFirst + 3 == kStateSize, "ω is the state's tail (VertexDynamics::AngularVelocity)");
   using State = VertexDynamics::State;
   enum GuardIndex { kTouchNext = 0, kTouchPrevious = 1, kOverNext = 2, kOverPrevious = 3 };
 

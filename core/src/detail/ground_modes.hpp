@@ -41,6 +41,7 @@ class GroundVertexMode {
   static constexpr int kNumGuards = VertexMode::kNumGuards;
   static constexpr bool kEulerFromQuaternion = VertexMode::kEulerFromQuaternion;
   static constexpr bool kGuardsNeedStepBound = true;
+  static constexpr int kAngularVelocityFirst = VertexMode::kAngularVelocityFirst;
   using State = VertexMode::State;
 
   // falls_on_side: OverturnRule::kFallsOnSide (the over guards become SideLanding).

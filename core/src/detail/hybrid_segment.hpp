@@ -49,6 +49,12 @@ template <class ModeT>
 struct HasGuards<ModeT, std::void_t<decltype(std::declval<const ModeT&>().Guards(
                             0.0, std::declval<const typename ModeT::State&>()))>> : std::true_type {};
 
+// Modes whose AngularVelocity_B(y) is the state's components [kAngularVelocityFirst, +3).
+template <class ModeT, class = void>
+struct HasStateAngularVelocity : std::false_type {};
+template <class ModeT>
+struct HasStateAngularVelocity<ModeT, std::void_t<decltype(ModeT::kAngularVelocityFirst)>> : std::true_type {};
+
 template <class ModeT>
 std::array<GuardValue, ModeT::kNumGuards> EvaluateGuards(const ModeT& mode, double t, const typename ModeT::State& y) {
   if constexpr (HasGuards<ModeT>::value) {
@@ -133,6 +139,21 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
     return y_dense;
   };
 
+  // The sample at t in the current step: without attitudes, where ω is part of the state, only ω's three
+  // components of the dense output (the same values bit for bit), else the whole state.
+  const auto emit_at = [&](double t) {
+    if constexpr (HasStateAngularVelocity<ModeT>::value) {
+      if (!sampler.with_attitude()) {
+        integrator.PrepareDense(mode);
+        Eigen::Vector3d w_B;
+        integrator.template InterpolateComponents<ModeT::kAngularVelocityFirst, 3>(t, &w_B);
+        sampler.EmitRate(mode_label, w_B);
+        return;
+      }
+    }
+    emit(interpolate(t));
+  };
+
   for (;;) {
     // Round-off floor of the time variable: closer to the limit than this counts as reaching it.
     const double t_floor = 16.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(integrator.t()));
@@ -165,7 +186,7 @@ SegmentOutcome<ModeT> RunSegment(const ModeT& mode, double t_start, const typena
       }
     }
     const double t_stop = fired >= 0 ? t_event : t1;
-    while (sampler.pending() && sampler.next_time() < t_stop) emit(interpolate(sampler.next_time()));
+    while (sampler.pending() && sampler.next_time() < t_stop) emit_at(sampler.next_time());
     if (fired >= 0) {
       outcome.next_step_hint_s = integrator.suggested_step();
       const State y_event = t_event >= t1 ? y1 : interpolate(t_event);

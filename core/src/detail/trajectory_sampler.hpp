@@ -22,6 +22,7 @@ class TrajectorySampler {
 
   bool pending() const { return pending_; }
   double next_time() const { return next_time_; }
+  bool with_attitude() const { return with_attitude_; }
 
   // Appends the sample at next_time() and moves on. `attitude()` returns q_WB, of unit norm to round-off (it is
   // not normalised again), and `euler(q_WB)` its Euler angles (φz, φy, φx) (a mode may know them without
@@ -36,6 +37,13 @@ class TrajectorySampler {
       out_->q_WB.push_back(q_WB);
       out_->euler_zyx.push_back(euler(q_WB));
     }
+    Advance();
+  }
+  // The sample of a run without attitudes (with_attitude() false): ω alone.
+  void EmitRate(const Mode& mode, const Eigen::Vector3d& w_B) {
+    out_->t_s.push_back(next_time_);
+    out_->w_B.push_back(w_B);
+    out_->mode.push_back(mode);
     Advance();
   }
   // The same with the Euler angles from the quaternion, by increments from the previous sample where it is the
