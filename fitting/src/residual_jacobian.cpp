@@ -9,7 +9,8 @@
 namespace rockfit::fitting {
 namespace {
 
-// The column of core::SampleSensitivity for a model parameter; −1 for one without (τ_edge) and for t0.
+// The column of core::SampleSensitivity for a model parameter; −1 for one without (τ_edge, the release roll) and
+// for t0.
 int SensitivityColumnOf(ParameterId id) {
   switch (id) {
     case ParameterId::kAlpha: return static_cast<int>(core::SensitivityColumn::kAlpha);
@@ -17,7 +18,8 @@ int SensitivityColumnOf(ParameterId id) {
     case ParameterId::kLambdaLat: return static_cast<int>(core::SensitivityColumn::kLambdaLat);
     case ParameterId::kLambdaLon: return static_cast<int>(core::SensitivityColumn::kLambdaLon);
     case ParameterId::kT0:
-    case ParameterId::kTauEdge: break;
+    case ParameterId::kTauEdge:
+    case ParameterId::kReleaseRoll: break;
   }
   return -1;
 }

@@ -56,7 +56,7 @@ bool LoadSampleCampaign(benchmark::State& state, std::vector<fitting::MeasuredSi
   const io::Manifest manifest = io::ReadManifest(manifest_path);
   for (const io::TrialSpec& trial : manifest.trials) {
     const io::Recording r = app::LoadManifestTrial(trial);
-    signals->push_back({r.t_s, r.w_B, {}});
+    signals->push_back({r.t_s, r.w_B, {}, {}});
     blocks->push_back(manifest.FindBlock(trial.block_id).ToBlock());
   }
   return true;

@@ -57,7 +57,9 @@ TEST(EulerZyxSequence, FirstSampleAndEveryKExactEveryAreExactBitForBit) {
   for (std::size_t k = 0; k < 200; ++k) {
     const Eigen::Quaterniond q = CanonicalUnitQuaternion(Tumbling(0.3 + static_cast<double>(k) / 1024.0));
     const Eigen::Vector3d got = sequence.Next(q, k);
-    if (k % (EulerZyxSequence::kExactEvery + 1) == 0) EXPECT_EQ(got, EulerZyxFromUnitQuaternion(q)) << k;
+    if (k % (EulerZyxSequence::kExactEvery + 1) == 0) {
+      EXPECT_EQ(got, EulerZyxFromUnitQuaternion(q)) << k;
+    }
   }
 }
 

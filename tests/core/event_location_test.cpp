@@ -349,7 +349,9 @@ TEST(HermiteDipTime, FindsEveryDipOfRandomCubicsThatTheSampledCubicShows) {
       ASSERT_TRUE(dip.has_value()) << trial;
       ++dips;
     }
-    if (dip) EXPECT_LT(cubic(*dip / h), 0.0) << trial;
+    if (dip) {
+      EXPECT_LT(cubic(*dip / h), 0.0) << trial;
+    }
   }
   EXPECT_GT(dips, 1000);
 }

@@ -54,7 +54,7 @@ ValidationSummary Check(const Campaign& c) {
   return RunPredictiveCheck(c.fits, [&c](std::size_t i) {
     const testing::AnalyticTrial& t = c.trials[i];
     const ParameterSet bounded = t.Bounded(BoundsSet::kEmpirical);
-    return PreparedTrial{t.MakeObjective(bounded), bounded, FitOptions{}, nullptr};
+    return PreparedTrial{t.MakeObjective(bounded), bounded, FitOptions{}, nullptr, std::nullopt};
   });
 }
 

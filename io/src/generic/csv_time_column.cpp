@@ -9,6 +9,10 @@
 namespace rockfit::io {
 namespace {
 
+// GCC's and Clang's 128-bit integer (not ISO C++, hence __extension__): the difference of two 64-bit counts and the
+// offset of their wraps, exactly.
+__extension__ typedef __int128 Int128;
+
 constexpr const char* kRepeatTodo =
     "Each sample needs its own time: a repeated time means a duplicated line or a clock of too coarse a resolution. "
     "Delete the repeated line, or leave the time column out and give the rate.";
@@ -39,10 +43,10 @@ bool ReadIntegers(const CsvTable& table, std::size_t column, double to_si, CsvTi
     values[row] = *value;
   }
   out.t_s.assign(n, 0.0);
-  __int128 offset = 0;  // added by wraps so far
-  __int128 longest_step = 0;
+  Int128 offset = 0;  // added by wraps so far
+  Int128 longest_step = 0;
   for (std::size_t row = 1; row < n; ++row) {
-    const __int128 step = static_cast<__int128>(values[row]) - values[row - 1];
+    const Int128 step = static_cast<Int128>(values[row]) - values[row - 1];
     if (step > 0) {
       longest_step = std::max(longest_step, step);
     } else {
@@ -50,7 +54,7 @@ bool ReadIntegers(const CsvTable& table, std::size_t column, double to_si, CsvTi
       std::optional<std::uint64_t> modulus;
       for (const std::uint64_t m : {std::uint64_t{1} << 16, std::uint64_t{1} << 32}) {
         if (values[row] < 0 || values[row - 1] >= static_cast<std::int64_t>(m)) continue;
-        const __int128 across = step + static_cast<__int128>(m);
+        const Int128 across = step + static_cast<Int128>(m);
         if (across > 0 && longest_step > 0 &&
             static_cast<double>(across) <= kWrapStepFactor * static_cast<double>(longest_step)) {
           modulus = m;
@@ -61,14 +65,14 @@ bool ReadIntegers(const CsvTable& table, std::size_t column, double to_si, CsvTi
         ThrowNotIncreasing(table, row, column, false);
       out.wrap_modulus = *modulus;
       ++out.wraps;
-      offset += static_cast<__int128>(*modulus);
+      offset += static_cast<Int128>(*modulus);
       out.notes.push_back(fmt::format("{}: the time counter wraps at 2^{} between lines {} and {} ('{}' → '{}'); "
                                       "unwrapped",
                                       FormatPosition(table.PositionOf(row, column)), *modulus == (1u << 16) ? 16 : 32,
                                       table.Line(row - 1), table.Line(row), table.Cell(row - 1, column),
                                       table.Cell(row, column)));
     }
-    const __int128 relative = static_cast<__int128>(values[row]) - values[0] + offset;
+    const Int128 relative = static_cast<Int128>(values[row]) - values[0] + offset;
     out.t_s[row] = static_cast<double>(relative) * to_si;
   }
   out.absolute = static_cast<double>(values[0]) * to_si >= kEpochThreshold_s;

@@ -433,9 +433,13 @@ TEST(SynthMeasurement, RingingsNetIntegralStaysInTheAttitudeEstimate) {
   EXPECT_NEAR(roll_deg, continuous_deg, 0.1 * continuous_deg);
   const double tolerance = SinglePrecisionAngleToleranceDeg(0.0);
   for (std::size_t n = 0; n < d.size(); ++n) {
-    if (motion.t_s(n) < t1) EXPECT_NEAR(d.euler_deg[n].x(), 0.0, tolerance) << n;
+    if (motion.t_s(n) < t1) {
+      EXPECT_NEAR(d.euler_deg[n].x(), 0.0, tolerance) << n;
+    }
     // 30 decay times after the impact the envelope is e⁻³⁰: the sum is complete.
-    if (motion.t_s(n) > t1 + 30.0 * o.ringing_decay_time_s) EXPECT_NEAR(d.euler_deg[n].x(), roll_deg, tolerance) << n;
+    if (motion.t_s(n) > t1 + 30.0 * o.ringing_decay_time_s) {
+      EXPECT_NEAR(d.euler_deg[n].x(), roll_deg, tolerance) << n;
+    }
     EXPECT_NEAR(d.euler_deg[n].y(), 0.0, tolerance) << n;
     EXPECT_NEAR(d.euler_deg[n].z(), 0.0, tolerance) << n;
   }

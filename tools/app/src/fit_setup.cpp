@@ -125,7 +125,7 @@ PreparedFit PrepareFit(const io::Recording& recording, const core::Block& block,
   options.Validate();
 
   fitting::ParameterSet set = MakeParameterSet(args);
-  const fitting::MeasuredSignal signal{recording.t_s, recording.w_B, {}};
+  const fitting::MeasuredSignal signal{recording.t_s, recording.w_B, {}, {}};
   fitting::TrialProblemOptions problem_options;
   problem_options.t_end_s = args.t_end_s;
   problem_options.subtract_rest_bias = !args.keep_bias;
