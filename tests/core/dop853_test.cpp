@@ -116,6 +116,40 @@ TEST(Dop853, ContinuousExtensionMatchesTheStepEnds) {
   EXPECT_NEAR((y - integrator.y()).norm(), 0.0, 1e-15);
 }
 
+// A linear system of 7 states (the size of vertex rocking, whose stage sums run stage by stage): y' = A y with a
+// rotation in (y0, y1), a decay in y2 and couplings among y3..y6.
+struct SevenStates {
+  void operator()(double, const Eigen::Matrix<double, 7, 1>& y, Eigen::Matrix<double, 7, 1>& dydt) const {
+    dydt << y[1], -y[0], -0.3 * y[2], y[4] - 0.1 * y[3], -y[3] + 0.2 * y[6], 0.5 * y[0] - y[5], -0.7 * y[4];
+  }
+};
+
+TEST(Dop853, ComponentInterpolationGivesTheBitsOfTheWholeState) {
+  using Vector7 = Eigen::Matrix<double, 7, 1>;
+  Dop853<7> integrator(Dop853Options{});
+  Vector7 y0;
+  y0 << 1.0, 0.0, 2.0, 0.3, -0.4, 0.5, -0.6;
+  integrator.Reset(SevenStates{}, 0.0, y0);
+  int checked = 0;
+  while (integrator.t() < 5.0) {
+    ASSERT_EQ(integrator.Step(SevenStates{}, 5.0), StepStatus::kOk);
+    integrator.PrepareDense(SevenStates{});
+    for (double theta : {0.0, 0.21, 0.5, 0.93, 1.0}) {
+      const double t = integrator.t_previous() + theta * (integrator.t() - integrator.t_previous());
+      Vector7 all;
+      integrator.Interpolate(t, &all);
+      Eigen::Vector3d tail;
+      integrator.InterpolateComponents<4, 3>(t, &tail);
+      Eigen::Matrix<double, 2, 1> head;
+      integrator.InterpolateComponents<0, 2>(t, &head);
+      for (int i = 0; i < 3; ++i) EXPECT_EQ(tail[i], all[4 + i]) << t;
+      for (int i = 0; i < 2; ++i) EXPECT_EQ(head[i], all[i]) << t;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 10);
+}
+
 TEST(Dop853, AdaptiveStepsMeetTheRequestedTolerance) {
   for (double rel_tol : {1e-6, 1e-9, 1e-12}) {
     Dop853Options options;

@@ -1,5 +1,6 @@
 // Names, option validation and parameter validation of the simulator.
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include <gtest/gtest.h>
@@ -114,6 +115,14 @@ TEST(SimulationOptions, RejectsEachBadFieldNamingIt) {
   o = {};
   o.sample_times_s = {0.0, std::nan("")};
   ExpectRejected(o, "sample time");
+  o.sample_times_s = {std::numeric_limits<double>::infinity(), 1.0};
+  ExpectRejected(o, "sample time");
+  o.sample_times_s = {0.0, 0.5, -std::numeric_limits<double>::infinity()};
+  ExpectRejected(o, "sample time");
+  o.sample_times_s = {0.0, 0.5, 0.25, 1.0};
+  ExpectRejected(o, "ascending order; time 2");
+  o.sample_times_s = {-0.5, 0.0, 0.0, 1.0};  // repeated times are allowed, negative ones too
+  EXPECT_NO_THROW(o.Validate());
   o = {};
   InitialState s;
   s.contact = Contact{};
