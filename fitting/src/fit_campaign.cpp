@@ -57,6 +57,7 @@ void FitOne(CampaignRun& run, const CampaignTrial& trial, TrialOutcome& o) {
   const PreparedTrial prepared = trial.prepare();
   FitSummary summary = Fit(prepared.objective, prepared.start, prepared.options);
   summary.release_roll_choice = prepared.release_roll_choice;
+  if (prepared.recording) AttachReleaseTiltCheck(prepared.recording->mounting_check, &summary);
   o.epsilon_rad_s = summary.epsilon_rad_s;
   o.fit_wall_s = summary.wall_time_s;
   o.model_error = summary.model_error;

@@ -121,6 +121,20 @@ void WriteReleaseRollChoice(const io::hdf5::Group& g, const std::optional<Releas
   g.SetString("release_roll_choice", c.reason);
 }
 
+// The fitted α against the tilt at rest (release_tilt_check.hpp), only when the fit was made from a recording:
+// release_tilt_rest_rad, release_tilt_rest_std_error_rad (NaN where the recording gave none), release_tilt_z (NaN
+// where not compared), release_tilt_consistent (1, 0; −1 where not compared), release_tilt_check (the sentence).
+void WriteReleaseTiltCheck(const io::hdf5::Group& g, const std::optional<ReleaseTiltCheck>& check) {
+  if (!check) return;
+  const double nan = std::nan("");
+  const ReleaseTiltCheck& c = *check;
+  g.SetDouble("release_tilt_rest_rad", std::isfinite(c.rest_rad) ? c.rest_rad : nan);
+  g.SetDouble("release_tilt_rest_std_error_rad", std::isfinite(c.rest_std_error_rad) ? c.rest_std_error_rad : nan);
+  g.SetDouble("release_tilt_z", c.available ? c.z : nan);
+  g.SetInt("release_tilt_consistent", c.available ? (c.consistent ? 1 : 0) : -1);
+  g.SetString("release_tilt_check", c.reason);
+}
+
 void WriteFitAttributes(const io::hdf5::Group& g, const std::string& settings, const FitSummary& s) {
   g.SetDouble("epsilon_rad_s", s.epsilon_rad_s);
   g.SetDouble("epsilon_initial_rad_s", s.epsilon_initial_rad_s);
@@ -141,6 +155,7 @@ void WriteFitAttributes(const io::hdf5::Group& g, const std::string& settings, c
   WriteModelErrorAttributes(g, s.model_error);
   WriteGyroScale(g, s.gyro_scale);
   WriteReleaseRollChoice(g, s.release_roll_choice);
+  WriteReleaseTiltCheck(g, s.release_tilt);
   g.SetString("settings", settings);
   g.SetString("settings_hash", SettingsHash(settings));
   g.SetString("model", s.model_description);

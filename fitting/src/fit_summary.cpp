@@ -30,12 +30,13 @@ const char* ToString(WarningKind kind) {
     case WarningKind::kMovedByLateralRescan: return "moved_by_lateral_rescan";
     case WarningKind::kWindowExtended: return "window_extended";
     case WarningKind::kModelErrorDominates: return "model_error_dominates";
+    case WarningKind::kReleaseTiltDisagrees: return "release_tilt_disagrees";
   }
   return "?";
 }
 
 bool FromString(std::string_view text, WarningKind* value) {
-  static constexpr WarningKind kAll[] = {WarningKind::kAtBound, WarningKind::kNotIdentifiable, WarningKind::kSimulationFailures, WarningKind::kNotConverged, WarningKind::kStdErrorUnavailable, WarningKind::kInfeasible, WarningKind::kPoorFit, WarningKind::kSecondBasin, WarningKind::kNotDetermined, WarningKind::kMovedByIntervals, WarningKind::kLateralMotionUnexplained, WarningKind::kMovedByLateralRescan, WarningKind::kModelErrorDominates, WarningKind::kWindowExtended};
+  static constexpr WarningKind kAll[] = {WarningKind::kAtBound, WarningKind::kNotIdentifiable, WarningKind::kSimulationFailures, WarningKind::kNotConverged, WarningKind::kStdErrorUnavailable, WarningKind::kInfeasible, WarningKind::kPoorFit, WarningKind::kSecondBasin, WarningKind::kNotDetermined, WarningKind::kMovedByIntervals, WarningKind::kLateralMotionUnexplained, WarningKind::kMovedByLateralRescan, WarningKind::kModelErrorDominates, WarningKind::kWindowExtended, WarningKind::kReleaseTiltDisagrees};
   return core::FromStringAmong(text, kAll, value);
 }
 
@@ -78,6 +79,7 @@ std::string FitSummary::FullReport() const {
   out << "model error " << ModelErrorText(model_error) << "\n";
   if (gyro_scale.mode != GyroScaleMode::kOff) out << "gyro scale  " << GyroScaleText(gyro_scale) << "\n";
   if (release_roll_choice) out << "release roll " << ReleaseRollChoiceText(*release_roll_choice) << "\n";
+  if (release_tilt) out << "release tilt " << ReleaseTiltCheckText(*release_tilt) << "\n";
   out << fmt::format("effort      {} simulations in {:.3f} s ({:.0f} per second), method {}\n", simulations,
                      wall_time_s, simulations_per_second, ToString(method));
   for (const StageReport& s : stages) {
@@ -140,6 +142,7 @@ std::string FitSummary::ToJson(const std::string& trial) const {
   // Only when estimated: the documents of fits without it keep their keys.
   if (gyro_scale.mode != GyroScaleMode::kOff) j["gyro_scale"] = nlohmann::json::parse(GyroScaleJson(gyro_scale));
   if (release_roll_choice) j["release_roll_choice"] = nlohmann::json::parse(ReleaseRollChoiceJson(*release_roll_choice));
+  if (release_tilt) j["release_tilt"] = nlohmann::json::parse(ReleaseTiltCheckJson(*release_tilt));
   j["epsilon"] = epsilon_rad_s;
   j["epsilon_initial"] = epsilon_initial_rad_s;
   j["feasible"] = feasible;

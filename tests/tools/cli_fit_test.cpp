@@ -31,10 +31,17 @@ TEST(CliFit, JsonHasTheDocumentedKeysAndEpsilonNotAboveTheStart) {
   const nlohmann::json j = nlohmann::json::parse(r.out);
   for (const char* key : {"trial", "parameters", "correlation", "uncertainty_method", "uncertainty", "epsilon",
                           "epsilon_initial", "t_end", "window", "simulations", "wall_s", "termination", "warnings",
-                          "mounting", "lateral_motion", "model_error", "release_roll_choice"}) {
+                          "mounting", "lateral_motion", "model_error", "release_roll_choice", "release_tilt"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
-  EXPECT_EQ(j.size(), 17u) << "only the documented keys";
+  EXPECT_EQ(j.size(), 18u) << "only the documented keys";
+  // The sample recording rests before the release and after the rocking: its tilt at rest is compared with the fit's
+  // α, and the two agree (it was released from rest at the tilt its model falls from).
+  EXPECT_TRUE(j["release_tilt"]["available"].get<bool>());
+  EXPECT_TRUE(j["release_tilt"]["consistent"].get<bool>());
+  EXPECT_LT(std::abs(j["release_tilt"]["z"].get<double>()), 3.0);
+  EXPECT_EQ(j["release_tilt"]["fitted_rad"], j["parameters"]["alpha"]["value"]);
+  EXPECT_EQ(j["release_tilt"]["rest_rad"], j["mounting"]["release_tilt_rad"]);
   // The sample trial was released on its edge: the fall shows no roll, and the roll is not fitted.
   EXPECT_EQ(j["release_roll_choice"]["mode"], "auto");
   EXPECT_TRUE(j["release_roll_choice"]["judged"].get<bool>());
@@ -144,6 +151,12 @@ assert list(g['parameters/fixed'][()]) == [1, 1, 0, 0, 0, 1]
 assert g['w_B_simulated'].shape == g['w_B_measured'].shape and g['w_B_measured'].shape[1] == 3
 assert g.attrs['epsilon_rad_s'] <= g.attrs['epsilon_initial_rad_s']
 assert len(g['impacts/t_s']) > 0
+# α held: the tilt at rest is stored, but not compared
+assert 0.18 < g.attrs['release_tilt_rest_rad'] < 0.22 and g.attrs['release_tilt_rest_std_error_rad'] > 0
+assert g.attrs['release_tilt_consistent'] == -1 and g.attrs['release_tilt_z'] != g.attrs['release_tilt_z']
+h = f['fits/block2-B-1']
+assert h.attrs['release_tilt_consistent'] in (0, 1) and abs(h.attrs['release_tilt_z']) < 10
+assert 'σ apart' in h.attrs['release_tilt_check'], h.attrs['release_tilt_check']
 print('ok')
 )",
                                             out);

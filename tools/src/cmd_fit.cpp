@@ -13,6 +13,7 @@
 #include "rockfit/core/errors.hpp"
 #include "rockfit/fitting/fit_store.hpp"
 #include "rockfit/fitting/fitter.hpp"
+#include "rockfit/fitting/release_tilt_check.hpp"
 #include "rockfit/io/campaign_hdf5.hpp"
 #include "rockfit/io/hdf5_transaction.hpp"
 
@@ -102,6 +103,7 @@ int RunFit(const FitCommand& cmd) {
 
   fitting::FitSummary summary = fitting::Fit(prepared.objective, prepared.start, prepared.options);
   summary.release_roll_choice = prepared.release_roll_choice;
+  fitting::AttachReleaseTiltCheck(input.recording.mounting_check, &summary);
   const std::string trial = TrialNameFrom(input.trial_id);
   if (!cmd.output.empty()) {
     io::hdf5::Transaction tx(cmd.output, {"/fits/" + trial});

@@ -300,6 +300,7 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
     c.determined[static_cast<std::size_t>(i)] = c.std_error_deg[i] < o.undetermined_std_deg;
   }
   c.release_tilt_rad = alpha;
+  c.release_tilt_std_error_rad = std::sqrt(covariance(3, 3));
   std::vector<std::string> free_axes;
   for (int i = 0; i < 3; ++i) {
     if (!c.determined[static_cast<std::size_t>(i)]) free_axes.emplace_back(kAxisNames[i]);

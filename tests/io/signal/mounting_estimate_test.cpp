@@ -95,6 +95,10 @@ TEST(MountingEstimate, RecoversASmallRotationAboutEachAxisWithItsStandardError) 
       EXPECT_LT(e.check.std_error_deg[i], kAngleTolerance_deg);
     }
     EXPECT_NEAR(e.check.release_tilt_rad, 0.2, kTiltTolerance_deg * kRadPerDeg);
+    // The tilt's standard error: the tilt about y trades against the rotation about y, which only the rest after the
+    // rocking fixes, so it is at least that angle's.
+    EXPECT_GE(e.check.release_tilt_std_error_rad, 0.99 * e.check.std_error_deg[1] * kRadPerDeg);
+    EXPECT_LT(e.check.release_tilt_std_error_rad, kTiltTolerance_deg * kRadPerDeg);
     EXPECT_GT(e.rest_before_samples, 200u);
     EXPECT_GT(e.phase1_samples, 50u);  // |ω| ≥ 0.2 of the landing rate: the last 55 % of the fall
     EXPECT_GT(e.rest_after_samples, 200u);

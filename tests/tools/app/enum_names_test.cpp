@@ -181,7 +181,8 @@ TEST(EnumNames, FittingAndQuakeEnumsRoundTripThroughTextJsonAndHdf5) {
                     WarningKind::kNotConverged, WarningKind::kStdErrorUnavailable, WarningKind::kInfeasible,
                     WarningKind::kPoorFit, WarningKind::kSecondBasin, WarningKind::kNotDetermined,
                     WarningKind::kMovedByIntervals, WarningKind::kLateralMotionUnexplained,
-                    WarningKind::kMovedByLateralRescan, WarningKind::kModelErrorDominates},
+                    WarningKind::kMovedByLateralRescan, WarningKind::kModelErrorDominates,
+                    WarningKind::kWindowExtended, WarningKind::kReleaseTiltDisagrees},
                    ByFromString(WarningKind::kAtBound));
   ExpectRoundTrips("TrialStatus", {TrialStatus::kFitted, TrialStatus::kSkipped, TrialStatus::kInfeasible,
                                    TrialStatus::kFailed}, ByFromString(TrialStatus::kFitted));

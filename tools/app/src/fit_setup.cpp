@@ -217,7 +217,7 @@ nlohmann::json FitResultJson(const std::string& trial, const fitting::FitSummary
   // The fit's own JSON (FitSummary::ToJson), narrowed to the keys `fit --json` documents (fitting/README.md,
   // "rockfit fit"): one JSON writer for the library, the command line and Python.
   static const char* const kKeys[] = {"trial", "parameters", "correlation", "uncertainty_method", "uncertainty",
-                                      "lateral_motion", "model_error", "gyro_scale", "release_roll_choice", "epsilon", "epsilon_initial", "t_end", "window", "simulations",
+                                      "lateral_motion", "model_error", "gyro_scale", "release_roll_choice", "release_tilt", "epsilon", "epsilon_initial", "t_end", "window", "simulations",
                                       "wall_s", "termination", "warnings"};
   static const char* const kParameterKeys[] = {"value",       "lower",       "upper",      "fixed",
                                                "std_error",   "interval_68", "interval_95", "determined"};
@@ -258,6 +258,7 @@ std::string FitResultTable(const std::string& trial, const fitting::FitSummary& 
   out += "model error  " + fitting::ModelErrorText(s.model_error) + "\n";
   if (s.gyro_scale.mode != fitting::GyroScaleMode::kOff) out += "gyro scale  " + fitting::GyroScaleText(s.gyro_scale) + "\n";
   if (s.release_roll_choice) out += "release roll " + fitting::ReleaseRollChoiceText(*s.release_roll_choice) + "\n";
+  if (s.release_tilt) out += "release tilt " + fitting::ReleaseTiltCheckText(*s.release_tilt) + "\n";
   out += fmt::format("effort       {} simulations in {:.2f} s; {}\n", s.simulations, s.wall_time_s, s.termination);
   out += fmt::format("intervals    {} ({} of the simulations, {:.2f} s)\n", s.uncertainty.description,
                      s.uncertainty.evaluations, s.uncertainty.wall_time_s);

@@ -27,6 +27,7 @@ nlohmann::json MountingJson(const io::Recording& r) {
           {"determined", {c.determined[0], c.determined[1], c.determined[2]}},
           {"disagreement_deg", OrNull(io::MountingDisagreementDeg(c))},
           {"release_tilt_rad", OrNull(c.release_tilt_rad)},
+          {"release_tilt_std_error_rad", OrNull(c.release_tilt_std_error_rad)},
           {"warning", c.warning}};
 }
 

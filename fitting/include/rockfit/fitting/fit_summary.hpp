@@ -18,6 +18,7 @@
 #include "rockfit/fitting/lateral_motion_check.hpp"
 #include "rockfit/fitting/model_error.hpp"
 #include "rockfit/fitting/release_roll_choice.hpp"
+#include "rockfit/fitting/release_tilt_check.hpp"
 #include "rockfit/fitting/uncertainty.hpp"
 #include "rockfit/fitting/window_extension.hpp"
 
@@ -39,6 +40,7 @@ enum class WarningKind {
   kMovedByLateralRescan,       // "moved_by_lateral_rescan"
   kModelErrorDominates,        // "model_error_dominates"
   kWindowExtended,             // "window_extended"
+  kReleaseTiltDisagrees,       // "release_tilt_disagrees"
 };
 const char* ToString(WarningKind kind);
 bool FromString(std::string_view text, WarningKind* value);  // the inverse of ToString
@@ -79,6 +81,9 @@ struct FitSummary {
   // Whether the release roll was fitted and why (release_roll_choice.hpp): set by whoever prepared the problem
   // from the recording (trial_problem.hpp); empty for a fit of an objective made otherwise.
   std::optional<ReleaseRollChoice> release_roll_choice;
+  // The fitted α against the tilt at rest from the accelerometer (release_tilt_check.hpp): set, with
+  // AttachReleaseTiltCheck, by whoever has the recording; empty for a fit of an objective made otherwise.
+  std::optional<ReleaseTiltCheck> release_tilt;
 
   double epsilon_initial_rad_s = 0.0;  // (28) at `start`
   double epsilon_rad_s = 0.0;          // (28) at `parameters`

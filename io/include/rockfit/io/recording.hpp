@@ -38,6 +38,8 @@ struct MountingCheck {
   Eigen::Vector3d std_error_deg = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   std::array<bool, 3> determined{false, false, false};  // per block axis: the data fix that angle
   double release_tilt_rad = std::numeric_limits<double>::quiet_NaN();  // α at rest from the accelerometer
+  // Its standard error from the estimate's scatter and calibration floors (NaN without an estimate) [rad].
+  double release_tilt_std_error_rad = std::numeric_limits<double>::quiet_NaN();
   std::string warning;  // set when the data disagree with a mounting that was given (not estimated)
 
   bool has_estimate() const { return status == MountingStatus::kOk || status == MountingStatus::kPartial; }

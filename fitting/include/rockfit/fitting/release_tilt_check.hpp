@@ -1,0 +1,55 @@
+// The fitted release tilt α against the tilt at rest before the release, measured by the accelerometer (fitting/
+// README.md, "The tilt at rest").
+//
+// Before the release the block leans on its release edge at α; the mounting estimate (io/mounting_estimate.hpp)
+// reads that tilt from the accelerometer as the angle about the edge between gravity at rest before the release and
+// gravity at rest after the rocking (the block flat), so it needs neither the block's dimensions nor the rocking
+// model, and a level error of the table cancels. The fit's α comes from the motion: mostly from the fall time T(α)
+// of the model's block. The two are independent measurements of one angle, and
+//
+//   z = (α_fit − α_rest) / √(σ_fit² + σ_rest²)
+//
+// says whether they agree. A large |z| points at what the fit's α rests on and the rest tilt does not: the block's
+// dimensions (b1, b2, h), the release (a push, a hand that follows), or a model that does not fall like the block.
+// The check only reports; it changes no fitted value.
+#pragma once
+
+#include <string>
+
+#include "rockfit/fitting/parameters.hpp"
+#include "rockfit/io/recording.hpp"
+
+namespace rockfit::fitting {
+
+struct FitSummary;
+
+// |z| above which the two tilts disagree: 4 σ happens by noise alone about once in 16,000 fits. (On the 16 sample
+// recordings |z| ≤ 1.9; σ_rest holds the estimate's scatter and a 0.02° calibration floor per direction, not an
+// accelerometer's whole calibration, hence more than 3.)
+inline constexpr double kReleaseTiltMaxZ = 4.0;
+
+struct ReleaseTiltCheck {
+  bool available = false;     // both tilts and both standard errors are known
+  double rest_rad = 0.0;      // α at rest (accelerometer)
+  double rest_std_error_rad = 0.0;
+  double fitted_rad = 0.0;    // α of the fit
+  double fitted_std_error_rad = 0.0;
+  double difference_rad = 0.0;  // fitted − rest
+  double z = 0.0;               // difference / combined standard error
+  bool consistent = true;       // |z| ≤ kReleaseTiltMaxZ (true when not available)
+  std::string reason;           // one sentence: the comparison, or why there is none
+};
+
+// The check of a fitted α (its standard error NaN where not available) against the recording's tilt at rest
+// (`mounting`, from LoadRecording).
+ReleaseTiltCheck CheckReleaseTilt(const io::MountingCheck& mounting, const Parameter& alpha, double alpha_std_error_rad);
+
+// Sets summary->release_tilt and, when the two disagree, adds a warning (WarningKind::kReleaseTiltDisagrees).
+void AttachReleaseTiltCheck(const io::MountingCheck& mounting, FitSummary* summary);
+
+// {"available", "rest_rad", "rest_std_error_rad", "fitted_rad", "fitted_std_error_rad", "difference_rad", "z",
+//  "consistent", "reason"}; numbers null when not available.
+std::string ReleaseTiltCheckJson(const ReleaseTiltCheck& check);
+std::string ReleaseTiltCheckText(const ReleaseTiltCheck& check);
+
+}  // namespace rockfit::fitting

@@ -1,0 +1,80 @@
+#include "rockfit/fitting/release_tilt_check.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "rockfit/fitting/fit_summary.hpp"
+
+namespace rockfit::fitting {
+
+ReleaseTiltCheck CheckReleaseTilt(const io::MountingCheck& mounting, const Parameter& alpha, double alpha_std_error_rad) {
+  ReleaseTiltCheck c;
+  c.fitted_rad = alpha.value;
+  c.fitted_std_error_rad = alpha_std_error_rad;
+  c.rest_rad = mounting.release_tilt_rad;
+  c.rest_std_error_rad = mounting.release_tilt_std_error_rad;
+  if (!mounting.has_estimate()) {
+    c.reason = mounting.status == io::MountingStatus::kNotChecked
+                   ? "no tilt at rest: the recording was not checked for its mounting"
+                   : "no tilt at rest: " + mounting.message;
+    return c;
+  }
+  if (!(std::isfinite(c.rest_rad) && std::isfinite(c.rest_std_error_rad) && c.rest_std_error_rad > 0.0)) {
+    c.reason = "no tilt at rest: the mounting estimate gave none";
+    return c;
+  }
+  if (alpha.fixed) {
+    c.reason = fmt::format("α held at {:.5f} rad, tilt at rest {:.5f} ± {:.5f} rad (accelerometer)", c.fitted_rad,
+                           c.rest_rad, c.rest_std_error_rad);
+    return c;
+  }
+  if (!(std::isfinite(alpha_std_error_rad) && alpha_std_error_rad >= 0.0)) {
+    c.reason = fmt::format("tilt at rest {:.5f} ± {:.5f} rad (accelerometer); the fitted α {:.5f} rad has no standard "
+                           "error to compare with",
+                           c.rest_rad, c.rest_std_error_rad, c.fitted_rad);
+    return c;
+  }
+  c.available = true;
+  c.difference_rad = c.fitted_rad - c.rest_rad;
+  c.z = c.difference_rad / std::hypot(c.fitted_std_error_rad, c.rest_std_error_rad);
+  c.consistent = std::abs(c.z) <= kReleaseTiltMaxZ;
+  c.reason = fmt::format("fitted α {:.5f} ± {:.5f} rad, at rest {:.5f} ± {:.5f} rad (accelerometer): {:+.2f} mrad, "
+                         "{:.1f} σ apart{}",
+                         c.fitted_rad, c.fitted_std_error_rad, c.rest_rad, c.rest_std_error_rad, 1e3 * c.difference_rad,
+                         std::abs(c.z),
+                         c.consistent ? ", consistent"
+                                      : ": they disagree; check the block's dimensions (b1, b2, h) and the release "
+                                        "(a push, a hand that follows), on which the fitted α rests");
+  return c;
+}
+
+void AttachReleaseTiltCheck(const io::MountingCheck& mounting, FitSummary* summary) {
+  const std::size_t k = static_cast<std::size_t>(ParameterId::kAlpha);
+  summary->release_tilt = CheckReleaseTilt(mounting, summary->parameters[ParameterId::kAlpha], summary->std_error[k]);
+  if (summary->release_tilt->available && !summary->release_tilt->consistent) {
+    summary->warnings.push_back({WarningKind::kReleaseTiltDisagrees, "alpha",
+                                 "the fitted release tilt and the tilt at rest disagree: " + summary->release_tilt->reason});
+  }
+}
+
+std::string ReleaseTiltCheckJson(const ReleaseTiltCheck& c) {
+  const auto number = [&c](double v) { return c.available ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  const auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  nlohmann::json j;
+  j["available"] = c.available;
+  j["rest_rad"] = finite(c.rest_rad);
+  j["rest_std_error_rad"] = finite(c.rest_std_error_rad);
+  j["fitted_rad"] = c.fitted_rad;
+  j["fitted_std_error_rad"] = finite(c.fitted_std_error_rad);
+  j["difference_rad"] = number(c.difference_rad);
+  j["z"] = number(c.z);
+  j["consistent"] = c.consistent;
+  j["reason"] = c.reason;
+  return j.dump();
+}
+
+std::string ReleaseTiltCheckText(const ReleaseTiltCheck& c) { return c.reason; }
+
+}  // namespace rockfit::fitting

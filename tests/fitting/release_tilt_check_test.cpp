@@ -1,0 +1,88 @@
+// The check of the fitted α against the tilt at rest (release_tilt_check.hpp): z from its definition, the verdict at
+// kReleaseTiltMaxZ, the warning only on a disagreement, and no comparison without both tilts and both errors.
+#include "rockfit/fitting/release_tilt_check.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "rockfit/fitting/fit_summary.hpp"
+
+namespace rockfit::fitting {
+namespace {
+
+io::MountingCheck RestTilt(double alpha_rad, double std_error_rad) {
+  io::MountingCheck m;
+  m.status = io::MountingStatus::kOk;
+  m.release_tilt_rad = alpha_rad;
+  m.release_tilt_std_error_rad = std_error_rad;
+  return m;
+}
+
+FitSummary FittedAlpha(double alpha_rad, double std_error_rad) {
+  FitSummary s;
+  s.parameters[ParameterId::kAlpha].value = alpha_rad;
+  s.parameters[ParameterId::kAlpha].fixed = false;
+  s.std_error.fill(std::numeric_limits<double>::quiet_NaN());
+  s.std_error[static_cast<std::size_t>(ParameterId::kAlpha)] = std_error_rad;
+  return s;
+}
+
+TEST(ReleaseTiltCheck, AgreeingTiltsGiveZFromTheCombinedErrorAndNoWarning) {
+  FitSummary s = FittedAlpha(0.2006, 0.0003);
+  AttachReleaseTiltCheck(RestTilt(0.2, 0.0004), &s);
+  ASSERT_TRUE(s.release_tilt.has_value());
+  const ReleaseTiltCheck& c = *s.release_tilt;
+  EXPECT_TRUE(c.available);
+  EXPECT_NEAR(c.difference_rad, 0.0006, 1e-15);
+  EXPECT_NEAR(c.z, 0.0006 / 0.0005, 1e-9);  // √(0.3² + 0.4²) = 0.5 mrad
+  EXPECT_TRUE(c.consistent);
+  EXPECT_FALSE(s.HasWarning(WarningKind::kReleaseTiltDisagrees));
+  EXPECT_NE(c.reason.find("1.2 σ apart, consistent"), std::string::npos) << c.reason;
+}
+
+TEST(ReleaseTiltCheck, TiltsFourSigmaApartDisagreeAndWarnAboutTheDimensions) {
+  // Just inside and just beyond 4 σ (σ = 0.5 mrad): 1.99 mrad agrees, 2.01 mrad does not.
+  FitSummary inside = FittedAlpha(0.2 - 0.00199, 0.0003);
+  AttachReleaseTiltCheck(RestTilt(0.2, 0.0004), &inside);
+  EXPECT_TRUE(inside.release_tilt->consistent);
+  FitSummary beyond = FittedAlpha(0.2 - 0.00201, 0.0003);
+  AttachReleaseTiltCheck(RestTilt(0.2, 0.0004), &beyond);
+  EXPECT_FALSE(beyond.release_tilt->consistent);
+  EXPECT_LT(beyond.release_tilt->z, -kReleaseTiltMaxZ);
+  ASSERT_TRUE(beyond.HasWarning(WarningKind::kReleaseTiltDisagrees, "alpha"));
+  EXPECT_NE(beyond.warnings.back().message.find("dimensions"), std::string::npos) << beyond.warnings.back().message;
+  const nlohmann::json j = nlohmann::json::parse(ReleaseTiltCheckJson(*beyond.release_tilt));
+  EXPECT_EQ(j["consistent"], false);
+  EXPECT_NEAR(j["z"].get<double>(), -4.02, 1e-9);
+}
+
+TEST(ReleaseTiltCheck, NoComparisonWithoutARestTiltAFreeAlphaOrItsError) {
+  io::MountingCheck none;
+  none.status = io::MountingStatus::kNoRest;
+  none.message = "no rest of 0.2 s before the release";
+  FitSummary s = FittedAlpha(0.2, 0.0003);
+  AttachReleaseTiltCheck(none, &s);
+  EXPECT_FALSE(s.release_tilt->available);
+  EXPECT_TRUE(s.release_tilt->consistent);
+  EXPECT_NE(s.release_tilt->reason.find("no rest of 0.2 s"), std::string::npos) << s.release_tilt->reason;
+  const nlohmann::json j = nlohmann::json::parse(ReleaseTiltCheckJson(*s.release_tilt));
+  EXPECT_TRUE(j["z"].is_null());
+  EXPECT_TRUE(j["rest_rad"].is_null());
+
+  FitSummary fixed = FittedAlpha(0.2, 0.0003);
+  fixed.parameters[ParameterId::kAlpha].fixed = true;
+  AttachReleaseTiltCheck(RestTilt(0.19, 0.0004), &fixed);
+  EXPECT_FALSE(fixed.release_tilt->available);
+  EXPECT_FALSE(fixed.HasWarning(WarningKind::kReleaseTiltDisagrees));
+
+  FitSummary no_error = FittedAlpha(0.25, std::numeric_limits<double>::quiet_NaN());
+  AttachReleaseTiltCheck(RestTilt(0.2, 0.0004), &no_error);
+  EXPECT_FALSE(no_error.release_tilt->available);
+  EXPECT_FALSE(no_error.HasWarning(WarningKind::kReleaseTiltDisagrees));
+}
+
+}  // namespace
+}  // namespace rockfit::fitting
