@@ -87,12 +87,8 @@ class Dop853 {
   static double EighthRoot(double x) { return std::sqrt(std::sqrt(std::sqrt(x))); }
   // Component i of the continuous extension at θ = (t − t_previous)/h (Horner form, detail/dop853_tableau.hpp).
   double DenseComponent(int i, double theta, double theta1) const {
-    return dense_[0][i] +
-           theta * (dense_[1][i] +
-                    theta1 * (dense_[2][i] +
-                              theta * (dense_[3][i] +
-                                       theta1 * (dense_[4][i] +
-                                                 theta * (dense_[5][i] + theta1 * (dense_[6][i] + theta * dense_[7][i]))))));
+    const double inner = dense_[4][i] + theta * (dense_[5][i] + theta1 * (dense_[6][i] + theta * dense_[7][i]));
+    return dense_[0][i] + theta * (dense_[1][i] + theta1 * (dense_[2][i] + theta * (dense_[3][i] + theta1 * inner)));
   }
   // *out = base + h·Σ_{j<count} weights[j]·k_j.
   template <std::size_t M>

@@ -9,7 +9,8 @@
 
 namespace rockfit::fitting {
 
-ReleaseTiltCheck CheckReleaseTilt(const io::MountingCheck& mounting, const Parameter& alpha, double alpha_std_error_rad) {
+ReleaseTiltCheck CheckReleaseTilt(const io::MountingCheck& mounting, const Parameter& alpha,
+                                  double alpha_std_error_rad) {
   ReleaseTiltCheck c;
   c.fitted_rad = alpha.value;
   c.fitted_std_error_rad = alpha_std_error_rad;
@@ -54,8 +55,9 @@ void AttachReleaseTiltCheck(const io::MountingCheck& mounting, FitSummary* summa
   const std::size_t k = static_cast<std::size_t>(ParameterId::kAlpha);
   summary->release_tilt = CheckReleaseTilt(mounting, summary->parameters[ParameterId::kAlpha], summary->std_error[k]);
   if (summary->release_tilt->available && !summary->release_tilt->consistent) {
-    summary->warnings.push_back({WarningKind::kReleaseTiltDisagrees, "alpha",
-                                 "the fitted release tilt and the tilt at rest disagree: " + summary->release_tilt->reason});
+    summary->warnings.push_back(
+        {WarningKind::kReleaseTiltDisagrees, "alpha",
+         "the fitted release tilt and the tilt at rest disagree: " + summary->release_tilt->reason});
   }
 }
 

@@ -42,7 +42,8 @@ struct ReleaseTiltCheck {
 
 // The check of a fitted α (its standard error NaN where not available) against the recording's tilt at rest
 // (`mounting`, from LoadRecording).
-ReleaseTiltCheck CheckReleaseTilt(const io::MountingCheck& mounting, const Parameter& alpha, double alpha_std_error_rad);
+ReleaseTiltCheck CheckReleaseTilt(const io::MountingCheck& mounting, const Parameter& alpha,
+                                  double alpha_std_error_rad);
 
 // Sets summary->release_tilt and, when the two disagree, adds a warning (WarningKind::kReleaseTiltDisagrees).
 void AttachReleaseTiltCheck(const io::MountingCheck& mounting, FitSummary* summary);
