@@ -24,7 +24,7 @@ namespace rockfit::fitting {
 struct FitSummary;
 
 // |z| above which the two tilts disagree: 4 σ happens by noise alone about once in 16,000 fits. (On the 16 sample
-// recordings |z| ≤ 1.9; σ_rest holds the estimate's scatter and a 0.02° calibration floor per direction, not an
+// recordings |z| ≤ 1.5; σ_rest holds the estimate's scatter and a 0.02° calibration floor per direction, not an
 // accelerometer's whole calibration, hence more than 3.)
 inline constexpr double kReleaseTiltMaxZ = 4.0;
 
