@@ -223,8 +223,8 @@ struct PerTrialColumns {
   std::map<std::string, std::vector<double>> value, lo68, hi68, lo95, hi95;
   std::map<std::string, std::vector<std::string>> determined;
   std::vector<double> epsilon_rad_s, wall_s, mounting_x_deg, mounting_y_deg, mounting_z_deg;
-  std::vector<double> noise_floor_rad_s, model_error_rad_s, noise_share;
-  std::vector<std::int64_t> simulations, model_error_dominates, release_roll_fitted;
+  std::vector<double> noise_floor_rad_s, model_error_rad_s, noise_share, release_tilt_z;
+  std::vector<std::int64_t> simulations, model_error_dominates, release_roll_fitted, release_tilt_consistent;
 };
 
 void AppendParameters(const StoredParameters& stored, PerTrialColumns* c) {
@@ -254,6 +254,8 @@ void AppendTrial(const std::string& id, const io::hdf5::Group& g, PerTrialColumn
   c->noise_share.push_back(labels.noise_share);
   c->model_error_dominates.push_back(labels.model_error_dominates);
   c->release_roll_fitted.push_back(g.GetInt("release_roll_fitted").value_or(-1));
+  c->release_tilt_z.push_back(labels.release_tilt_z);
+  c->release_tilt_consistent.push_back(labels.release_tilt_consistent);
   c->mounting.push_back(labels.mounting);
   const std::vector<double> angles =
       g.Exists("mounting_angles_deg") ? g.ReadDoubles("mounting_angles_deg") : std::vector<double>{};
@@ -292,6 +294,8 @@ void WritePerTrialTable(const io::hdf5::Group& root, PerTrialColumns& c) {
   t.WriteDoubles("noise_share", c.noise_share, "1; NaN: not measured");
   t.WriteInts("model_error_dominates", c.model_error_dominates, "1; -1: not measured");
   t.WriteInts("release_roll_fitted", c.release_roll_fitted, "1; -1: not recorded");
+  t.WriteDoubles("release_tilt_z", c.release_tilt_z, "1; NaN: not compared");
+  t.WriteInts("release_tilt_consistent", c.release_tilt_consistent, "1; -1: not compared");
   t.WriteStrings("mounting", c.mounting);
   t.WriteDoubles("mounting_angle_x_deg", c.mounting_x_deg, "deg");
   t.WriteDoubles("mounting_angle_y_deg", c.mounting_y_deg, "deg");
@@ -484,6 +488,9 @@ StoredFitLabels ReadFitLabels(const io::hdf5::Group& fit) {
   l.model_error_rad_s = fit.GetDouble("model_error_rad_s").value_or(std::nan(""));
   l.noise_share = fit.GetDouble("noise_share").value_or(std::nan(""));
   l.model_error_dominates = fit.GetInt("model_error_dominates").value_or(-1);
+  l.release_tilt_z = fit.GetDouble("release_tilt_z").value_or(std::nan(""));
+  l.release_tilt_consistent = fit.GetInt("release_tilt_consistent").value_or(-1);
+  l.release_tilt_check = fit.GetString("release_tilt_check").value_or("");
   return l;
 }
 

@@ -8,6 +8,7 @@
 
 #include "campaign_trials.hpp"
 #include "rockfit/core/errors.hpp"
+#include "rockfit/fitting/release_tilt_check.hpp"
 #include "rockfit/io/hdf5_transaction.hpp"
 #include "scratch_dir.hpp"
 
@@ -118,6 +119,48 @@ TEST(FitStore, GroupTablesReadBackAsWrittenFromEveryFit) {
       ExpectSameValue(r.consistency_p, w.consistency_p, name);
     }
   }
+}
+
+// A fit compared with the tilt at rest keeps z, the verdict and the sentence in its group and in
+// /summary/fits/per_trial; a fit without the comparison reads NaN, -1 and an empty sentence.
+TEST(FitStore, ReleaseTiltCheckReadsBackFromTheFitAndThePerTrialTable) {
+  const ScratchDir dir("fit_store_release_tilt");
+  const std::filesystem::path path = dir / "fits.h5";
+  WriteOneFit(path, "T1", "A", 3);
+  const TrialProblem p = QuickProblem(4);
+  FitSummary compared = Fit(p.objective, p.start, QuickFitOptions());
+  io::MountingCheck mounting;
+  mounting.status = io::MountingStatus::kOk;
+  mounting.release_tilt_rad = compared.parameters.value(ParameterId::kAlpha) - 0.01;  // 10 mrad below the fit
+  mounting.release_tilt_std_error_rad = 0.002;
+  AttachReleaseTiltCheck(mounting, &compared);
+  ASSERT_TRUE(compared.release_tilt && compared.release_tilt->available);
+  ASSERT_FALSE(compared.release_tilt->consistent) << compared.release_tilt->reason;
+  {
+    io::hdf5::Transaction tx(path, {"/fits/T2"});
+    WriteFitGroup(tx.Root(), "T2", {"b1", "A", ""}, p.objective, "quick fit; seed=4", compared);
+    tx.Commit();
+  }
+  {
+    io::hdf5::Transaction tx(path, {"/summary/fits"});
+    WriteFitSummaryTables(tx.Root());
+    tx.Commit();
+  }
+  const io::hdf5::File file = io::hdf5::File::Open(path);
+  const StoredFitLabels without = ReadFitLabels(file.Root().OpenGroup("fits/T1"));
+  EXPECT_TRUE(std::isnan(without.release_tilt_z));
+  EXPECT_EQ(without.release_tilt_consistent, -1);
+  const StoredFitLabels with = ReadFitLabels(file.Root().OpenGroup("fits/T2"));
+  EXPECT_EQ(with.release_tilt_z, compared.release_tilt->z);
+  EXPECT_GT(with.release_tilt_z, kReleaseTiltMaxZ);
+  EXPECT_EQ(with.release_tilt_consistent, 0);
+  EXPECT_EQ(with.release_tilt_check, compared.release_tilt->reason);
+  const std::vector<double> z = file.Root().ReadDoubles("summary/fits/per_trial/release_tilt_z");
+  ASSERT_EQ(z.size(), 2u);
+  EXPECT_TRUE(std::isnan(z[0]));
+  EXPECT_EQ(z[1], compared.release_tilt->z);
+  EXPECT_EQ(file.Root().ReadInts("summary/fits/per_trial/release_tilt_consistent"),
+            (std::vector<std::int64_t>{-1, 0}));
 }
 
 TEST(FitStore, SettingsHashIsSixteenHexDigitsThatFollowTheText) {

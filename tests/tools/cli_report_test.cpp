@@ -114,6 +114,8 @@ TEST_F(CliReport, ABatchFileWithoutSomeTrialsGivesEveryTrialASectionAndNamesEach
   EXPECT_EQ(Count(html, "No fit of this trial in the inputs"), kSampleTrials - 2);
   // The two fitted trials have their parameter tables with both intervals.
   EXPECT_EQ(Count(html, "with 68 % and 95 % intervals</caption>"), 2u);
+  // Both samples rest before the release and after the rocking: their α is compared with the tilt at rest.
+  EXPECT_EQ(Count(html, "<dt>α against the tilt at rest</dt><dd>fitted α "), 2u);
 }
 
 TEST_F(CliReport, ModelErrorAndPredictiveCheckSectionsAppearOnlyWhenTheirOutputsExist) {

@@ -420,6 +420,9 @@ void WriteTrial(Page& page, const ReportTrial& t) {
                           "release, or a fit written before the split existed).", Num(l.epsilon_rad_s));
     }
     out << "<dt>error (28)</dt><dd>" << EscapeHtml(split) << "</dd>\n";
+    if (!l.release_tilt_check.empty()) {
+      out << "<dt>α against the tilt at rest</dt><dd>" << EscapeHtml(l.release_tilt_check) << "</dd>\n";
+    }
     out << "<dt>fit</dt><dd>" << (l.feasible ? "feasible" : "infeasible") << ", " << l.simulations << " simulations"
         << (t.fit->termination.empty() ? "" : ", " + EscapeHtml(t.fit->termination)) << "</dd>\n";
   }

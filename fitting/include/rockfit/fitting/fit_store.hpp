@@ -55,6 +55,11 @@ struct StoredFitLabels {
   // The model-error statement (model_error.hpp); NaN and -1 when not measured or written before it existed.
   double noise_floor_rad_s = 0.0, model_error_rad_s = 0.0, noise_share = 0.0;
   std::int64_t model_error_dominates = -1;  // 1 yes, 0 no, -1 not measured
+  // The check of α against the tilt at rest (release_tilt_check.hpp); NaN, -1 and "" when not compared or written
+  // before it existed.
+  double release_tilt_z = 0.0;
+  std::int64_t release_tilt_consistent = -1;  // 1 yes, 0 no, -1 not compared
+  std::string release_tilt_check;
 };
 StoredFitLabels ReadFitLabels(const io::hdf5::Group& fit);
 
