@@ -1,6 +1,7 @@
 #include "rockfit/fitting/release_tilt_check.hpp"
 
 #include <cmath>
+#include <cstddef>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -8,6 +9,11 @@
 #include "rockfit/fitting/fit_summary.hpp"
 
 namespace rockfit::fitting {
+namespace {
+
+constexpr std::size_t kBlockY = 1;  // index of the block's y axis in MountingCheck::determined
+
+}  // namespace
 
 ReleaseTiltCheck CheckReleaseTilt(const io::MountingCheck& mounting, const Parameter& alpha,
                                   double alpha_std_error_rad) {
@@ -20,6 +26,13 @@ ReleaseTiltCheck CheckReleaseTilt(const io::MountingCheck& mounting, const Param
     c.reason = mounting.status == io::MountingStatus::kNotChecked
                    ? "no tilt at rest: the recording was not checked for its mounting"
                    : "no tilt at rest: " + mounting.message;
+    return c;
+  }
+  // Without rest after the rocking, a turn of the mounting about block y and the tilt at rest are one unknown
+  // (before the release a turn about y looks like a different α): the tilt at rest is then read through the given
+  // mounting, its σ is the mounting prior's (10°), and a comparison would test nothing.
+  if (!mounting.determined[kBlockY]) {
+    c.reason = "no tilt at rest independent of the mounting: " + mounting.message;
     return c;
   }
   if (!(std::isfinite(c.rest_rad) && std::isfinite(c.rest_std_error_rad) && c.rest_std_error_rad > 0.0)) {

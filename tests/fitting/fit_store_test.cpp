@@ -131,6 +131,7 @@ TEST(FitStore, ReleaseTiltCheckReadsBackFromTheFitAndThePerTrialTable) {
   FitSummary compared = Fit(p.objective, p.start, QuickFitOptions());
   io::MountingCheck mounting;
   mounting.status = io::MountingStatus::kOk;
+  mounting.determined = {true, true, true};
   mounting.release_tilt_rad = compared.parameters.value(ParameterId::kAlpha) - 0.01;  // 10 mrad below the fit
   mounting.release_tilt_std_error_rad = 0.002;
   AttachReleaseTiltCheck(mounting, &compared);

@@ -16,6 +16,7 @@ namespace {
 io::MountingCheck RestTilt(double alpha_rad, double std_error_rad) {
   io::MountingCheck m;
   m.status = io::MountingStatus::kOk;
+  m.determined = {true, true, true};
   m.release_tilt_rad = alpha_rad;
   m.release_tilt_std_error_rad = std_error_rad;
   return m;
@@ -59,7 +60,7 @@ TEST(ReleaseTiltCheck, TiltsFourSigmaApartDisagreeAndWarnAboutTheDimensions) {
   EXPECT_NEAR(j["z"].get<double>(), -4.02, 1e-9);
 }
 
-TEST(ReleaseTiltCheck, NoComparisonWithoutARestTiltAFreeAlphaOrItsError) {
+TEST(ReleaseTiltCheck, NoComparisonWithoutARestTiltAFixedMountingTurnAFreeAlphaOrItsError) {
   io::MountingCheck none;
   none.status = io::MountingStatus::kNoRest;
   none.message = "no rest of 0.2 s before the release";
@@ -77,6 +78,23 @@ TEST(ReleaseTiltCheck, NoComparisonWithoutARestTiltAFreeAlphaOrItsError) {
   AttachReleaseTiltCheck(RestTilt(0.19, 0.0004), &fixed);
   EXPECT_FALSE(fixed.release_tilt->available);
   EXPECT_FALSE(fixed.HasWarning(WarningKind::kReleaseTiltDisagrees));
+
+  // The mounting's turn about y not fixed (no rest after the rocking): the tilt at rest is the given mounting's,
+  // with the prior's σ, and is not compared even where it has numbers.
+  io::MountingCheck partial = RestTilt(0.19, 0.1745);
+  partial.status = io::MountingStatus::kPartial;
+  partial.determined = {true, false, true};
+  partial.message = "the data do not fix the rotation about block y (kept at the given mounting)";
+  FitSummary unfixed = FittedAlpha(0.2, 0.0003);
+  AttachReleaseTiltCheck(partial, &unfixed);
+  EXPECT_FALSE(unfixed.release_tilt->available);
+  EXPECT_NE(unfixed.release_tilt->reason.find("independent of the mounting: the data do not fix the rotation about "
+                                              "block y"),
+            std::string::npos)
+      << unfixed.release_tilt->reason;
+  const nlohmann::json u = nlohmann::json::parse(ReleaseTiltCheckJson(*unfixed.release_tilt));
+  EXPECT_TRUE(u["z"].is_null());
+  EXPECT_EQ(u["rest_rad"], 0.19);
 
   FitSummary no_error = FittedAlpha(0.25, std::numeric_limits<double>::quiet_NaN());
   AttachReleaseTiltCheck(RestTilt(0.2, 0.0004), &no_error);

@@ -11,7 +11,8 @@
 //
 // says whether they agree. A large |z| points at what the fit's α rests on and the rest tilt does not: the block's
 // dimensions (b1, b2, h), the release (a push, a hand that follows), or a model that does not fall like the block.
-// The check only reports; it changes no fitted value.
+// The check only reports; it changes no fitted value. Without rest after the rocking the mounting's turn about
+// block y is not fixed and the tilt at rest is the given mounting's: no comparison then.
 #pragma once
 
 #include <string>
