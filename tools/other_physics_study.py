@@ -347,7 +347,8 @@ def release_tilt_lines(fitted):
     if compared:
         z = [c["z"] for _, c in compared]
         rest_z = [(c["rest_rad"] - t["alpha"]) / c["rest_std_error_rad"] for t, c in compared]
-        rms = lambda v: math.sqrt(sum(x * x for x in v) / len(v))
+        def rms(v):
+            return math.sqrt(sum(x * x for x in v) / len(v))
         out.append(f"  z RMS {rms(z):.2f}, max |z| {max(abs(x) for x in z):.2f}, disagree (|z| > 4) in "
                    f"{sum(not c['consistent'] for _, c in compared)}; the tilt at rest off the truth by {rms(rest_z):.2f} "
                    f"σ_rest RMS (σ_rest {1e3 * min(c['rest_std_error_rad'] for _, c in compared):.2f}–"
