@@ -11,7 +11,8 @@ per family:
   * ε over the noise floor at rest (the model-error statement) and how often model error is flagged dominant;
   * the same coverage among the fits that are not flagged;
   * the check of α against the tilt at rest: how often it compares (only where the recording rests after the
-    rocking: `--duration 6`), z, and the tilt at rest's own error in its σ.
+    rocking: `--duration 6`), z, and the tilt at rest's own error in its σ; with `--push W`, how often it catches
+    the push, by its size.
 
 Families (one seed gives the same trials):
   mujoco            roll at release 0–0.01 rad about x (the block stands on one corner of its release edge)
@@ -20,6 +21,11 @@ Families (one seed gives the same trials):
   mujoco-planar     no roll, no perturbation (the motion stays in the plane; MuJoCo's contact alone)
   mujoco-lively     as `mujoco` with a springy contact (solref damping ratio LIVELY_DAMPING_RATIO instead of 1):
                     the box rocks for several cycles, so that its AVRF and OPMF can be measured (`--metrics`)
+
+`--push W` gives each release a push: the box leaves its tilt at rest turning at a rate drawn uniformly from
+[−W, W] rad/s about body y (> 0 towards the fall), drawn from its own generator so that the trials are otherwise
+those of the seed. The truth of α stays the tilt at rest; the study then measures which pushes the check of α
+against the tilt at rest catches.
 
 `--solref-time-constant S` makes every family's contact stiffer or softer than the generator's 1 ms (MuJoCo needs
 S ≥ 2 × its 1e-4 s timestep): how much of a miss is the contact's softness.
@@ -84,7 +90,8 @@ def run_trial(args, trial, out_dir):
     subprocess.run([args.generator, "-o", prefix, "--alpha", repr(trial["alpha"]), "--roll", repr(trial["roll"]),
                     "--t0", repr(trial["t0"]), "--duration", repr(args.duration), "--b2", repr(trial["b2"]),
                     "--com-offset-y", repr(trial["com_offset_y"]), "--proud-vertex", str(trial["proud_vertex"]),
-                    "--seed", str(trial["seed"]), "--solref-damping-ratio", repr(trial.get("damping_ratio", 1.0))]
+                    "--seed", str(trial["seed"]), "--solref-damping-ratio", repr(trial.get("damping_ratio", 1.0)),
+                    "--push", repr(trial.get("push", 0.0))]
                    + (["--solref-time-constant", repr(args.solref_time_constant)] if args.solref_time_constant else []),
                    check=True, capture_output=True)
     fit = subprocess.run([args.rockfit, "fit", prefix, "--rate", "256", "--b1", repr(B1), "--b2", repr(trial["b2"]),
@@ -353,6 +360,22 @@ def release_tilt_lines(fitted):
                    f"{sum(not c['consistent'] for _, c in compared)}; the tilt at rest off the truth by {rms(rest_z):.2f} "
                    f"σ_rest RMS (σ_rest {1e3 * min(c['rest_std_error_rad'] for _, c in compared):.2f}–"
                    f"{1e3 * max(c['rest_std_error_rad'] for _, c in compared):.2f} mrad)")
+    pushed = [(t, c) for t, c in checks if t.get("push")]
+    if pushed:  # which pushes are caught, by size (toward the fall: push > 0)
+        out.append(f"  pushed releases: {len(pushed)}; compared in {sum(c['available'] for _, c in pushed)}")
+        edges = [0.0, 0.05, 0.1, 0.2, math.inf]
+        for lo, hi in zip(edges, edges[1:]):
+            for sign, label in ((1, "toward the fall"), (-1, "away from it")):
+                group = [(t, c) for t, c in pushed if lo <= sign * t["push"] < hi]
+                if not group:
+                    continue
+                available = [(t, c) for t, c in group if c["available"]]
+                caught = sum(not c["consistent"] for _, c in available)
+                shift = [1e3 * (c["fitted_rad"] - t["alpha"]) for t, c in available]
+                out.append(f"    |push| {lo:g}–{hi:g} rad/s {label}: {len(group)} trials, compared {len(available)}, "
+                           f"caught (|z| > 4) {caught}"
+                           + (f"; fitted α − α at rest {min(shift):+.1f} to {max(shift):+.1f} mrad, |z| up to "
+                              f"{max(abs(c['z']) for _, c in available):.1f}" if available else ""))
     return out
 
 
@@ -433,6 +456,9 @@ def main():
                         help="length of each recording [s] (default 3: the block still rocks at the end, so the "
                              "mounting's turn about y and the tilt at rest are not fixed and α is not compared with "
                              "it; 6 lets it come to rest)")
+    parser.add_argument("--push", type=float, default=0.0,
+                        help="push at each release: the box's rate about body y drawn uniformly from [−W, W] rad/s "
+                             "(> 0 towards the fall; default 0: released from rest)")
     parser.add_argument("--solref-time-constant", type=float, default=None,
                         help="MuJoCo's contact time constant [s] (default: the generator's 0.001)")
     parser.add_argument("--first", type=int, default=0,
@@ -453,9 +479,12 @@ def main():
     if not args.report_only:
         os.makedirs(os.path.join(args.out, "recordings"), exist_ok=True)
         rng = random.Random(args.seed)
+        push_rng = random.Random(args.seed + 1000003)  # its own stream: the trials stay those of the seed
         with open(path, "w") as f:
             for i in range(args.trials):
                 trial = random_trial(rng, i, args.family)
+                if args.push:
+                    trial["push"] = push_rng.uniform(-args.push, args.push)
                 if i < args.first:
                     continue
                 trial = run_trial(args, trial, args.out)
@@ -463,8 +492,8 @@ def main():
                 f.flush()
                 print(f"[{i + 1}/{args.trials}]", file=sys.stderr)
     trials = [json.loads(line) for line in open(path)]
-    text = (f"family {args.family}, seed {args.seed}, widening {args.model_error_widening}, t0 floor "
-            f"{args.t0_floor_samples} (None: rockfit's defaults), release roll fitted: "
+    text = (f"family {args.family}, seed {args.seed}, push ±{args.push} rad/s, duration {args.duration} s, widening "
+            f"{args.model_error_widening}, t0 floor {args.t0_floor_samples} (None: rockfit's defaults), release roll fitted: "
             f"{'on' if args.fit_release_roll else args.release_roll_mode or 'auto (rockfit default)'}\n"
             + report(trials))
     if args.metrics:

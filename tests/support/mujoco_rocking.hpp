@@ -39,6 +39,9 @@ struct MujocoRockingOptions {
   double alpha_rad = 0.2;   // release tilt about y (+x side lifted, φy = −α)
   double roll_rad = 0.01;   // release roll about x: the motion is not planar from the start
   double t0_s = 1.0;        // release in recording time; a multiple of the step
+  // A push at the release: the block leaves its tilt at rest turning about its lowest base point at this rate
+  // about body y [rad/s] (> 0: towards the fall, < 0: away from it); 0: released from rest, as the model is.
+  double push_w_y_rad_s = 0.0;
   double duration_s = 3.0;
   double rate_hz = 256.0;
   // The step: an integer number of steps per sample at 256 Hz (1/10240 s ≤ 1e-4 s).
@@ -133,15 +136,20 @@ inline MujocoRockingTrial MakeMujocoRockingTrial(const MujocoRockingOptions& o) 
   const Eigen::Quaterniond q0 = Eigen::Quaterniond(Eigen::AngleAxisd(-o.alpha_rad, Eigen::Vector3d::UnitY()) *
                                                    Eigen::AngleAxisd(o.roll_rad, Eigen::Vector3d::UnitX()));
   double lowest = 0.0;
-  for (double sx : {-1.0, 1.0}) {
-    for (double sy : {-1.0, 1.0}) {
-      lowest = std::min(lowest, (q0 * Eigen::Vector3d(sx * o.b1_m, sy * o.b2_m, -o.h_m)).z());
+  Eigen::Vector3d pivot_at_release_B = Eigen::Vector3d::Zero();  // the lowest base point (body origin: the centre)
+  const auto consider = [&](const Eigen::Vector3d& v_B) {
+    if ((q0 * v_B).z() < lowest) {
+      lowest = (q0 * v_B).z();
+      pivot_at_release_B = v_B;
     }
+  };
+  for (double sx : {-1.0, 1.0}) {
+    for (double sy : {-1.0, 1.0}) consider(Eigen::Vector3d(sx * o.b1_m, sy * o.b2_m, -o.h_m));
   }
   if (o.proud_vertex != 0) {
     const double sx[] = {-1, -1, 1, 1}, sy[] = {-1, 1, 1, -1};
     const int k = o.proud_vertex - 1;
-    lowest = std::min(lowest, (q0 * Eigen::Vector3d(sx[k] * o.b1_m, sy[k] * o.b2_m, -o.h_m - o.proud_corner_m)).z());
+    consider(Eigen::Vector3d(sx[k] * o.b1_m, sy[k] * o.b2_m, -o.h_m - o.proud_corner_m));
   }
   const Eigen::Vector3d centre(0.0, 0.0, -lowest);
 
@@ -154,6 +162,15 @@ inline MujocoRockingTrial MakeMujocoRockingTrial(const MujocoRockingOptions& o) 
   std::filesystem::remove_all(dir);
   if (!model) throw std::runtime_error(std::string("MuJoCo cannot load the block model: ") + error);
   std::unique_ptr<mjData, mujoco_detail::DataDeleter> data(mj_makeData(model.get()));
+  // The push: ω_B = (0, w, 0) about the lowest base point, so that the point stays where it is; the free joint
+  // takes the linear velocity of the body origin in world axes and the angular velocity in body axes.
+  const Eigen::Vector3d w0_B(0.0, o.push_w_y_rad_s, 0.0);
+  const Eigen::Vector3d p_pivot_origin_W = -(q0 * pivot_at_release_B);  // origin − lowest point
+  const Eigen::Vector3d v0_W = (q0 * w0_B).cross(p_pivot_origin_W);
+  for (int i = 0; i < 3; ++i) {
+    data->qvel[i] = v0_W[i];
+    data->qvel[3 + i] = w0_B[i];
+  }
   mj_forward(model.get(), data.get());
 
   io::BlockMotion& m = trial.motion;
@@ -178,7 +195,7 @@ inline MujocoRockingTrial MakeMujocoRockingTrial(const MujocoRockingOptions& o) 
     return best;
   };
   m.breaks_s.push_back(o.t0_s);
-  Eigen::Vector3d w_prev = Eigen::Vector3d::Zero(), w_before = Eigen::Vector3d::Zero();
+  Eigen::Vector3d w_prev = w0_B, w_before = Eigen::Vector3d::Zero();  // the push is not an impact
   bool in_impact = false;
   double impact_start = 0.0;
   for (std::size_t n = 0; n < samples; ++n) {
@@ -229,9 +246,9 @@ inline std::vector<std::string> WriteMujocoRockingTrial(const std::string& prefi
   std::ofstream(truth) << fmt::format(
       "{{\"generator\": \"MuJoCo {}\", \"t0_s\": {}, \"alpha_rad\": {}, \"roll_rad\": {}, \"b1_m\": {}, "
       "\"b2_m\": {}, \"h_m\": {}, \"density_kg_m3\": {}, \"com_offset_B_m\": [{}, {}, {}], \"proud_vertex\": {}, "
-      "\"proud_corner_m\": {}, \"solref\": [{}, {}], \"solimp\": \"{}\", \"seed\": {}, \"impacts\": {}}}\n",
+      "\"proud_corner_m\": {}, \"push_w_y_rad_s\": {}, \"solref\": [{}, {}], \"solimp\": \"{}\", \"seed\": {}, \"impacts\": {}}}\n",
       mj_versionString(), trial.t0_s, trial.alpha_rad, o.roll_rad, o.b1_m, o.b2_m, o.h_m, o.density_kg_m3,
-      o.com_offset_B_m.x(), o.com_offset_B_m.y(), o.com_offset_B_m.z(), o.proud_vertex, o.proud_corner_m,
+      o.com_offset_B_m.x(), o.com_offset_B_m.y(), o.com_offset_B_m.z(), o.proud_vertex, o.proud_corner_m, o.push_w_y_rad_s,
       o.solref_time_constant_s, o.solref_damping_ratio, o.solimp, o.measurement.seed, trial.impacts);
   paths.push_back(truth);
   return paths;

@@ -2,7 +2,7 @@
 // as an x-IMU GUI file set with <prefix>_truth.json, for studies of fits of recordings the model did not make
 // (tools/other_physics_study.py). Test support, built only where CMake found MuJoCo; not installed.
 //
-//   rockfit_mujoco_synth -o PREFIX [--alpha RAD] [--roll RAD] [--t0 S] [--duration S] [--b1 M --b2 M --h M]
+//   rockfit_mujoco_synth -o PREFIX [--alpha RAD] [--roll RAD] [--t0 S] [--push RAD_S] [--duration S] [--b1 M --b2 M --h M]
 //                        [--com-offset-y FRACTION_OF_B2] [--proud-vertex 1-4] [--seed N]
 //                        [--solref-time-constant S] [--solref-damping-ratio R] [--solimp D0,DWIDTH,WIDTH_M]
 #include <cstdlib>
@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     else if (key == "--alpha") o.alpha_rad = std::stod(value);
     else if (key == "--roll") o.roll_rad = std::stod(value);
     else if (key == "--t0") o.t0_s = std::stod(value);
+    else if (key == "--push") o.push_w_y_rad_s = std::stod(value);
     else if (key == "--duration") o.duration_s = std::stod(value);
     else if (key == "--b1") o.b1_m = std::stod(value);
     else if (key == "--b2") o.b2_m = std::stod(value);
@@ -36,7 +37,7 @@ int main(int argc, char** argv) {
     }
   }
   if (prefix.empty() || argc % 2 == 0) {
-    std::cerr << "usage: rockfit_mujoco_synth -o PREFIX [--alpha RAD] [--roll RAD] [--t0 S] [--duration S] [--b1 M "
+    std::cerr << "usage: rockfit_mujoco_synth -o PREFIX [--alpha RAD] [--roll RAD] [--t0 S] [--push RAD_S] [--duration S] [--b1 M "
                  "--b2 M --h M] [--com-offset-y F] [--proud-vertex 1-4] [--seed N] [--solref-time-constant S] "
                  "[--solref-damping-ratio R] [--solimp D0,DWIDTH,WIDTH_M]\n";
     return 1;
