@@ -141,6 +141,7 @@ void MountingEstimateOptions::Validate() const {
   RequirePositive(undetermined_std_deg, "mounting estimate: undetermined_std_deg");
   RequirePositive(direction_floor_deg, "mounting estimate: direction_floor_deg");
   RequireNonNegative(rest_margin_s, "mounting estimate: rest_margin_s");
+  RequireNonNegative(max_turn_before_fall_deg, "mounting estimate: max_turn_before_fall_deg");
   if (!(phase1_min_fraction > 0.0 && phase1_min_fraction < 1.0) ||
       !(first_impact_fraction > 0.0 && first_impact_fraction <= 1.0)) {
     throw InvalidArgument("mounting estimate: phase1_min_fraction must lie in (0, 1), first_impact_fraction in (0, 1]");
@@ -194,6 +195,30 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
   Stretch before{0, release > margin ? release - margin : 0};
   before.begin = before.end;
   while (before.begin > 0 && still(before.begin - 1)) --before.begin;
+  // A hand that lets go late can lift the block a little before it falls (a push away from the fall): the block
+  // stops for a few samples at the top, which is no rest, and the rest it was held in comes before the lift. Look
+  // past such short stops while the block turned by at most max_turn_before_fall_deg from there to the fall.
+  const double max_turn_rad = o.max_turn_before_fall_deg * kRadPerDeg;
+  double turn_before_fall_rad = 0.0;
+  for (Stretch earlier = before; before.size() < min_rest && earlier.begin > 0;) {
+    std::size_t end = earlier.begin;  // back over the motion before the short stop
+    while (end > 0 && !still(end - 1)) --end;
+    // The farthest the block got from where that stretch ended: |∫(ω − bias) dt| from there, up to the fall.
+    Eigen::Vector3d turn_rad = Eigen::Vector3d::Zero();
+    double farthest_rad = 0.0;
+    for (std::size_t k = end; k < release; ++k) {
+      turn_rad += (r.w_B[k] - bias) / rate_hz;
+      farthest_rad = std::max(farthest_rad, turn_rad.norm());
+    }
+    if (end == 0 || farthest_rad > max_turn_rad) break;
+    earlier = Stretch{end, end > margin ? end - margin : 0};
+    earlier.begin = earlier.end;
+    while (earlier.begin > 0 && still(earlier.begin - 1)) --earlier.begin;
+    if (earlier.size() >= min_rest) {
+      before = earlier;
+      turn_before_fall_rad = farthest_rad;
+    }
+  }
   if (before.size() < min_rest) {
     return Fail(e, MountingStatus::kNoRest,
                 fmt::format("the block is still for only {:.3f} s before the motion that ends in the first impact "
@@ -293,6 +318,12 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
 
   const Eigen::Matrix3d R_BgB = R0 * Exp(theta);
   e.R_BBg = R_BgB.transpose();
+  e.turn_before_fall_deg = turn_before_fall_rad * kDegPerRad;
+  const std::string lift_note =
+      turn_before_fall_rad > 0.0
+          ? fmt::format("; the block turned by {:.2f}° between that rest and the fall (lifted or pushed as it was "
+                        "let go)", e.turn_before_fall_deg)
+          : std::string();
   MountingCheck& c = e.check;
   c.angles_deg = Log(e.R_BBg) * kDegPerRad;
   for (int i = 0; i < 3; ++i) {
@@ -307,17 +338,18 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
   }
   if (free_axes.empty()) {
     c.status = MountingStatus::kOk;
-    c.message = fmt::format("from {:.2f} s at rest before the release, {} samples of phase 1{}", 
+    c.message = fmt::format("from {:.2f} s at rest before the release, {} samples of phase 1{}{}",
                             static_cast<double>(before.size()) / rate_hz, phase1.size(),
                             has_after ? fmt::format(" and {:.2f} s at rest after the rocking",
                                                     static_cast<double>(after.size()) / rate_hz)
-                                      : std::string());
+                                      : std::string(),
+                            lift_note);
   } else {
     c.status = MountingStatus::kPartial;
     std::string which;
     for (const std::string& a : free_axes) which += (which.empty() ? "" : ", ") + a;
     c.message = fmt::format(
-        "the data do not fix the rotation about block {} (kept at the given mounting){}", which,
+        "the data do not fix the rotation about block {} (kept at the given mounting){}{}", which, lift_note,
         has_after ? std::string()
                   : fmt::format(": the recording does not end at rest (at least {:.2f} s with |ω| < {:.3g} rad/s), "
                                 "and before the release a turn about y looks like a different tilt α; record until "

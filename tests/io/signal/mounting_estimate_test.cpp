@@ -16,6 +16,7 @@ namespace rockfit::io {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kRate_hz = 256.0;
@@ -40,6 +41,8 @@ struct HandMadeTrial {
   double rest_before_s = 1.0;
   double rest_after_s = 1.0;
   bool lateral = true;  // ω_x after the first impact
+  double lift_rad = 0.0;       // lifted by this much about y after the rest, stopped for a moment, then the fall
+  double flat_before_s = 0.0;  // standing flat this long before being tilted into place (0.3 s) for the rest
   Eigen::Vector3d bias_rad_s = Eigen::Vector3d(0.004, -0.003, 0.002);
 };
 
@@ -62,7 +65,26 @@ Recording MakeRecording(const HandMadeTrial& t, const Eigen::Matrix3d& R_BBg, st
     r.accel_B.push_back(R_BgB * f_B + noise(kAccelNoise_m_s2));
   };
   const Eigen::Vector3d tilted(std::sin(t.alpha_rad), 0.0, std::cos(t.alpha_rad));
+  for (int k = 0; k < static_cast<int>(t.flat_before_s * kRate_hz); ++k) push(Eigen::Vector3d::Zero(), kG * Eigen::Vector3d::UnitZ());
+  if (t.flat_before_s > 0.0) {
+    const int tilting = static_cast<int>(0.3 * kRate_hz);  // φy from 0 to −α at a constant rate
+    for (int k = 0; k < tilting; ++k) {
+      const double angle = t.alpha_rad * (k + 0.5) / tilting;
+      push(Eigen::Vector3d(0.0, -t.alpha_rad / 0.3, 0.0), kG * Eigen::Vector3d(std::sin(angle), 0.0, std::cos(angle)));
+    }
+  }
   for (int k = 0; k < static_cast<int>(t.rest_before_s * kRate_hz); ++k) push(Eigen::Vector3d::Zero(), kG * tilted);
+  if (t.lift_rad > 0.0) {
+    // Lifted away from the fall (ω_y < 0) with a rate falling linearly to zero in 0.15 s, so that it turns by
+    // lift_rad; the block stops at the top (a few samples below the rest threshold) and the fall starts there.
+    const int lift = static_cast<int>(0.15 * kRate_hz);
+    for (int k = 0; k < lift; ++k) {
+      const double s = (k + 0.5) / lift;
+      const double angle = t.alpha_rad + t.lift_rad * s * (2.0 - s);
+      push(Eigen::Vector3d(0.0, -2.0 * t.lift_rad / 0.15 * (1.0 - s), 0.0),
+           kG * Eigen::Vector3d(std::sin(angle), 0.0, std::cos(angle)));
+    }
+  }
   // Phase 1: 0.4 s about y, ω growing to 1.4 rad/s (the specific force is not used there).
   const int fall = static_cast<int>(0.4 * kRate_hz);
   for (int k = 1; k <= fall; ++k) {
@@ -155,6 +177,44 @@ TEST(MountingEstimate, WithoutRestAfterTheRockingTheAngleAboutYIsOpenAndSaidSo) 
   EXPECT_NEAR(e.check.angles_deg.y(), 0.0, kAngleTolerance_deg) << "kept at the given mounting";
   // The turn about y went into the tilt: the sensor turned by +2° about y reads α − 2°.
   EXPECT_NEAR(e.check.release_tilt_rad, 0.2 - 2.0 * kRadPerDeg, kTiltTolerance_deg * kRadPerDeg);
+}
+
+TEST(MountingEstimate, AShortLiftBeforeTheFallKeepsTheRestItWasHeldInAndSaysHowFar) {
+  // The hand lifts the block by 0.6° as it lets go (a push away from the fall): the stop at the top is no rest,
+  // the rest before the lift is, and its tilt is the one the block was held at, not the top of the lift.
+  HandMadeTrial t;
+  t.lift_rad = 0.6 * kRadPerDeg;
+  const Eigen::Vector3d truth_deg(-1.0, 2.0, 4.0);
+  const MountingEstimate e = EstimateMounting(MakeRecording(t, RotationFromDeg(truth_deg)));
+  ASSERT_EQ(e.check.status, MountingStatus::kOk) << e.check.message;
+  EXPECT_NEAR(e.check.release_tilt_rad, t.alpha_rad, kTiltTolerance_deg * kRadPerDeg);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(e.check.angles_deg[i], truth_deg[i], kAngleTolerance_deg);
+  EXPECT_NEAR(e.turn_before_fall_deg, 0.6, 0.05);
+  EXPECT_THAT(e.check.message, HasSubstr("turned by 0.6"));
+  // Without the lift the rest ends where the fall begins and nothing is said about a turn.
+  const MountingEstimate plain = EstimateMounting(MakeRecording(HandMadeTrial{}, RotationFromDeg(truth_deg)));
+  EXPECT_EQ(plain.turn_before_fall_deg, 0.0);
+  EXPECT_THAT(plain.check.message, Not(HasSubstr("turned by")));
+  // With the rule off (0°) the lift leaves no rest before the fall.
+  MountingEstimateOptions strict;
+  strict.max_turn_before_fall_deg = 0.0;
+  EXPECT_EQ(EstimateMounting(MakeRecording(t, RotationFromDeg(truth_deg)), strict).check.status, MountingStatus::kNoRest);
+}
+
+TEST(MountingEstimate, TheBlockStandingFlatBeforeItWasTiltedIntoPlaceIsNotTakenForTheRest) {
+  // Tilted by hand from flat to α and let go after 0.1 s: too short a rest, and the flat stand before the tilting
+  // (a turn of α = 11°) is not the release tilt: no rest, as before.
+  HandMadeTrial t;
+  t.flat_before_s = 1.0;
+  t.rest_before_s = 0.1;
+  const MountingEstimate e = EstimateMounting(MakeRecording(t, Eigen::Matrix3d::Identity()));
+  EXPECT_EQ(e.check.status, MountingStatus::kNoRest) << e.check.message;
+  // The bound on the turn is what keeps it out: above the tilting (20°) the flat stand is taken for the rest.
+  MountingEstimateOptions loose;
+  loose.max_turn_before_fall_deg = 20.0;
+  const MountingEstimate wrong = EstimateMounting(MakeRecording(t, Eigen::Matrix3d::Identity()), loose);
+  EXPECT_NE(wrong.check.status, MountingStatus::kNoRest);
+  EXPECT_GT(wrong.turn_before_fall_deg, 10.0);
 }
 
 TEST(MountingEstimate, RecordingsItCannotUseGetAStatusNotAnException) {

@@ -31,6 +31,12 @@ struct MountingEstimateOptions {
   double rest_margin_s = 0.05;
   // Shortest usable rest before the release or after the rocking: 50 samples at 256 Hz.
   double min_rest_s = 0.2;
+  // Largest turn of the block between the rest before the release and the start of its fall [deg] (a hand that
+  // lifts or pushes it as it lets go; a stop shorter than min_rest_s at the top is no rest): 2° is three times
+  // what a push of 0.2 rad/s lifts a block of the paper (0.63° at α = 0.19 rad) and well below its release tilts
+  // (7–13° at 0.5–0.95 θc), so the block standing flat before it was tilted into place is not taken for the rest.
+  // 0: the rest must end where the fall begins.
+  double max_turn_before_fall_deg = 2.0;
   // Phase 1 is the samples before the first impact with |ω| ≥ this fraction of the landing rate (smaller rates
   // are dominated by noise in their direction).
   double phase1_min_fraction = 0.2;
@@ -54,6 +60,7 @@ struct MountingEstimate {
   std::size_t rest_before_samples = 0;  // its length (0: no rest found)
   std::size_t phase1_samples = 0;
   std::size_t rest_after_samples = 0;
+  double turn_before_fall_deg = 0.0;   // turn between that rest and the fall (0: the rest ends at the fall)
   Eigen::Vector3d gyro_bias_rad_s = Eigen::Vector3d::Zero();  // measured at rest before the release (given axes)
 };
 
