@@ -34,7 +34,7 @@ struct MountingEstimateOptions {
   // Largest turn of the block between the rest before the release and the start of its fall [deg] (a hand that
   // lifts or pushes it as it lets go; a stop shorter than min_rest_s at the top is no rest): 2° is three times
   // what a push of 0.2 rad/s lifts a block of the paper (0.63° at α = 0.19 rad) and well below its release tilts
-  // (7–13° at 0.5–0.95 θc), so the block standing flat before it was tilted into place is not taken for the rest.
+  // (0.17–0.24 rad, 10–14°), so the block standing flat before it was tilted into place is not taken for the rest.
   // 0: the rest must end where the fall begins.
   double max_turn_before_fall_deg = 2.0;
   // Phase 1 is the samples before the first impact with |ω| ≥ this fraction of the landing rate (smaller rates
