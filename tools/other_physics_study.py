@@ -374,7 +374,7 @@ def release_tilt_lines(fitted):
                 shift = [1e3 * (c["fitted_rad"] - t["alpha"]) for t, c in available]
                 out.append(f"    |push| {lo:g}–{hi:g} rad/s {label}: {len(group)} trials, compared {len(available)}, "
                            f"caught (|z| > 4) {caught}"
-                           + (f"; fitted α − α at rest {min(shift):+.1f} to {max(shift):+.1f} mrad, |z| up to "
+                           + (f"; fitted α − true α {min(shift):+.1f} to {max(shift):+.1f} mrad, |z| up to "
                               f"{max(abs(c['z']) for _, c in available):.1f}" if available else ""))
     return out
 
