@@ -246,7 +246,8 @@ inline std::vector<std::string> WriteMujocoRockingTrial(const std::string& prefi
   std::ofstream(truth) << fmt::format(
       "{{\"generator\": \"MuJoCo {}\", \"t0_s\": {}, \"alpha_rad\": {}, \"roll_rad\": {}, \"b1_m\": {}, "
       "\"b2_m\": {}, \"h_m\": {}, \"density_kg_m3\": {}, \"com_offset_B_m\": [{}, {}, {}], \"proud_vertex\": {}, "
-      "\"proud_corner_m\": {}, \"push_w_y_rad_s\": {}, \"solref\": [{}, {}], \"solimp\": \"{}\", \"seed\": {}, \"impacts\": {}}}\n",
+      "\"proud_corner_m\": {}, \"push_w_y_rad_s\": {}, \"solref\": [{}, {}], \"solimp\": \"{}\", \"seed\": {}, "
+      "\"impacts\": {}}}\n",
       mj_versionString(), trial.t0_s, trial.alpha_rad, o.roll_rad, o.b1_m, o.b2_m, o.h_m, o.density_kg_m3,
       o.com_offset_B_m.x(), o.com_offset_B_m.y(), o.com_offset_B_m.z(), o.proud_vertex, o.proud_corner_m, o.push_w_y_rad_s,
       o.solref_time_constant_s, o.solref_damping_ratio, o.solimp, o.measurement.seed, trial.impacts);

@@ -2,8 +2,8 @@
 // as an x-IMU GUI file set with <prefix>_truth.json, for studies of fits of recordings the model did not make
 // (tools/other_physics_study.py). Test support, built only where CMake found MuJoCo; not installed.
 //
-//   rockfit_mujoco_synth -o PREFIX [--alpha RAD] [--roll RAD] [--t0 S] [--push RAD_S] [--duration S] [--b1 M --b2 M --h M]
-//                        [--com-offset-y FRACTION_OF_B2] [--proud-vertex 1-4] [--seed N]
+//   rockfit_mujoco_synth -o PREFIX [--alpha RAD] [--roll RAD] [--t0 S] [--push RAD_S] [--duration S]
+//                        [--b1 M --b2 M --h M] [--com-offset-y FRACTION_OF_B2] [--proud-vertex 1-4] [--seed N]
 //                        [--solref-time-constant S] [--solref-damping-ratio R] [--solimp D0,DWIDTH,WIDTH_M]
 #include <cstdlib>
 #include <iostream>
@@ -37,9 +37,9 @@ int main(int argc, char** argv) {
     }
   }
   if (prefix.empty() || argc % 2 == 0) {
-    std::cerr << "usage: rockfit_mujoco_synth -o PREFIX [--alpha RAD] [--roll RAD] [--t0 S] [--push RAD_S] [--duration S] [--b1 M "
-                 "--b2 M --h M] [--com-offset-y F] [--proud-vertex 1-4] [--seed N] [--solref-time-constant S] "
-                 "[--solref-damping-ratio R] [--solimp D0,DWIDTH,WIDTH_M]\n";
+    std::cerr << "usage: rockfit_mujoco_synth -o PREFIX [--alpha RAD] [--roll RAD] [--t0 S] [--push RAD_S] "
+                 "[--duration S] [--b1 M --b2 M --h M] [--com-offset-y F] [--proud-vertex 1-4] [--seed N] "
+                 "[--solref-time-constant S] [--solref-damping-ratio R] [--solimp D0,DWIDTH,WIDTH_M]\n";
     return 1;
   }
   try {

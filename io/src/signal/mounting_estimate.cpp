@@ -349,12 +349,13 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
     std::string which;
     for (const std::string& a : free_axes) which += (which.empty() ? "" : ", ") + a;
     c.message = fmt::format(
-        "the data do not fix the rotation about block {} (kept at the given mounting){}{}", which, lift_note,
+        "the data do not fix the rotation about block {} (kept at the given mounting){}{}", which,
         has_after ? std::string()
                   : fmt::format(": the recording does not end at rest (at least {:.2f} s with |ω| < {:.3g} rad/s), "
                                 "and before the release a turn about y looks like a different tilt α; record until "
                                 "the block stands still",
-                                o.min_rest_s, o.rest_rate_rad_s));
+                                o.min_rest_s, o.rest_rate_rad_s),
+        lift_note);
   }
   return e;
 }

@@ -65,7 +65,9 @@ Recording MakeRecording(const HandMadeTrial& t, const Eigen::Matrix3d& R_BBg, st
     r.accel_B.push_back(R_BgB * f_B + noise(kAccelNoise_m_s2));
   };
   const Eigen::Vector3d tilted(std::sin(t.alpha_rad), 0.0, std::cos(t.alpha_rad));
-  for (int k = 0; k < static_cast<int>(t.flat_before_s * kRate_hz); ++k) push(Eigen::Vector3d::Zero(), kG * Eigen::Vector3d::UnitZ());
+  for (int k = 0; k < static_cast<int>(t.flat_before_s * kRate_hz); ++k) {
+    push(Eigen::Vector3d::Zero(), kG * Eigen::Vector3d::UnitZ());
+  }
   if (t.flat_before_s > 0.0) {
     const int tilting = static_cast<int>(0.3 * kRate_hz);  // φy from 0 to −α at a constant rate
     for (int k = 0; k < tilting; ++k) {
@@ -198,7 +200,8 @@ TEST(MountingEstimate, AShortLiftBeforeTheFallKeepsTheRestItWasHeldInAndSaysHowF
   // With the rule off (0°) the lift leaves no rest before the fall.
   MountingEstimateOptions strict;
   strict.max_turn_before_fall_deg = 0.0;
-  EXPECT_EQ(EstimateMounting(MakeRecording(t, RotationFromDeg(truth_deg)), strict).check.status, MountingStatus::kNoRest);
+  EXPECT_EQ(EstimateMounting(MakeRecording(t, RotationFromDeg(truth_deg)), strict).check.status,
+            MountingStatus::kNoRest);
 }
 
 TEST(MountingEstimate, TheBlockStandingFlatBeforeItWasTiltedIntoPlaceIsNotTakenForTheRest) {
