@@ -97,15 +97,22 @@ void StepTrack(const Objective& objective, double window_end, int scan_points, c
 // The stop rule of the continuation: a track whose (28) on the window just searched exceeds prune_ratio times
 // the best track's there is dropped (0: none is). Tracks are compared on the same window, after all of them
 // were searched in it, so the rule does not depend on the number of threads.
-void PruneTracks(double prune_ratio, std::vector<Track>* tracks) {
+void PruneTracks(double prune_ratio, double window_end, std::vector<Track>* tracks) {
   if (!(prune_ratio > 0.0)) return;
-  double best = std::numeric_limits<double>::infinity();
+  const auto integral = [&](const Track& t) { return t.window_epsilon_rad_s * (window_end - t.at.value(ParameterId::kT0)); };
+  double best = std::numeric_limits<double>::infinity(), best_integral = best;
   for (const Track& t : *tracks) {
-    if (t.active && std::isfinite(t.window_epsilon_rad_s)) best = std::min(best, t.window_epsilon_rad_s);
+    if (t.active && std::isfinite(t.window_epsilon_rad_s)) {
+      best = std::min(best, t.window_epsilon_rad_s);
+      best_integral = std::min(best_integral, integral(t));
+    }
   }
   if (!std::isfinite(best)) return;
   for (Track& t : *tracks) {
-    if (t.active && std::isfinite(t.window_epsilon_rad_s) && t.window_epsilon_rad_s > prune_ratio * best) t.active = false;
+    if (t.active && std::isfinite(t.window_epsilon_rad_s) && t.window_epsilon_rad_s > prune_ratio * best &&
+        integral(t) > prune_ratio * best_integral) {
+      t.active = false;
+    }
   }
 }
 
@@ -122,7 +129,7 @@ void ContinueTracks(const Objective& objective, double window_end, double t_rele
       Track& track = (*tracks)[i];
       if (track.active) StepTrack(objective, window_end, scan_points, options, step_options, &track);
     });
-    PruneTracks(prune_ratio, tracks);
+    PruneTracks(prune_ratio, window_end, tracks);
   }
 }
 
