@@ -94,23 +94,28 @@ void StepTrack(const Objective& objective, double window_end, int scan_points, c
   track->converged = step_converged;
 }
 
-// The stop rule of the continuation: a track whose (28) on the window just searched exceeds prune_ratio times
-// the best track's there is dropped (0: none is). Tracks are compared on the same window, after all of them
-// were searched in it, so the rule does not depend on the number of threads.
-void PruneTracks(double prune_ratio, double window_end, std::vector<Track>* tracks) {
+// The stop rule of the continuation: a track is dropped (prune_ratio 0: none is) when both its (28) on the window
+// just searched and its error summed over that window, (28)·(window end − t0) [rad], exceed prune_ratio times the
+// best track's. (28) is a mean from the track's own t0: a track hovering near θc with t0 far too early adds the
+// recorded rest, fitted to the noise, and lowers its mean; the sum does not gain from it (fitting/README.md, "The
+// stop rule of the continuation"). Tracks are compared on the same window, after all of them were searched in it,
+// so the rule does not depend on the number of threads.
+void PruneTracks(double prune_ratio, double window_end_s, std::vector<Track>* tracks) {
   if (!(prune_ratio > 0.0)) return;
-  const auto integral = [&](const Track& t) { return t.window_epsilon_rad_s * (window_end - t.at.value(ParameterId::kT0)); };
-  double best = std::numeric_limits<double>::infinity(), best_integral = best;
+  const auto summed_rad = [&](const Track& t) {
+    return t.window_epsilon_rad_s * (window_end_s - t.at.value(ParameterId::kT0));
+  };
+  double best_rad_s = std::numeric_limits<double>::infinity(), best_summed_rad = best_rad_s;
   for (const Track& t : *tracks) {
     if (t.active && std::isfinite(t.window_epsilon_rad_s)) {
-      best = std::min(best, t.window_epsilon_rad_s);
-      best_integral = std::min(best_integral, integral(t));
+      best_rad_s = std::min(best_rad_s, t.window_epsilon_rad_s);
+      best_summed_rad = std::min(best_summed_rad, summed_rad(t));
     }
   }
-  if (!std::isfinite(best)) return;
+  if (!std::isfinite(best_rad_s)) return;
   for (Track& t : *tracks) {
-    if (t.active && std::isfinite(t.window_epsilon_rad_s) && t.window_epsilon_rad_s > prune_ratio * best &&
-        integral(t) > prune_ratio * best_integral) {
+    if (t.active && std::isfinite(t.window_epsilon_rad_s) && t.window_epsilon_rad_s > prune_ratio * best_rad_s &&
+        summed_rad(t) > prune_ratio * best_summed_rad) {
       t.active = false;
     }
   }
