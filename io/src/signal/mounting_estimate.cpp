@@ -192,9 +192,14 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
   const auto still = [&](std::size_t k) { return (r.w_B[k] - bias).norm() < o.rest_rate_rad_s; };
   std::size_t release = k_impact;
   while (release > 0 && !still(release - 1)) --release;
-  Stretch before{0, release > margin ? release - margin : 0};
-  before.begin = before.end;
-  while (before.begin > 0 && still(before.begin - 1)) --before.begin;
+  // The still samples that end a margin before the motion starting at `motion`.
+  const auto still_before = [&](std::size_t motion) {
+    Stretch s{0, motion > margin ? motion - margin : 0};
+    s.begin = s.end;
+    while (s.begin > 0 && still(s.begin - 1)) --s.begin;
+    return s;
+  };
+  Stretch before = still_before(release);
   // A hand that lets go late can lift the block a little before it falls (a push away from the fall): the block
   // stops for a few samples at the top, which is no rest, and the rest it was held in comes before the lift. Look
   // past such short stops while the block turned by at most max_turn_before_fall_deg from there to the fall.
@@ -211,9 +216,7 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
       farthest_rad = std::max(farthest_rad, turn_rad.norm());
     }
     if (end == 0 || farthest_rad > max_turn_rad) break;
-    earlier = Stretch{end, end > margin ? end - margin : 0};
-    earlier.begin = earlier.end;
-    while (earlier.begin > 0 && still(earlier.begin - 1)) --earlier.begin;
+    earlier = still_before(end);
     if (earlier.size() >= min_rest) {
       before = earlier;
       turn_before_fall_rad = farthest_rad;
