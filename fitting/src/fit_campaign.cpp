@@ -12,7 +12,7 @@
 #include <tbb/task_group.h>
 
 #include "rockfit/core/checks.hpp"
-#include "rockfit/fitting/fitter.hpp"
+#include "rockfit/fitting/recorded_fit.hpp"
 #include "rockfit/io/hdf5_transaction.hpp"
 #include "rockfit/core/enum_names.hpp"
 
@@ -55,9 +55,9 @@ void FitOne(CampaignRun& run, const CampaignTrial& trial, TrialOutcome& o) {
     return;
   }
   const PreparedTrial prepared = trial.prepare();
-  FitSummary summary = Fit(prepared.objective, prepared.start, prepared.options);
-  summary.release_roll_choice = prepared.release_roll_choice;
-  if (prepared.recording) AttachReleaseTiltCheck(prepared.recording->mounting_check, &summary);
+  const FitSummary summary =
+      FitRecordedTrial(prepared.objective, prepared.start, prepared.options, prepared.release_roll_choice,
+                       prepared.recording ? &prepared.recording->mounting_check : nullptr);
   o.epsilon_rad_s = summary.epsilon_rad_s;
   o.fit_wall_s = summary.wall_time_s;
   o.model_error = summary.model_error;

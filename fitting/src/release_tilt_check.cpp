@@ -7,11 +7,21 @@
 #include <nlohmann/json.hpp>
 
 #include "rockfit/fitting/fit_summary.hpp"
+#include "rockfit/io/units.hpp"
 
 namespace rockfit::fitting {
 namespace {
 
 constexpr std::size_t kBlockY = 1;  // index of the block's y axis in MountingCheck::determined
+
+// The sentence's note on a turn before the fall ("" when the rest ends at the fall), in both units so that it can
+// be read against the difference in mrad.
+std::string TurnNote(double turn_before_fall_deg) {
+  if (!(turn_before_fall_deg > 0.0)) return "";
+  return fmt::format("the block turned by {:.2f}° ({:.1f} mrad) between the rest and the fall (lifted or pushed as "
+                     "it was let go)",
+                     turn_before_fall_deg, 1e3 * io::kRadPerDeg * turn_before_fall_deg);
+}
 
 }  // namespace
 
@@ -22,6 +32,7 @@ ReleaseTiltCheck CheckReleaseTilt(const io::MountingCheck& mounting, const Param
   c.fitted_std_error_rad = alpha_std_error_rad;
   c.rest_rad = mounting.release_tilt_rad;
   c.rest_std_error_rad = mounting.release_tilt_std_error_rad;
+  c.turn_before_fall_deg = mounting.turn_before_fall_deg;
   if (!mounting.has_estimate()) {
     c.reason = mounting.status == io::MountingStatus::kNotChecked
                    ? "no tilt at rest: the recording was not checked for its mounting"
@@ -54,13 +65,21 @@ ReleaseTiltCheck CheckReleaseTilt(const io::MountingCheck& mounting, const Param
   c.difference_rad = c.fitted_rad - c.rest_rad;
   c.z = c.difference_rad / std::hypot(c.fitted_std_error_rad, c.rest_std_error_rad);
   c.consistent = std::abs(c.z) <= kReleaseTiltMaxZ;
+  const std::string turn = TurnNote(c.turn_before_fall_deg);
+  std::string verdict;
+  if (c.consistent) {
+    verdict = turn.empty() ? ", consistent" : ", consistent; " + turn;
+  } else if (turn.empty()) {
+    verdict = ": they disagree; check the block's dimensions (b1, b2, h) and the release (a push, a hand that "
+              "follows), on which the fitted α rests";
+  } else {
+    verdict = ": they disagree, and " + turn + ": the fitted α is the tilt it fell from, not the one it was held "
+              "at; if the turn does not account for the difference, check the block's dimensions (b1, b2, h)";
+  }
   c.reason = fmt::format("fitted α {:.5f} ± {:.5f} rad, at rest {:.5f} ± {:.5f} rad (accelerometer): {:+.2f} mrad, "
                          "{:.1f} σ apart{}",
                          c.fitted_rad, c.fitted_std_error_rad, c.rest_rad, c.rest_std_error_rad, 1e3 * c.difference_rad,
-                         std::abs(c.z),
-                         c.consistent ? ", consistent"
-                                      : ": they disagree; check the block's dimensions (b1, b2, h) and the release "
-                                        "(a push, a hand that follows), on which the fitted α rests");
+                         std::abs(c.z), verdict);
   return c;
 }
 
@@ -86,6 +105,7 @@ std::string ReleaseTiltCheckJson(const ReleaseTiltCheck& c) {
   j["difference_rad"] = number(c.difference_rad);
   j["z"] = number(c.z);
   j["consistent"] = c.consistent;
+  j["turn_before_fall_deg"] = finite(c.turn_before_fall_deg);
   j["reason"] = c.reason;
   return j.dump();
 }

@@ -21,8 +21,7 @@
 #include "rockfit/app/mounting_report.hpp"
 #include "rockfit/app/recording_input.hpp"
 #include "rockfit/core/errors.hpp"
-#include "rockfit/fitting/fitter.hpp"
-#include "rockfit/fitting/release_tilt_check.hpp"
+#include "rockfit/fitting/recorded_fit.hpp"
 #include "rockfit/io/manifest.hpp"
 
 namespace rockfit::python {
@@ -194,9 +193,8 @@ FitOutcome RunFit(const std::string& trial, const io::Recording& recording, cons
   o.mounting = app::MountingJson(recording);
   o.prepared = std::make_unique<app::PreparedFit>(app::PrepareFit(recording, block, args));
   const fitting::Objective objective = Interruptible(o.prepared->objective, interrupted);
-  o.summary = fitting::Fit(objective, o.prepared->start, o.prepared->options);
-  o.summary.release_roll_choice = o.prepared->release_roll_choice;
-  fitting::AttachReleaseTiltCheck(recording.mounting_check, &o.summary);
+  o.summary = fitting::FitRecordedTrial(objective, o.prepared->start, o.prepared->options,
+                                        o.prepared->release_roll_choice, &recording.mounting_check);
   // The nodes of (28) and the model at the result, for plots (one more simulation).
   // On the fit's window, which the fit may have extended (fitting/README.md, "End of the fitting window").
   o.prepared->objective.WithWindowEnd(o.summary.t_end_s).EvaluateDetailed(o.summary.parameters, &o.nodes, &o.output);

@@ -16,11 +16,13 @@
 #include "mujoco_rocking.hpp"
 #include "scratch_dir.hpp"
 #include "rockfit/fitting/fitter.hpp"
+#include "rockfit/fitting/recorded_fit.hpp"
 #include "rockfit/fitting/release_tilt_check.hpp"
 #include "rockfit/fitting/trial_problem.hpp"
 #include "rockfit/io/load_recording.hpp"
 #include "rockfit/io/synth_recording.hpp"
 #include "rockfit/io/trial_metrics.hpp"
+#include "rockfit/io/units.hpp"
 
 namespace rockfit::fitting {
 namespace {
@@ -264,10 +266,8 @@ WrittenMujocoFit FitWrittenMujocoTrial(const testing::MujocoRockingOptions& o) {
   FitOptions options;
   options.intervals.method = IntervalMethod::kFast;  // the check needs α's standard error only
   options.num_threads = 1;
-  WrittenMujocoFit f{Fit(p.objective, p.start, options), recording.mounting_check};
-  f.summary.release_roll_choice = p.release_roll;
-  AttachReleaseTiltCheck(recording.mounting_check, &f.summary);
-  return f;
+  return {FitRecordedTrial(p.objective, p.start, options, p.release_roll, &recording.mounting_check),
+          recording.mounting_check};
 }
 
 TEST(MujocoTrial, APushAtTheReleaseIsCaughtByTheTiltAtRestAndAReleaseFromRestIsNot) {
@@ -306,6 +306,15 @@ TEST(MujocoTrial, APushAtTheReleaseIsCaughtByTheTiltAtRestAndAReleaseFromRestIsN
     if (c.push_rad_s < 0.0) {
       EXPECT_GT(check.difference_rad, 0.0) << label << ": the fall starts above the tilt at rest";
       EXPECT_THAT(f.mounting.message, ::testing::HasSubstr("turned by")) << label;
+      // The check carries the lift and says that α is the tilt the box fell from; the lift is what moved α.
+      EXPECT_EQ(check.turn_before_fall_deg, f.mounting.turn_before_fall_deg);
+      EXPECT_GT(check.turn_before_fall_deg, 0.0);
+      EXPECT_THAT(check.reason, ::testing::HasSubstr("the fitted α is the tilt it fell from")) << label;
+      const double turn_rad = check.turn_before_fall_deg * io::kRadPerDeg;
+      EXPECT_GT(check.difference_rad, 0.5 * turn_rad) << check.reason;
+      EXPECT_LT(check.difference_rad, 2.0 * turn_rad) << check.reason;
+    } else {
+      EXPECT_EQ(check.turn_before_fall_deg, 0.0) << label << ": " << check.reason;
     }
   }
 }

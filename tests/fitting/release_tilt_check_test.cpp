@@ -60,6 +60,43 @@ TEST(ReleaseTiltCheck, TiltsFourSigmaApartDisagreeAndWarnAboutTheDimensions) {
   EXPECT_NEAR(j["z"].get<double>(), -4.02, 1e-9);
 }
 
+TEST(ReleaseTiltCheck, ATurnBeforeTheFallIsNamedInDegreesAndMradAndExplainsADisagreement) {
+  // Lifted by 0.8° (13.96 mrad) as it was let go: the fit's α is the top of the lift, 14 mrad above the rest.
+  io::MountingCheck lifted = RestTilt(0.2, 0.0004);
+  lifted.turn_before_fall_deg = 0.8;
+  FitSummary apart = FittedAlpha(0.214, 0.0003);
+  AttachReleaseTiltCheck(lifted, &apart);
+  EXPECT_FALSE(apart.release_tilt->consistent);
+  EXPECT_DOUBLE_EQ(apart.release_tilt->turn_before_fall_deg, 0.8);
+  const std::string& why = apart.release_tilt->reason;
+  EXPECT_NE(why.find("+14.00 mrad"), std::string::npos) << why;
+  EXPECT_NE(why.find("turned by 0.80° (14.0 mrad) between the rest and the fall"), std::string::npos) << why;
+  EXPECT_NE(why.find("the fitted α is the tilt it fell from"), std::string::npos) << why;
+  ASSERT_TRUE(apart.HasWarning(WarningKind::kReleaseTiltDisagrees, "alpha"));
+  EXPECT_NE(apart.warnings.back().message.find("turned by 0.80°"), std::string::npos);
+  EXPECT_EQ(nlohmann::json::parse(ReleaseTiltCheckJson(*apart.release_tilt))["turn_before_fall_deg"], 0.8);
+
+  // A lift too small to move α beyond the errors: consistent, and the turn is still said.
+  io::MountingCheck small = RestTilt(0.2, 0.0004);
+  small.turn_before_fall_deg = 0.05;
+  FitSummary close = FittedAlpha(0.2006, 0.0003);
+  AttachReleaseTiltCheck(small, &close);
+  EXPECT_TRUE(close.release_tilt->consistent);
+  EXPECT_NE(close.release_tilt->reason.find("consistent; the block turned by 0.05° (0.9 mrad)"), std::string::npos)
+      << close.release_tilt->reason;
+
+  // No turn (the rest ends at the fall) or none known: nothing is said about it, and the JSON says which.
+  io::MountingCheck still = RestTilt(0.2, 0.0004);
+  still.turn_before_fall_deg = 0.0;
+  FitSummary held = FittedAlpha(0.2006, 0.0003);
+  AttachReleaseTiltCheck(still, &held);
+  EXPECT_EQ(held.release_tilt->reason.find("turned"), std::string::npos) << held.release_tilt->reason;
+  EXPECT_EQ(nlohmann::json::parse(ReleaseTiltCheckJson(*held.release_tilt))["turn_before_fall_deg"], 0.0);
+  FitSummary unknown = FittedAlpha(0.2006, 0.0003);
+  AttachReleaseTiltCheck(RestTilt(0.2, 0.0004), &unknown);
+  EXPECT_TRUE(nlohmann::json::parse(ReleaseTiltCheckJson(*unknown.release_tilt))["turn_before_fall_deg"].is_null());
+}
+
 TEST(ReleaseTiltCheck, NoComparisonWithoutARestTiltAFixedMountingTurnAFreeAlphaOrItsError) {
   io::MountingCheck none;
   none.status = io::MountingStatus::kNoRest;

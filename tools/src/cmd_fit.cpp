@@ -12,8 +12,7 @@
 #include "rockfit/app/recording_input.hpp"
 #include "rockfit/core/errors.hpp"
 #include "rockfit/fitting/fit_store.hpp"
-#include "rockfit/fitting/fitter.hpp"
-#include "rockfit/fitting/release_tilt_check.hpp"
+#include "rockfit/fitting/recorded_fit.hpp"
 #include "rockfit/io/campaign_hdf5.hpp"
 #include "rockfit/io/hdf5_transaction.hpp"
 
@@ -101,9 +100,9 @@ int RunFit(const FitCommand& cmd) {
   const PreparedFit prepared = PrepareFit(input.recording, block, cmd.fit);
   if (cmd.evaluate) return RunEvaluate(cmd, input, prepared);
 
-  fitting::FitSummary summary = fitting::Fit(prepared.objective, prepared.start, prepared.options);
-  summary.release_roll_choice = prepared.release_roll_choice;
-  fitting::AttachReleaseTiltCheck(input.recording.mounting_check, &summary);
+  const fitting::FitSummary summary =
+      fitting::FitRecordedTrial(prepared.objective, prepared.start, prepared.options, prepared.release_roll_choice,
+                                &input.recording.mounting_check);
   const std::string trial = TrialNameFrom(input.trial_id);
   if (!cmd.output.empty()) {
     io::hdf5::Transaction tx(cmd.output, {"/fits/" + trial});

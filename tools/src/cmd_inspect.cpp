@@ -205,7 +205,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   app->add_flag("--json", cmd->json,
                 "Print one JSON object: format, source, rate_hz, rate_source, samples, duration_s, columns, recognised, gaps, "
                 "warnings, orientation_source, orientation_rate_hz, mounting, mounting_check (applied, given, estimated, status, "
-                "message, angles_deg, std_error_deg, determined, disagreement_deg, release_tilt_rad, release_tilt_std_error_rad, warning), ranges "
+                "message, angles_deg, std_error_deg, determined, disagreement_deg, release_tilt_rad, release_tilt_std_error_rad, turn_before_fall_deg, warning), ranges "
                 "(min/max per channel, SI units)");
   app->callback([cmd] { SetExitCode(RunInspect(*cmd)); });
 });

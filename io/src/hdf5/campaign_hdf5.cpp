@@ -101,6 +101,7 @@ void WriteMountingHdf5(const hdf5::Group& g, const Recording& recording) {
   g.SetString("mounting_message", c.message);
   g.SetString("mounting_warning", c.warning);
   g.SetDouble("mounting_disagreement_deg", MountingDisagreementDeg(c));
+  g.SetDouble("mounting_turn_before_fall_deg", c.turn_before_fall_deg);
   g.WriteDoubles("mounting_angles_deg", {c.angles_deg.x(), c.angles_deg.y(), c.angles_deg.z()}, "deg");
   g.WriteDoubles("mounting_std_error_deg", {c.std_error_deg.x(), c.std_error_deg.y(), c.std_error_deg.z()}, "deg");
   g.WriteInts("mounting_determined", {c.determined[0] ? 1 : 0, c.determined[1] ? 1 : 0, c.determined[2] ? 1 : 0}, "1");

@@ -321,13 +321,13 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
 
   const Eigen::Matrix3d R_BgB = R0 * Exp(theta);
   e.R_BBg = R_BgB.transpose();
-  e.turn_before_fall_deg = turn_before_fall_rad * kDegPerRad;
+  MountingCheck& c = e.check;
+  c.turn_before_fall_deg = turn_before_fall_rad * kDegPerRad;
   const std::string lift_note =
       turn_before_fall_rad > 0.0
           ? fmt::format("; the block turned by {:.2f}° between that rest and the fall (lifted or pushed as it was "
-                        "let go)", e.turn_before_fall_deg)
+                        "let go)", c.turn_before_fall_deg)
           : std::string();
-  MountingCheck& c = e.check;
   c.angles_deg = Log(e.R_BBg) * kDegPerRad;
   for (int i = 0; i < 3; ++i) {
     c.std_error_deg[i] = std::sqrt(covariance(i, i)) * kDegPerRad;

@@ -246,6 +246,7 @@ TEST(CampaignHdf5, TheMountingAndItsEstimateAreStoredWithTheTrial) {
   c.angles_deg = {0.01, -0.02, 3.0};
   c.std_error_deg = {0.02, 0.05, 0.03};
   c.determined = {true, true, true};
+  c.turn_before_fall_deg = 0.63;
   WriteCampaign(dir / "c.h5", trial);
   const hdf5::File file = hdf5::File::Open(dir / "c.h5");
   const hdf5::Group g = file.Root().OpenGroup("trials/B3-A-1");
@@ -257,6 +258,7 @@ TEST(CampaignHdf5, TheMountingAndItsEstimateAreStoredWithTheTrial) {
   EXPECT_EQ(g.ReadDoubles("mounting_std_error_deg"), (std::vector<double>{0.02, 0.05, 0.03}));
   EXPECT_EQ(g.ReadInts("mounting_determined"), (std::vector<std::int64_t>{1, 1, 1}));
   EXPECT_NEAR(*g.GetDouble("mounting_disagreement_deg"), std::sqrt(0.0001 + 0.0004 + 9.0), 1e-12);
+  EXPECT_EQ(g.GetDouble("mounting_turn_before_fall_deg"), 0.63);
   EXPECT_EQ(ReadRecordingHdf5(dir / "c.h5", "").mounting, trial.recording.mounting);
 }
 

@@ -191,11 +191,11 @@ TEST(MountingEstimate, AShortLiftBeforeTheFallKeepsTheRestItWasHeldInAndSaysHowF
   ASSERT_EQ(e.check.status, MountingStatus::kOk) << e.check.message;
   EXPECT_NEAR(e.check.release_tilt_rad, t.alpha_rad, kTiltTolerance_deg * kRadPerDeg);
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(e.check.angles_deg[i], truth_deg[i], kAngleTolerance_deg);
-  EXPECT_NEAR(e.turn_before_fall_deg, 0.6, 0.05);
+  EXPECT_NEAR(e.check.turn_before_fall_deg, 0.6, 0.05);
   EXPECT_THAT(e.check.message, HasSubstr("turned by 0.6"));
   // Without the lift the rest ends where the fall begins and nothing is said about a turn.
   const MountingEstimate plain = EstimateMounting(MakeRecording(HandMadeTrial{}, RotationFromDeg(truth_deg)));
-  EXPECT_EQ(plain.turn_before_fall_deg, 0.0);
+  EXPECT_EQ(plain.check.turn_before_fall_deg, 0.0);
   EXPECT_THAT(plain.check.message, Not(HasSubstr("turned by")));
   // With the rule off (0°) the lift leaves no rest before the fall.
   MountingEstimateOptions strict;
@@ -217,7 +217,7 @@ TEST(MountingEstimate, TheBlockStandingFlatBeforeItWasTiltedIntoPlaceIsNotTakenF
   loose.max_turn_before_fall_deg = 20.0;
   const MountingEstimate wrong = EstimateMounting(MakeRecording(t, Eigen::Matrix3d::Identity()), loose);
   EXPECT_NE(wrong.check.status, MountingStatus::kNoRest);
-  EXPECT_GT(wrong.turn_before_fall_deg, 10.0);
+  EXPECT_GT(wrong.check.turn_before_fall_deg, 10.0);
 }
 
 TEST(MountingEstimate, RecordingsItCannotUseGetAStatusNotAnException) {

@@ -28,6 +28,7 @@ nlohmann::json MountingJson(const io::Recording& r) {
           {"disagreement_deg", OrNull(io::MountingDisagreementDeg(c))},
           {"release_tilt_rad", OrNull(c.release_tilt_rad)},
           {"release_tilt_std_error_rad", OrNull(c.release_tilt_std_error_rad)},
+          {"turn_before_fall_deg", OrNull(c.turn_before_fall_deg)},
           {"warning", c.warning}};
 }
 

@@ -38,6 +38,10 @@ struct ReleaseTiltCheck {
   double difference_rad = 0.0;  // fitted − rest
   double z = 0.0;               // difference / combined standard error
   bool consistent = true;       // |z| ≤ kReleaseTiltMaxZ (true when not available)
+  // The block's turn between the rest and the start of its fall [deg] (MountingCheck::turn_before_fall_deg; NaN
+  // without a tilt at rest): above 0 a hand lifted or pushed it as it let go, and the fitted α is the tilt it fell
+  // from, which a push away from the fall puts above the tilt at rest by about that turn.
+  double turn_before_fall_deg = 0.0;
   std::string reason;           // one sentence: the comparison, or why there is none
 };
 
@@ -50,7 +54,7 @@ ReleaseTiltCheck CheckReleaseTilt(const io::MountingCheck& mounting, const Param
 void AttachReleaseTiltCheck(const io::MountingCheck& mounting, FitSummary* summary);
 
 // {"available", "rest_rad", "rest_std_error_rad", "fitted_rad", "fitted_std_error_rad", "difference_rad", "z",
-//  "consistent", "reason"}; numbers null when not available.
+//  "consistent", "turn_before_fall_deg", "reason"}; numbers null when not available (the turn: when not known).
 std::string ReleaseTiltCheckJson(const ReleaseTiltCheck& check);
 std::string ReleaseTiltCheckText(const ReleaseTiltCheck& check);
 

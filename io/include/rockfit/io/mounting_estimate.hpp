@@ -54,13 +54,12 @@ struct MountingEstimateOptions {
 };
 
 struct MountingEstimate {
-  MountingCheck check;         // status, angles, standard errors, which angles are determined, α at rest
+  MountingCheck check;  // status, angles, standard errors, which angles are determined, α at rest, turn before the fall
   Eigen::Matrix3d R_BBg = Eigen::Matrix3d::Identity();  // block axes from the given mounting's axes
   std::size_t rest_before_first = 0;    // first sample of the rest before the release
   std::size_t rest_before_samples = 0;  // its length (0: no rest found)
   std::size_t phase1_samples = 0;
   std::size_t rest_after_samples = 0;
-  double turn_before_fall_deg = 0.0;   // turn between that rest and the fall (0: the rest ends at the fall)
   Eigen::Vector3d gyro_bias_rad_s = Eigen::Vector3d::Zero();  // measured at rest before the release (given axes)
 };
 

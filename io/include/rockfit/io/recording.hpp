@@ -40,6 +40,10 @@ struct MountingCheck {
   double release_tilt_rad = std::numeric_limits<double>::quiet_NaN();  // α at rest from the accelerometer
   // Its standard error from the estimate's scatter and calibration floors (NaN without an estimate) [rad].
   double release_tilt_std_error_rad = std::numeric_limits<double>::quiet_NaN();
+  // How far the block turned between the rest before the release and the start of its fall [deg] (a hand that
+  // lifted or pushed it as it let go): 0 when that rest ends where the fall begins; NaN without an estimate.
+  // Where it is above 0 the fitted α is the tilt the block fell from, not the tilt at rest.
+  double turn_before_fall_deg = std::numeric_limits<double>::quiet_NaN();
   std::string warning;  // set when the data disagree with a mounting that was given (not estimated)
 
   bool has_estimate() const { return status == MountingStatus::kOk || status == MountingStatus::kPartial; }

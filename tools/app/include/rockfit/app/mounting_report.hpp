@@ -11,7 +11,8 @@
 namespace rockfit::app {
 
 // {"applied", "given", "estimated", "status", "message", "angles_deg" [x, y, z], "std_error_deg" [x, y, z],
-//  "determined" [x, y, z], "disagreement_deg", "release_tilt_rad", "release_tilt_std_error_rad", "warning"}; missing numbers are null.
+//  "determined" [x, y, z], "disagreement_deg", "release_tilt_rad", "release_tilt_std_error_rad",
+//  "turn_before_fall_deg", "warning"}; missing numbers are null.
 nlohmann::json MountingJson(const io::Recording& recording);
 
 // "auto → 0.99966,… (data − given about block x +0.01°, y −0.02°, z +3.00°, ±0.01°)" and similar.
