@@ -31,12 +31,13 @@ const char* ToString(WarningKind kind) {
     case WarningKind::kWindowExtended: return "window_extended";
     case WarningKind::kModelErrorDominates: return "model_error_dominates";
     case WarningKind::kReleaseTiltDisagrees: return "release_tilt_disagrees";
+    case WarningKind::kTurnedBeforeFall: return "turned_before_fall";
   }
   return "?";
 }
 
 bool FromString(std::string_view text, WarningKind* value) {
-  static constexpr WarningKind kAll[] = {WarningKind::kAtBound, WarningKind::kNotIdentifiable, WarningKind::kSimulationFailures, WarningKind::kNotConverged, WarningKind::kStdErrorUnavailable, WarningKind::kInfeasible, WarningKind::kPoorFit, WarningKind::kSecondBasin, WarningKind::kNotDetermined, WarningKind::kMovedByIntervals, WarningKind::kLateralMotionUnexplained, WarningKind::kMovedByLateralRescan, WarningKind::kModelErrorDominates, WarningKind::kWindowExtended, WarningKind::kReleaseTiltDisagrees};
+  static constexpr WarningKind kAll[] = {WarningKind::kAtBound, WarningKind::kNotIdentifiable, WarningKind::kSimulationFailures, WarningKind::kNotConverged, WarningKind::kStdErrorUnavailable, WarningKind::kInfeasible, WarningKind::kPoorFit, WarningKind::kSecondBasin, WarningKind::kNotDetermined, WarningKind::kMovedByIntervals, WarningKind::kLateralMotionUnexplained, WarningKind::kMovedByLateralRescan, WarningKind::kModelErrorDominates, WarningKind::kWindowExtended, WarningKind::kReleaseTiltDisagrees, WarningKind::kTurnedBeforeFall};
   return core::FromStringAmong(text, kAll, value);
 }
 

@@ -91,6 +91,12 @@ void AttachReleaseTiltCheck(const io::MountingCheck& mounting, FitSummary* summa
         {WarningKind::kReleaseTiltDisagrees, "alpha",
          "the fitted release tilt and the tilt at rest disagree: " + summary->release_tilt->reason});
   }
+  if (mounting.turn_before_fall_deg > kTurnBeforeFallWarningDeg) {
+    summary->warnings.push_back(
+        {WarningKind::kTurnedBeforeFall, "",
+         TurnNote(mounting.turn_before_fall_deg) + ": t0 and α are those of the fall from where it stopped, not of a "
+                                                   "release from the rest it was held in"});
+  }
 }
 
 std::string ReleaseTiltCheckJson(const ReleaseTiltCheck& c) {

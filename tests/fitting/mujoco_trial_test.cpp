@@ -313,8 +313,10 @@ TEST(MujocoTrial, APushAtTheReleaseIsCaughtByTheTiltAtRestAndAReleaseFromRestIsN
       const double turn_rad = check.turn_before_fall_deg * io::kRadPerDeg;
       EXPECT_GT(check.difference_rad, 0.5 * turn_rad) << check.reason;
       EXPECT_LT(check.difference_rad, 2.0 * turn_rad) << check.reason;
+      EXPECT_TRUE(s.HasWarning(WarningKind::kTurnedBeforeFall)) << label;
     } else {
       EXPECT_EQ(check.turn_before_fall_deg, 0.0) << label << ": " << check.reason;
+      EXPECT_FALSE(s.HasWarning(WarningKind::kTurnedBeforeFall)) << label;
     }
   }
 }

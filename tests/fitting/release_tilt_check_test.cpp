@@ -75,6 +75,7 @@ TEST(ReleaseTiltCheck, ATurnBeforeTheFallIsNamedInDegreesAndMradAndExplainsADisa
   ASSERT_TRUE(apart.HasWarning(WarningKind::kReleaseTiltDisagrees, "alpha"));
   EXPECT_NE(apart.warnings.back().message.find("turned by 0.80°"), std::string::npos);
   EXPECT_EQ(nlohmann::json::parse(ReleaseTiltCheckJson(*apart.release_tilt))["turn_before_fall_deg"], 0.8);
+  ASSERT_TRUE(apart.HasWarning(WarningKind::kTurnedBeforeFall));
 
   // A lift too small to move α beyond the errors: consistent, and the turn is still said.
   io::MountingCheck small = RestTilt(0.2, 0.0004);
@@ -84,6 +85,7 @@ TEST(ReleaseTiltCheck, ATurnBeforeTheFallIsNamedInDegreesAndMradAndExplainsADisa
   EXPECT_TRUE(close.release_tilt->consistent);
   EXPECT_NE(close.release_tilt->reason.find("consistent; the block turned by 0.05° (0.9 mrad)"), std::string::npos)
       << close.release_tilt->reason;
+  EXPECT_FALSE(close.HasWarning(WarningKind::kTurnedBeforeFall)) << "0.05° is below kTurnBeforeFallWarningDeg";
 
   // No turn (the rest ends at the fall) or none known: nothing is said about it, and the JSON says which.
   io::MountingCheck still = RestTilt(0.2, 0.0004);
@@ -95,6 +97,32 @@ TEST(ReleaseTiltCheck, ATurnBeforeTheFallIsNamedInDegreesAndMradAndExplainsADisa
   FitSummary unknown = FittedAlpha(0.2006, 0.0003);
   AttachReleaseTiltCheck(RestTilt(0.2, 0.0004), &unknown);
   EXPECT_TRUE(nlohmann::json::parse(ReleaseTiltCheckJson(*unknown.release_tilt))["turn_before_fall_deg"].is_null());
+  EXPECT_FALSE(held.HasWarning(WarningKind::kTurnedBeforeFall));
+  EXPECT_FALSE(unknown.HasWarning(WarningKind::kTurnedBeforeFall));
+}
+
+TEST(ReleaseTiltCheck, ATurnBeforeTheFallIsWarnedAboutEvenWhereTheTiltsAgreeOrCannotBeCompared) {
+  // The turn is seen by the gyro, not inferred from the fit: it is a warning whether or not the two tilts agree,
+  // and also where the recording gives no tilt at rest independent of the mounting (no rest after the rocking).
+  io::MountingCheck lifted = RestTilt(0.2, 0.0004);
+  lifted.turn_before_fall_deg = 0.64;
+  FitSummary agree = FittedAlpha(0.2006, 0.0003);
+  AttachReleaseTiltCheck(lifted, &agree);
+  EXPECT_TRUE(agree.release_tilt->consistent);
+  EXPECT_FALSE(agree.HasWarning(WarningKind::kReleaseTiltDisagrees));
+  ASSERT_TRUE(agree.HasWarning(WarningKind::kTurnedBeforeFall));
+  EXPECT_NE(agree.warnings.back().message.find("turned by 0.64° (11.2 mrad)"), std::string::npos)
+      << agree.warnings.back().message;
+  EXPECT_NE(agree.warnings.back().message.find("t0 and α are those of the fall from where it stopped"),
+            std::string::npos);
+
+  io::MountingCheck partial = lifted;
+  partial.status = io::MountingStatus::kPartial;
+  partial.determined = {true, false, false};
+  FitSummary uncompared = FittedAlpha(0.2006, 0.0003);
+  AttachReleaseTiltCheck(partial, &uncompared);
+  EXPECT_FALSE(uncompared.release_tilt->available);
+  EXPECT_TRUE(uncompared.HasWarning(WarningKind::kTurnedBeforeFall));
 }
 
 TEST(ReleaseTiltCheck, NoComparisonWithoutARestTiltAFixedMountingTurnAFreeAlphaOrItsError) {

@@ -182,7 +182,8 @@ TEST(EnumNames, FittingAndQuakeEnumsRoundTripThroughTextJsonAndHdf5) {
                     WarningKind::kPoorFit, WarningKind::kSecondBasin, WarningKind::kNotDetermined,
                     WarningKind::kMovedByIntervals, WarningKind::kLateralMotionUnexplained,
                     WarningKind::kMovedByLateralRescan, WarningKind::kModelErrorDominates,
-                    WarningKind::kWindowExtended, WarningKind::kReleaseTiltDisagrees},
+                    WarningKind::kWindowExtended, WarningKind::kReleaseTiltDisagrees,
+                    WarningKind::kTurnedBeforeFall},
                    ByFromString(WarningKind::kAtBound));
   ExpectRoundTrips("TrialStatus", {TrialStatus::kFitted, TrialStatus::kSkipped, TrialStatus::kInfeasible,
                                    TrialStatus::kFailed}, ByFromString(TrialStatus::kFitted));

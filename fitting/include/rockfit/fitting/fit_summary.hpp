@@ -41,6 +41,7 @@ enum class WarningKind {
   kModelErrorDominates,        // "model_error_dominates"
   kWindowExtended,             // "window_extended"
   kReleaseTiltDisagrees,       // "release_tilt_disagrees"
+  kTurnedBeforeFall,           // "turned_before_fall"
 };
 const char* ToString(WarningKind kind);
 bool FromString(std::string_view text, WarningKind* value);  // the inverse of ToString

@@ -29,6 +29,12 @@ struct FitSummary;
 // accelerometer's whole calibration, hence more than 3.)
 inline constexpr double kReleaseTiltMaxZ = 4.0;
 
+// A turn of the block between its rest and its fall above this [deg] is warned about (turned_before_fall): the fit's
+// t0 and α are then those of the fall from where the block stopped, not of the release from the rest. 0.1° = 1.7 mrad
+// is about the tilt at rest's own standard error (1.3–2.2 mrad on the sample and MuJoCo recordings): a smaller turn
+// moves α by less than the accelerometer can tell.
+inline constexpr double kTurnBeforeFallWarningDeg = 0.1;
+
 struct ReleaseTiltCheck {
   bool available = false;     // both tilts and both standard errors are known
   double rest_rad = 0.0;      // α at rest (accelerometer)
@@ -50,7 +56,9 @@ struct ReleaseTiltCheck {
 ReleaseTiltCheck CheckReleaseTilt(const io::MountingCheck& mounting, const Parameter& alpha,
                                   double alpha_std_error_rad);
 
-// Sets summary->release_tilt and, when the two disagree, adds a warning (WarningKind::kReleaseTiltDisagrees).
+// Sets summary->release_tilt and, when the two disagree, adds a warning (WarningKind::kReleaseTiltDisagrees); when
+// the block turned by more than kTurnBeforeFallWarningDeg before its fall, adds WarningKind::kTurnedBeforeFall,
+// compared or not.
 void AttachReleaseTiltCheck(const io::MountingCheck& mounting, FitSummary* summary);
 
 // {"available", "rest_rad", "rest_std_error_rad", "fitted_rad", "fitted_std_error_rad", "difference_rad", "z",
