@@ -214,6 +214,7 @@ void FitOptions::Validate() const {
   intervals.Validate();
   lateral_motion.Validate();
   model_error.Validate();
+  motion_before_release.Validate();
   lateral_rescan.Validate();
   window_extension.Validate();
   final_stage.Validate();

@@ -87,6 +87,16 @@ void WriteModelErrorAttributes(const io::hdf5::Group& g, const ModelErrorStateme
   g.SetInt("clipped_samples", static_cast<std::int64_t>(m.clipped_samples));
 }
 
+// The recorded motion before the fitted t0 (motion_before_release.hpp): NaN numbers and moving = -1 when it was not
+// measured.
+void WriteMotionBeforeReleaseAttributes(const io::hdf5::Group& g, const MotionBeforeRelease& m) {
+  const double nan = std::nan("");
+  g.SetDouble("motion_before_release_lookback_s", m.available ? m.lookback_s : nan);
+  g.SetDouble("motion_before_release_turn_deg", m.available ? m.turn_deg : nan);
+  g.SetDouble("motion_before_release_rate_rad_s", m.available ? m.rate_at_release_rad_s : nan);
+  g.SetInt("moving_at_release", m.available ? (m.moving ? 1 : 0) : -1);
+}
+
 // The gyro scale estimated in the fit (gyro_scale_estimate.hpp), only when one was: the dataset gyro_scale
 // (s_x, s_y, s_z) with the attribute mode and, per axis, the 95 % interval (NaN where the axis was not estimated)
 // and whether the data determine it (0/1).
@@ -153,6 +163,7 @@ void WriteFitAttributes(const io::hdf5::Group& g, const std::string& settings, c
   g.SetDouble("noise_inflation_68", s.uncertainty.bulk_inflation);
   g.SetInt("feasible", s.feasible ? 1 : 0);
   WriteModelErrorAttributes(g, s.model_error);
+  WriteMotionBeforeReleaseAttributes(g, s.motion_before_release);
   WriteGyroScale(g, s.gyro_scale);
   WriteReleaseRollChoice(g, s.release_roll_choice);
   WriteReleaseTiltCheck(g, s.release_tilt);

@@ -32,12 +32,13 @@ const char* ToString(WarningKind kind) {
     case WarningKind::kModelErrorDominates: return "model_error_dominates";
     case WarningKind::kReleaseTiltDisagrees: return "release_tilt_disagrees";
     case WarningKind::kTurnedBeforeFall: return "turned_before_fall";
+    case WarningKind::kMovingAtRelease: return "moving_at_release";
   }
   return "?";
 }
 
 bool FromString(std::string_view text, WarningKind* value) {
-  static constexpr WarningKind kAll[] = {WarningKind::kAtBound, WarningKind::kNotIdentifiable, WarningKind::kSimulationFailures, WarningKind::kNotConverged, WarningKind::kStdErrorUnavailable, WarningKind::kInfeasible, WarningKind::kPoorFit, WarningKind::kSecondBasin, WarningKind::kNotDetermined, WarningKind::kMovedByIntervals, WarningKind::kLateralMotionUnexplained, WarningKind::kMovedByLateralRescan, WarningKind::kModelErrorDominates, WarningKind::kWindowExtended, WarningKind::kReleaseTiltDisagrees, WarningKind::kTurnedBeforeFall};
+  static constexpr WarningKind kAll[] = {WarningKind::kAtBound, WarningKind::kNotIdentifiable, WarningKind::kSimulationFailures, WarningKind::kNotConverged, WarningKind::kStdErrorUnavailable, WarningKind::kInfeasible, WarningKind::kPoorFit, WarningKind::kSecondBasin, WarningKind::kNotDetermined, WarningKind::kMovedByIntervals, WarningKind::kLateralMotionUnexplained, WarningKind::kMovedByLateralRescan, WarningKind::kModelErrorDominates, WarningKind::kWindowExtended, WarningKind::kReleaseTiltDisagrees, WarningKind::kTurnedBeforeFall, WarningKind::kMovingAtRelease};
   return core::FromStringAmong(text, kAll, value);
 }
 
@@ -78,6 +79,7 @@ std::string FitSummary::FullReport() const {
                      epsilon_rad_s, epsilon_initial_rad_s, t_end_s);
   out << "window      " << WindowReportText(window) << "\n";
   out << "model error " << ModelErrorText(model_error) << "\n";
+  out << "before release " << MotionBeforeReleaseText(motion_before_release) << "\n";
   if (gyro_scale.mode != GyroScaleMode::kOff) out << "gyro scale  " << GyroScaleText(gyro_scale) << "\n";
   if (release_roll_choice) out << "release roll " << ReleaseRollChoiceText(*release_roll_choice) << "\n";
   if (release_tilt) out << "release tilt " << ReleaseTiltCheckText(*release_tilt) << "\n";
@@ -140,6 +142,7 @@ std::string FitSummary::ToJson(const std::string& trial) const {
   }
   j["lateral_motion"] = nlohmann::json::parse(LateralMotionJson(lateral_motion));
   j["model_error"] = nlohmann::json::parse(ModelErrorJson(model_error));
+  j["motion_before_release"] = nlohmann::json::parse(MotionBeforeReleaseJson(motion_before_release));
   // Only when estimated: the documents of fits without it keep their keys.
   if (gyro_scale.mode != GyroScaleMode::kOff) j["gyro_scale"] = nlohmann::json::parse(GyroScaleJson(gyro_scale));
   if (release_roll_choice) j["release_roll_choice"] = nlohmann::json::parse(ReleaseRollChoiceJson(*release_roll_choice));

@@ -358,6 +358,15 @@ void AddModelErrorStatement(const Objective& objective, const FitOptions& option
                    m.epsilon_rad_s, m.ratio, m.noise_floor_rad_s, 100.0 * m.noise_share, m.model_error_rad_s)});
 }
 
+void AddMotionBeforeRelease(const Objective& objective, const FitOptions& options, FitSummary* summary) {
+  summary->motion_before_release = MeasureMotionBeforeRelease(
+      objective.signal(), summary->parameters.value(ParameterId::kT0), options.motion_before_release);
+  if (summary->motion_before_release.moving) {
+    summary->warnings.push_back(
+        {WarningKind::kMovingAtRelease, "", MotionBeforeReleaseWarning(summary->motion_before_release)});
+  }
+}
+
 void WidenForModelError(const Objective& objective, const FitOptions& options, FitSummary* summary) {
   // Intervals under model error (model_error_widening.hpp): the 95 % half-widths × f(ε/ε_noise), t0's with a
   // floor of t0_floor_samples sample periods in quadrature, clipped to the bounds.
@@ -474,6 +483,7 @@ FitSummary FitOnWindow(const Objective& objective, const Eigen::VectorXd& x_star
   AddSecondSolutionWarning(objective, &summary);
   ApplyLateralMotionCheck(objective, options, &summary);
   AddModelErrorStatement(rest_reference, options, &summary);
+  AddMotionBeforeRelease(objective, options, &summary);
   WidenForModelError(objective, options, &summary);
   AddGyroScaleEstimate(objective, options, &summary);
   AddNotDeterminedWarnings(objective, &summary);

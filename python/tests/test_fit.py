@@ -84,6 +84,14 @@ def test_the_release_roll_choice_says_why_a_planar_release_keeps_it_off(default_
     assert choice["start_rad"] is None and "not fitted" in choice["reason"]
 
 
+def test_a_release_from_rest_is_still_before_its_fitted_t0(default_fit):
+    motion = as_plain(default_fit["motion_before_release"])
+    assert motion["available"] and not motion["moving"]
+    assert motion["t0_s"] == default_fit.values["t0"] and motion["lookback_s"] == pytest.approx(0.1)
+    assert motion["turn_deg"] < 0.01  # degrees: noise, against the warning's 0.1
+    assert "moving_at_release" not in [w["kind"] for w in as_plain(default_fit["warnings"])]
+
+
 def test_fit_recovers_the_truth_of_the_synthetic_trial(default_fit):
     truth = json.loads((SAMPLES / "recordings" / f"{SAMPLE_TRIAL}_truth.json").read_text())
     assert truth["command"].find("--alpha 0.197") > 0  # made with the paper's Fig. 14 values, t0 = 2.33 s

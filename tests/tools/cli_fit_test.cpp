@@ -31,10 +31,14 @@ TEST(CliFit, JsonHasTheDocumentedKeysAndEpsilonNotAboveTheStart) {
   const nlohmann::json j = nlohmann::json::parse(r.out);
   for (const char* key : {"trial", "parameters", "correlation", "uncertainty_method", "uncertainty", "epsilon",
                           "epsilon_initial", "t_end", "window", "simulations", "wall_s", "termination", "warnings",
-                          "mounting", "lateral_motion", "model_error", "release_roll_choice", "release_tilt"}) {
+                          "mounting", "lateral_motion", "model_error", "motion_before_release", "release_roll_choice",
+                          "release_tilt"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
-  EXPECT_EQ(j.size(), 18u) << "only the documented keys";
+  EXPECT_EQ(j.size(), 19u) << "only the documented keys";
+  // Released from rest: the recording is still before the fitted t0, and nothing is said about it.
+  EXPECT_TRUE(j["motion_before_release"]["available"].get<bool>());
+  EXPECT_FALSE(j["motion_before_release"]["moving"].get<bool>());
   // The sample recording rests before the release and after the rocking: its tilt at rest is compared with the fit's
   // α, and the two agree (it was released from rest at the tilt its model falls from).
   EXPECT_TRUE(j["release_tilt"]["available"].get<bool>());

@@ -217,7 +217,7 @@ nlohmann::json FitResultJson(const std::string& trial, const fitting::FitSummary
   // The fit's own JSON (FitSummary::ToJson), narrowed to the keys `fit --json` documents (fitting/README.md,
   // "rockfit fit"): one JSON writer for the library, the command line and Python.
   static const char* const kKeys[] = {"trial", "parameters", "correlation", "uncertainty_method", "uncertainty",
-                                      "lateral_motion", "model_error", "gyro_scale", "release_roll_choice", "release_tilt", "epsilon", "epsilon_initial", "t_end", "window", "simulations",
+                                      "lateral_motion", "model_error", "motion_before_release", "gyro_scale", "release_roll_choice", "release_tilt", "epsilon", "epsilon_initial", "t_end", "window", "simulations",
                                       "wall_s", "termination", "warnings"};
   static const char* const kParameterKeys[] = {"value",       "lower",       "upper",      "fixed",
                                                "std_error",   "interval_68", "interval_95", "determined"};

@@ -12,6 +12,7 @@
 #include "rockfit/fitting/lateral_motion_check.hpp"
 #include "rockfit/fitting/lateral_rescan.hpp"
 #include "rockfit/fitting/model_error.hpp"
+#include "rockfit/fitting/motion_before_release.hpp"
 #include "rockfit/fitting/parameters.hpp"
 #include "rockfit/fitting/window_extension.hpp"
 
@@ -256,6 +257,9 @@ struct FitOptions {
   LateralRescanOptions lateral_rescan;
   // How much of ε the noise at rest explains, and a warning when model error dominates (model_error.hpp).
   ModelErrorOptions model_error;
+  // The recorded motion just before the fitted t0, and a warning when the block was already moving there
+  // (motion_before_release.hpp).
+  MotionBeforeReleaseOptions motion_before_release;
   // When the window leaves λ_lat undetermined: fits on windows ending at the next return impacts
   // (window_extension.hpp).
   WindowExtensionOptions window_extension;

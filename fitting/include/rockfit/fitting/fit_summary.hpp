@@ -17,6 +17,7 @@
 #include "rockfit/fitting/parameters.hpp"
 #include "rockfit/fitting/lateral_motion_check.hpp"
 #include "rockfit/fitting/model_error.hpp"
+#include "rockfit/fitting/motion_before_release.hpp"
 #include "rockfit/fitting/release_roll_choice.hpp"
 #include "rockfit/fitting/release_tilt_check.hpp"
 #include "rockfit/fitting/uncertainty.hpp"
@@ -42,6 +43,7 @@ enum class WarningKind {
   kWindowExtended,             // "window_extended"
   kReleaseTiltDisagrees,       // "release_tilt_disagrees"
   kTurnedBeforeFall,           // "turned_before_fall"
+  kMovingAtRelease,            // "moving_at_release"
 };
 const char* ToString(WarningKind kind);
 bool FromString(std::string_view text, WarningKind* value);  // the inverse of ToString
@@ -76,6 +78,8 @@ struct FitSummary {
   LateralMotionCheck lateral_motion;
   // How much of ε the sensor noise at rest explains and how much is model error (model_error.hpp).
   ModelErrorStatement model_error;
+  // The recorded motion just before the fitted t0, where the model is at rest (motion_before_release.hpp).
+  MotionBeforeRelease motion_before_release;
   // The gyro scale projected out of the fit, with its 95 % interval (gyro_scale_estimate.hpp); mode kOff when
   // FitOptions::gyro_scale is off.
   GyroScaleEstimate gyro_scale;
