@@ -31,6 +31,16 @@ FitSummary FittedAlpha(double alpha_rad, double std_error_rad) {
   return s;
 }
 
+// A fit of α = fitted_alpha_rad ± 0.3 mrad checked against a rest at 0.2 ± 0.4 mrad from which the block turned by
+// turn_deg before its fall.
+FitSummary CheckedWithTurn(double turn_deg, double fitted_alpha_rad) {
+  io::MountingCheck lifted = RestTilt(0.2, 0.0004);
+  lifted.turn_before_fall_deg = turn_deg;
+  FitSummary s = FittedAlpha(fitted_alpha_rad, 0.0003);
+  AttachReleaseTiltCheck(lifted, &s);
+  return s;
+}
+
 TEST(ReleaseTiltCheck, AgreeingTiltsGiveZFromTheCombinedErrorAndNoWarning) {
   FitSummary s = FittedAlpha(0.2006, 0.0003);
   AttachReleaseTiltCheck(RestTilt(0.2, 0.0004), &s);
@@ -62,10 +72,7 @@ TEST(ReleaseTiltCheck, TiltsFourSigmaApartDisagreeAndWarnAboutTheDimensions) {
 
 TEST(ReleaseTiltCheck, ATurnBeforeTheFallIsNamedInDegreesAndMradAndExplainsADisagreement) {
   // Lifted by 0.8° (13.96 mrad) as it was let go: the fit's α is the top of the lift, 14 mrad above the rest.
-  io::MountingCheck lifted = RestTilt(0.2, 0.0004);
-  lifted.turn_before_fall_deg = 0.8;
-  FitSummary apart = FittedAlpha(0.214, 0.0003);
-  AttachReleaseTiltCheck(lifted, &apart);
+  const FitSummary apart = CheckedWithTurn(0.8, 0.214);
   EXPECT_FALSE(apart.release_tilt->consistent);
   EXPECT_DOUBLE_EQ(apart.release_tilt->turn_before_fall_deg, 0.8);
   const std::string& why = apart.release_tilt->reason;
@@ -78,25 +85,20 @@ TEST(ReleaseTiltCheck, ATurnBeforeTheFallIsNamedInDegreesAndMradAndExplainsADisa
   ASSERT_TRUE(apart.HasWarning(WarningKind::kTurnedBeforeFall));
 
   // A lift too small to move α beyond the errors: consistent, and the turn is still said.
-  io::MountingCheck small = RestTilt(0.2, 0.0004);
-  small.turn_before_fall_deg = 0.05;
-  FitSummary close = FittedAlpha(0.2006, 0.0003);
-  AttachReleaseTiltCheck(small, &close);
+  const FitSummary close = CheckedWithTurn(0.05, 0.2006);
   EXPECT_TRUE(close.release_tilt->consistent);
   EXPECT_NE(close.release_tilt->reason.find("consistent; the block turned by 0.05° (0.9 mrad)"), std::string::npos)
       << close.release_tilt->reason;
   EXPECT_FALSE(close.HasWarning(WarningKind::kTurnedBeforeFall)) << "0.05° is below kTurnBeforeFallWarningDeg";
 
   // No turn (the rest ends at the fall) or none known: nothing is said about it, and the JSON says which.
-  io::MountingCheck still = RestTilt(0.2, 0.0004);
-  still.turn_before_fall_deg = 0.0;
-  FitSummary held = FittedAlpha(0.2006, 0.0003);
-  AttachReleaseTiltCheck(still, &held);
+  const FitSummary held = CheckedWithTurn(0.0, 0.2006);
   EXPECT_EQ(held.release_tilt->reason.find("turned"), std::string::npos) << held.release_tilt->reason;
   EXPECT_EQ(nlohmann::json::parse(ReleaseTiltCheckJson(*held.release_tilt))["turn_before_fall_deg"], 0.0);
   FitSummary unknown = FittedAlpha(0.2006, 0.0003);
   AttachReleaseTiltCheck(RestTilt(0.2, 0.0004), &unknown);
   EXPECT_TRUE(nlohmann::json::parse(ReleaseTiltCheckJson(*unknown.release_tilt))["turn_before_fall_deg"].is_null());
+  EXPECT_TRUE(std::isnan(ReleaseTiltCheck{}.turn_before_fall_deg)) << "a check made otherwise does not claim a turn of 0";
   EXPECT_FALSE(held.HasWarning(WarningKind::kTurnedBeforeFall));
   EXPECT_FALSE(unknown.HasWarning(WarningKind::kTurnedBeforeFall));
 }
@@ -104,10 +106,7 @@ TEST(ReleaseTiltCheck, ATurnBeforeTheFallIsNamedInDegreesAndMradAndExplainsADisa
 TEST(ReleaseTiltCheck, ATurnBeforeTheFallIsWarnedAboutEvenWhereTheTiltsAgreeOrCannotBeCompared) {
   // The turn is seen by the gyro, not inferred from the fit: it is a warning whether or not the two tilts agree,
   // and also where the recording gives no tilt at rest independent of the mounting (no rest after the rocking).
-  io::MountingCheck lifted = RestTilt(0.2, 0.0004);
-  lifted.turn_before_fall_deg = 0.64;
-  FitSummary agree = FittedAlpha(0.2006, 0.0003);
-  AttachReleaseTiltCheck(lifted, &agree);
+  const FitSummary agree = CheckedWithTurn(0.64, 0.2006);
   EXPECT_TRUE(agree.release_tilt->consistent);
   EXPECT_FALSE(agree.HasWarning(WarningKind::kReleaseTiltDisagrees));
   ASSERT_TRUE(agree.HasWarning(WarningKind::kTurnedBeforeFall));
@@ -116,7 +115,8 @@ TEST(ReleaseTiltCheck, ATurnBeforeTheFallIsWarnedAboutEvenWhereTheTiltsAgreeOrCa
   EXPECT_NE(agree.warnings.back().message.find("t0 and α are those of the fall from where it stopped"),
             std::string::npos);
 
-  io::MountingCheck partial = lifted;
+  io::MountingCheck partial = RestTilt(0.2, 0.0004);
+  partial.turn_before_fall_deg = 0.64;
   partial.status = io::MountingStatus::kPartial;
   partial.determined = {true, false, false};
   FitSummary uncompared = FittedAlpha(0.2006, 0.0003);

@@ -15,6 +15,7 @@
 // block y is not fixed and the tilt at rest is the given mounting's: no comparison then.
 #pragma once
 
+#include <limits>
 #include <string>
 
 #include "rockfit/fitting/parameters.hpp"
@@ -47,7 +48,7 @@ struct ReleaseTiltCheck {
   // The block's turn between the rest and the start of its fall [deg] (MountingCheck::turn_before_fall_deg; NaN
   // without a tilt at rest): above 0 a hand lifted or pushed it as it let go, and the fitted α is the tilt it fell
   // from, which a push away from the fall puts above the tilt at rest by about that turn.
-  double turn_before_fall_deg = 0.0;
+  double turn_before_fall_deg = std::numeric_limits<double>::quiet_NaN();
   std::string reason;           // one sentence: the comparison, or why there is none
 };
 
