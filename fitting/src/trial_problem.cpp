@@ -108,8 +108,13 @@ TrialProblem PrepareTrialProblem(const MeasuredSignal& recorded, const core::Blo
     subtracted = true;
     guess = EstimateInitialGuess(signal, block, parameters, options.guess);
     notes.push_back(fmt::format("gyro bias at rest over {} s before the release: ({:.4f}, {:.4f}, {:.4f}) rad/s, "
-                                "subtracted",
-                                RestDurationText(rest->duration_s), bias.x(), bias.y(), bias.z()));
+                                "subtracted{}",
+                                RestDurationText(rest->duration_s), bias.x(), bias.y(), bias.z(),
+                                rest->cut_before_release_s > 0.0
+                                    ? fmt::format(" (the rest ends {:.3f} s earlier than {:.2f} s before the estimated "
+                                                  "release: the recording already moves there)",
+                                                  rest->cut_before_release_s, options.rest_margin_s)
+                                    : std::string()));
   } else if (options.subtract_rest_bias) {
     notes.push_back("gyro bias not measured: the recording starts too close to the release");
   }

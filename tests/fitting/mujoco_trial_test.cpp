@@ -347,6 +347,55 @@ TEST(MujocoTrial, ANearlyCriticalReleasePushedSlightlyIsFittedInItsBasinNotAtAHo
   EXPECT_NEAR(s.parameters.value(ParameterId::kAlpha), o.alpha_rad, kNearCriticalAlphaTolerance_rad) << s.FullReport();
 }
 
+TEST(MujocoTrial, APushWithoutAStopAtTheTopIsCaughtByTheMotionBeforeTheFittedRelease) {
+  // Trial 89 of the pushed MuJoCo study (seed 71): a rolled box pushed away from the fall at 0.21 rad/s that
+  // never stops at the top. The fit releases it from rest tens of milliseconds after the push, with ε near the
+  // noise floor, and the tilt at rest cannot tell (no stop, so no turn before the fall). The recording turns
+  // before that t0 while the model is at rest (motion_before_release.hpp). The same box released from rest at
+  // the push's time turns by noise alone before its fitted t0. The gyro's rest ends before the push, not 50 ms
+  // before the late estimate of the release (rest_noise.hpp): the noise floor is the sensor's, as without the push,
+  // and the push's model error is flagged (with the push in the rest: 1.1 noise floors, not flagged).
+  ROCKFIT_REQUIRE_OPTIMISED_BUILD();
+  testing::MujocoRockingOptions o;
+  o.alpha_rad = 0.16417122782068572;
+  o.roll_rad = 0.0015203053278883961;
+  o.t0_s = 0.94541015625;
+  o.b2_m = 0.053658038885871506;
+  o.duration_s = 6.0;
+  o.measurement.seed = 1089;
+  std::vector<double> noise_floors_rad_s;
+  for (const double push_rad_s : {-0.2117412670537667, 0.0}) {
+    o.push_w_y_rad_s = push_rad_s;
+    const testing::MujocoRockingTrial trial = testing::MakeMujocoRockingTrial(o);
+    const TrialProblem p = PrepareTrialProblem(trial.signal, trial.block, ParameterSet::Defaults());
+    FitOptions options;
+    options.intervals.method = IntervalMethod::kNone;
+    options.num_threads = 1;
+    const FitSummary s = Fit(p.objective, p.start, options);
+    ASSERT_TRUE(s.feasible);
+    const MotionBeforeRelease& m = s.motion_before_release;
+    ASSERT_TRUE(m.available);
+    ASSERT_TRUE(s.model_error.available);
+    noise_floors_rad_s.push_back(s.model_error.noise_floor_rad_s);
+    const double late_s = s.parameters.value(ParameterId::kT0) - o.t0_s;
+    if (push_rad_s != 0.0) {
+      // The push's turn over the part of the lookback after the push: at most its rate times that time.
+      EXPECT_GT(late_s, 0.02) << s.FullReport();
+      EXPECT_TRUE(m.moving) << MotionBeforeReleaseText(m);
+      EXPECT_TRUE(s.HasWarning(WarningKind::kMovingAtRelease));
+      EXPECT_LE(m.turn_deg * io::kRadPerDeg, -push_rad_s * std::min(late_s, m.lookback_s)) << MotionBeforeReleaseText(m);
+      EXPECT_TRUE(s.model_error.dominates) << ModelErrorText(s.model_error);
+      EXPECT_THAT(p.notes, ::testing::Contains(::testing::HasSubstr("the recording already moves there")));
+    } else {
+      EXPECT_LT(std::abs(late_s), 0.005) << s.FullReport();
+      EXPECT_FALSE(m.moving) << MotionBeforeReleaseText(m);
+      EXPECT_FALSE(s.HasWarning(WarningKind::kMovingAtRelease));
+      EXPECT_LT(m.turn_deg, 0.1 * options.motion_before_release.warn_turn_deg) << MotionBeforeReleaseText(m);
+    }
+  }
+  EXPECT_NEAR(noise_floors_rad_s[0], noise_floors_rad_s[1], 0.1 * noise_floors_rad_s[1]);
+}
+
 #else
 
 TEST(MujocoTrial, SkippedWithoutMujoco) { GTEST_SKIP() << "MuJoCo (libmujoco-dev) was not found by CMake"; }
