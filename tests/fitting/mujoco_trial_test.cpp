@@ -6,6 +6,9 @@
 // paper's Sect. 3.2 metrics over several rocking cycles, beyond the fitting window). Skips where CMake did not find
 // MuJoCo.
 #include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <gmock/gmock.h>
@@ -321,6 +324,36 @@ TEST(MujocoTrial, APushAtTheReleaseIsCaughtByTheTiltAtRestAndAReleaseFromRestIsN
   }
 }
 
+// A trial of the pushed MuJoCo study (`other_physics_study.py --family mujoco --push 0.3 --duration 6 --seed 71`),
+// remade from its drawn values.
+testing::MujocoRockingOptions StudyTrial(double alpha_rad, double roll_rad, double t0_s, double b2_m, double push_rad_s,
+                                         std::uint64_t seed) {
+  testing::MujocoRockingOptions o;
+  o.alpha_rad = alpha_rad;
+  o.roll_rad = roll_rad;
+  o.t0_s = t0_s;
+  o.b2_m = b2_m;
+  o.push_w_y_rad_s = push_rad_s;
+  o.duration_s = 6.0;
+  o.measurement.seed = seed;
+  return o;
+}
+
+struct SignalFit {
+  std::vector<std::string> notes;  // the problem's (estimate, gyro bias)
+  FitSummary summary;
+};
+
+// The trial's recorded signal fitted directly (not through the files), without intervals, on one thread.
+SignalFit FitSignalWithoutIntervals(const testing::MujocoRockingOptions& o) {
+  const testing::MujocoRockingTrial trial = testing::MakeMujocoRockingTrial(o);
+  const TrialProblem p = PrepareTrialProblem(trial.signal, trial.block, ParameterSet::Defaults());
+  FitOptions options;
+  options.intervals.method = IntervalMethod::kNone;
+  options.num_threads = 1;
+  return {p.notes, Fit(p.objective, p.start, options)};
+}
+
 TEST(MujocoTrial, ANearlyCriticalReleasePushedSlightlyIsFittedInItsBasinNotAtAHoveringStart) {
   // α = 0.95 θc, rolled by 2 mrad and pushed towards the fall at 0.01 rad/s (trial 1 of the pushed MuJoCo study,
   // seed 71). A model block just below θc hovers as long as asked, and (28) is a mean over [t0, t_end]: on the
@@ -328,20 +361,9 @@ TEST(MujocoTrial, ANearlyCriticalReleasePushedSlightlyIsFittedInItsBasinNotAtAHo
   // stop rule of the continuation used to drop every start in the release's basin against it (the fit ended at
   // α = θc, t0 = 0, ε 2.6 times this one's). The rule now compares the tracks also by their error summed over the
   // window, which the added rest does not lower (global_stage.cpp, PruneTracks).
-  testing::MujocoRockingOptions o;
-  o.alpha_rad = 0.23264191328489417;
-  o.roll_rad = 0.001994886510985525;
-  o.t0_s = 1.01064453125;
-  o.b2_m = 0.05377554771664128;
-  o.push_w_y_rad_s = 0.010280897436384884;
-  o.duration_s = 6.0;
-  o.measurement.seed = 1001;
-  const testing::MujocoRockingTrial trial = testing::MakeMujocoRockingTrial(o);
-  const TrialProblem p = PrepareTrialProblem(trial.signal, trial.block, ParameterSet::Defaults());
-  FitOptions options;
-  options.intervals.method = IntervalMethod::kNone;
-  options.num_threads = 1;
-  const FitSummary s = Fit(p.objective, p.start, options);
+  const testing::MujocoRockingOptions o = StudyTrial(0.23264191328489417, 0.001994886510985525, 1.01064453125,
+                                                     0.05377554771664128, 0.010280897436384884, 1001);
+  const FitSummary s = FitSignalWithoutIntervals(o).summary;
   ASSERT_TRUE(s.feasible);
   EXPECT_NEAR(s.parameters.value(ParameterId::kT0), o.t0_s, kNearCriticalT0Tolerance_s) << s.FullReport();
   EXPECT_NEAR(s.parameters.value(ParameterId::kAlpha), o.alpha_rad, kNearCriticalAlphaTolerance_rad) << s.FullReport();
@@ -356,22 +378,12 @@ TEST(MujocoTrial, APushWithoutAStopAtTheTopIsCaughtByTheMotionBeforeTheFittedRel
   // before the late estimate of the release (rest_noise.hpp): the noise floor is the sensor's, as without the push,
   // and the push's model error is flagged (with the push in the rest: 1.1 noise floors, not flagged).
   ROCKFIT_REQUIRE_OPTIMISED_BUILD();
-  testing::MujocoRockingOptions o;
-  o.alpha_rad = 0.16417122782068572;
-  o.roll_rad = 0.0015203053278883961;
-  o.t0_s = 0.94541015625;
-  o.b2_m = 0.053658038885871506;
-  o.duration_s = 6.0;
-  o.measurement.seed = 1089;
   std::vector<double> noise_floors_rad_s;
   for (const double push_rad_s : {-0.2117412670537667, 0.0}) {
-    o.push_w_y_rad_s = push_rad_s;
-    const testing::MujocoRockingTrial trial = testing::MakeMujocoRockingTrial(o);
-    const TrialProblem p = PrepareTrialProblem(trial.signal, trial.block, ParameterSet::Defaults());
-    FitOptions options;
-    options.intervals.method = IntervalMethod::kNone;
-    options.num_threads = 1;
-    const FitSummary s = Fit(p.objective, p.start, options);
+    const testing::MujocoRockingOptions o = StudyTrial(0.16417122782068572, 0.0015203053278883961, 0.94541015625,
+                                                       0.053658038885871506, push_rad_s, 1089);
+    const SignalFit f = FitSignalWithoutIntervals(o);
+    const FitSummary& s = f.summary;
     ASSERT_TRUE(s.feasible);
     const MotionBeforeRelease& m = s.motion_before_release;
     ASSERT_TRUE(m.available);
@@ -385,12 +397,12 @@ TEST(MujocoTrial, APushWithoutAStopAtTheTopIsCaughtByTheMotionBeforeTheFittedRel
       EXPECT_TRUE(s.HasWarning(WarningKind::kMovingAtRelease));
       EXPECT_LE(m.turn_deg * io::kRadPerDeg, -push_rad_s * std::min(late_s, m.lookback_s)) << MotionBeforeReleaseText(m);
       EXPECT_TRUE(s.model_error.dominates) << ModelErrorText(s.model_error);
-      EXPECT_THAT(p.notes, ::testing::Contains(::testing::HasSubstr("the recording already moves there")));
+      EXPECT_THAT(f.notes, ::testing::Contains(::testing::HasSubstr("the recording already moves there")));
     } else {
       EXPECT_LT(std::abs(late_s), 0.005) << s.FullReport();
       EXPECT_FALSE(m.moving) << MotionBeforeReleaseText(m);
       EXPECT_FALSE(s.HasWarning(WarningKind::kMovingAtRelease));
-      EXPECT_LT(m.turn_deg, 0.1 * options.motion_before_release.warn_turn_deg) << MotionBeforeReleaseText(m);
+      EXPECT_LT(m.turn_deg, 0.1 * MotionBeforeReleaseOptions{}.warn_turn_deg) << MotionBeforeReleaseText(m);
     }
   }
   EXPECT_NEAR(noise_floors_rad_s[0], noise_floors_rad_s[1], 0.1 * noise_floors_rad_s[1]);
