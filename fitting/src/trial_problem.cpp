@@ -44,9 +44,10 @@ std::optional<RestNoise> RestBeforeClosedFormRelease(const MeasuredSignal& signa
     }
   }
   if (!sample_after) return std::nullopt;
-  // Everything the rest segment passes on is a monotone function of t0: the samples t_k < t0 − margin (their mean
-  // is the bias), its duration t0 − margin − t_first (floating-point subtraction is monotone), hence its comparison
-  // with the minimum and its rounding to the note's 2 decimals. The same at both ends of [t0 − δ, t0 + δ] is the
+  // Everything the rest segment passes on is a monotone function of t0: its end (t0 − margin, or the margin before
+  // the onset of a motion that runs into t0, which moves only forward as t0 does: rest_noise.hpp), the samples
+  // before that end (their mean is the bias), its duration end − t_first (floating-point subtraction is monotone),
+  // hence its comparison with the minimum and its rounding to the note's 2 decimals. The same at both ends of [t0 − δ, t0 + δ] is the
   // same at the default fit's t0, which lies inside.
   const RestSegmentOptions segment{options.rest_margin_s, options.rest_min_duration_s};
   const RestNoise early = MeasureRestNoise(signal, release.t0_s - kReleaseRoundOffS, segment);

@@ -30,7 +30,7 @@ struct RestSegmentOptions {
 
 struct RestNoise {
   bool available = false;       // the segment lasts at least min_duration_s and holds at least two samples
-  std::size_t samples = 0;      // samples t_k < t_release − margin, less the excluded ones (MeasuredSignal)
+  std::size_t samples = 0;      // samples before the rest end (below), less the excluded ones (MeasuredSignal)
   double duration_s = 0.0;      // rest end − first sample time (rest end: t_release − margin, or the motion's onset − margin)
   // Where the recording was moving at t_release: how much earlier than t_release − margin the rest ends [s]
   // (0 where it was still, or where the shorter rest would be too short).
