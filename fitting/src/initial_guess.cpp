@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
@@ -13,6 +14,7 @@
 #include "rockfit/core/planar_rocking.hpp"
 #include "rockfit/fitting/initial_guess_fall.hpp"
 #include "rockfit/io/peak_finding.hpp"
+#include "upper_median.hpp"
 
 namespace rockfit::fitting {
 namespace {
@@ -383,11 +385,7 @@ Eigen::Vector2d RateAfterImpact(const MeasuredSignal& signal, const core::Planar
     wy.push_back(sign * signal.w_B[k][1] + decel * (signal.t_s[k] - t_impact));
   }
   if (wy.empty()) throw BadInput("the recording ends at the first impact: nothing after it to fit");
-  auto median = [](std::vector<double> v) {
-    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-    return v[v.size() / 2];
-  };
-  return {median(wx), median(wy)};
+  return {UpperMedian(std::move(wx)), UpperMedian(std::move(wy))};
 }
 
 // The (λ_lat, λ_lon) whose facet impact map (18)+(21) sends ω⁻ = (0, landing rate, 0) closest to the measured ω⁺:

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
 
 #include "rockfit/core/errors.hpp"
+#include "upper_median.hpp"
 
 namespace rockfit::fitting {
 
@@ -42,12 +44,7 @@ double RestEnd(const MeasuredSignal& signal, double t_release_s, const RestSegme
     for (int i = 0; i < 3; ++i) axes[static_cast<std::size_t>(i)].push_back(signal.w_B[k][i]);
   }
   Eigen::Vector3d median;
-  for (int i = 0; i < 3; ++i) {
-    std::vector<double>& v = axes[static_cast<std::size_t>(i)];
-    auto middle = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-    std::nth_element(v.begin(), middle, v.end());
-    median[i] = *middle;
-  }
+  for (int i = 0; i < 3; ++i) median[i] = UpperMedian(std::move(axes[static_cast<std::size_t>(i)]));
   const auto moving = [&](std::size_t k) {
     return signal.is_excluded(k) || (signal.w_B[k] - median).norm() >= options.still_rate_rad_s;
   };
