@@ -408,6 +408,40 @@ TEST(MujocoTrial, APushWithoutAStopAtTheTopIsCaughtByTheMotionBeforeTheFittedRel
   EXPECT_NEAR(noise_floors_rad_s[0], noise_floors_rad_s[1], 0.1 * noise_floors_rad_s[1]);
 }
 
+TEST(MujocoTrial, APushedPerturbedBodyIsWarnedAboutThePushWhereModelErrorIsFlaggedWithoutIt) {
+  // Trial 10 of the pushed study of perturbed bodies (`--family mujoco-perturbed --push 0.3 --seed 71`, a family held
+  // out of every threshold): the centre of mass 1.26 % of b2 off the axis and base corner V3 0.1 mm proud, rolled by
+  // 4.3 mrad and pushed away from the fall at 0.157 rad/s. The perturbation alone makes model error dominant, so ε
+  // flags the fit released from rest as much as the pushed one and says nothing about the push. The motion before
+  // the fitted release does: the pushed fit's t0 is late and the recording turns before it; released from rest, the
+  // same body's fit turns by noise alone before its t0.
+  ROCKFIT_REQUIRE_OPTIMISED_BUILD();
+  for (const double push_rad_s : {-0.1567781807533725, 0.0}) {
+    testing::MujocoRockingOptions o = StudyTrial(0.1710708837378014, 0.004252793257328876, 1.4576171875,
+                                                 0.05979201992522172, push_rad_s, 1010);
+    o.com_offset_B_m.y() = 0.01258725258050539 * o.b2_m;
+    o.proud_vertex = 3;
+    const FitSummary s = FitSignalWithoutIntervals(o).summary;
+    ASSERT_TRUE(s.feasible);
+    const MotionBeforeRelease& m = s.motion_before_release;
+    ASSERT_TRUE(m.available);
+    ASSERT_TRUE(s.model_error.available);
+    EXPECT_TRUE(s.model_error.dominates) << ModelErrorText(s.model_error);
+    const double late_s = s.parameters.value(ParameterId::kT0) - o.t0_s;
+    if (push_rad_s != 0.0) {
+      EXPECT_GT(late_s, 0.02) << s.FullReport();
+      EXPECT_TRUE(m.moving) << MotionBeforeReleaseText(m);
+      EXPECT_TRUE(s.HasWarning(WarningKind::kMovingAtRelease));
+      EXPECT_LE(m.turn_deg * io::kRadPerDeg, -push_rad_s * std::min(late_s, m.lookback_s)) << MotionBeforeReleaseText(m);
+    } else {
+      EXPECT_LT(std::abs(late_s), 0.005) << s.FullReport();
+      EXPECT_FALSE(m.moving) << MotionBeforeReleaseText(m);
+      EXPECT_FALSE(s.HasWarning(WarningKind::kMovingAtRelease));
+      EXPECT_LT(m.turn_deg, 0.1 * MotionBeforeReleaseOptions{}.warn_turn_deg) << MotionBeforeReleaseText(m);
+    }
+  }
+}
+
 #else
 
 TEST(MujocoTrial, SkippedWithoutMujoco) { GTEST_SKIP() << "MuJoCo (libmujoco-dev) was not found by CMake"; }

@@ -14,6 +14,8 @@
 int main(int argc, char** argv) {
   rockfit::testing::MujocoRockingOptions o;
   std::string prefix;
+  // A fraction of b2, applied once every option is read: the same offset whether --b2 comes before or after it.
+  double com_offset_fraction_of_b2 = 0.0;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string key = argv[i], value = argv[i + 1];
     if (key == "-o") prefix = value;
@@ -25,7 +27,7 @@ int main(int argc, char** argv) {
     else if (key == "--b1") o.b1_m = std::stod(value);
     else if (key == "--b2") o.b2_m = std::stod(value);
     else if (key == "--h") o.h_m = std::stod(value);
-    else if (key == "--com-offset-y") o.com_offset_B_m.y() = std::stod(value) * o.b2_m;
+    else if (key == "--com-offset-y") com_offset_fraction_of_b2 = std::stod(value);
     else if (key == "--proud-vertex") o.proud_vertex = std::stoi(value);
     else if (key == "--seed") o.measurement.seed = std::stoull(value);
     else if (key == "--solref-time-constant") o.solref_time_constant_s = std::stod(value);
@@ -42,6 +44,7 @@ int main(int argc, char** argv) {
                  "[--solref-time-constant S] [--solref-damping-ratio R] [--solimp D0,DWIDTH,WIDTH_M]\n";
     return 1;
   }
+  o.com_offset_B_m.y() = com_offset_fraction_of_b2 * o.b2_m;
   try {
     const rockfit::testing::MujocoRockingTrial trial = rockfit::testing::MakeMujocoRockingTrial(o);
     rockfit::testing::WriteMujocoRockingTrial(prefix, o, trial);
