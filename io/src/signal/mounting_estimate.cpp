@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,6 +20,8 @@ namespace {
 
 constexpr double kDegPerRad = 1.0 / kRadPerDeg;
 constexpr const char* kAxisNames[3] = {"x", "y", "z"};
+// The fake yaw β/sin α is taken at α of at least this [rad] (a block released nearly upright shows no fall to judge).
+constexpr double kSmallestTilt_rad = 0.01;
 
 Eigen::Matrix3d Exp(const Eigen::Vector3d& theta) {
   const double angle = theta.norm();
@@ -92,6 +95,43 @@ Clue AxisClue(const std::vector<Eigen::Vector3d>& w, double floor_rad) {
   return {axis, std::hypot(sigma_across / std::sqrt(along), floor_rad)};
 }
 
+// The RMS per transverse axis of w across `axis` (the spread AxisClue's standard error comes from).
+double AcrossAxisRms(const std::vector<Eigen::Vector3d>& w, const Eigen::Vector3d& axis) {
+  double across = 0.0;
+  for (const Eigen::Vector3d& v : w) across += (v - v.dot(axis) * axis).squaredNorm();
+  return std::sqrt(across / (2.0 * std::max(1.0, static_cast<double>(w.size()) - 2.0)));
+}
+
+// The gyro's noise at rest: the RMS per axis of ω − bias over the stretch.
+double RestRateRms(const std::vector<Eigen::Vector3d>& w, const Stretch& s, const Eigen::Vector3d& bias) {
+  double sum = 0.0;
+  for (std::size_t k = s.begin; k < s.end; ++k) sum += (w[k] - bias).squaredNorm();
+  return std::sqrt(sum / (3.0 * std::max(1.0, static_cast<double>(s.size()) - 1.0)));
+}
+
+// The roll the gyro sees in the fall, samples [begin, end) less the bias: the largest |∫ω'_x dt| with x' = axis × level
+// (the block's x axis when `axis` is its y axis and `level` its z axis) and ω'_x = ω_x' − s·ω_y', s the regression of
+// ω_x' on ω_y' = ω·axis, which takes out what a gyro leaning towards y sees of a planar fall (as the fit's release
+// roll choice does, fitting/release_roll_choice.hpp).
+double RollSeenInFall(const Recording& r, const Eigen::Vector3d& bias, std::size_t begin, std::size_t end,
+                      const Eigen::Vector3d& axis, const Eigen::Vector3d& level, double rate_hz) {
+  const Eigen::Vector3d x_axis = axis.cross(level).normalized();
+  double sum_xy = 0.0, sum_yy = 0.0;
+  for (std::size_t k = begin; k < end; ++k) {
+    const Eigen::Vector3d w = r.w_B[k] - bias;
+    sum_xy += w.dot(x_axis) * w.dot(axis);
+    sum_yy += w.dot(axis) * w.dot(axis);
+  }
+  const double lean = sum_yy > 0.0 ? sum_xy / sum_yy : 0.0;
+  double roll_rad = 0.0, largest_rad = 0.0;
+  for (std::size_t k = begin; k < end; ++k) {
+    const Eigen::Vector3d w = r.w_B[k] - bias;
+    roll_rad += (w.dot(x_axis) - lean * w.dot(axis)) / rate_hz;
+    largest_rad = std::max(largest_rad, std::abs(roll_rad));
+  }
+  return largest_rad;
+}
+
 // Rotation with R·e_y = y_image and R·e_z as close to z_image as that allows (TRIAD).
 Eigen::Matrix3d Triad(const Eigen::Vector3d& y_image, const Eigen::Vector3d& z_image) {
   const Eigen::Vector3d y = y_image.normalized();
@@ -132,6 +172,90 @@ std::optional<std::string> NearPermutation(const Eigen::Matrix3d& R_BS, double w
   return text;
 }
 
+// The least squares of the clues (mounting_estimate.hpp): Gauss–Newton over x = (δ (3), α) with R = R0·Exp(θ),
+// θ ← Log(Exp(θ)·Exp(δ)). N = 4: the block rests on its release edge, rest before the release Rᵀ·a = (sin α, 0,
+// cos α) and phase 1 Rᵀ·axis = e_y. N = 5: it rests rolled by β on one corner of that edge, x = (δ, α, β), rest
+// before Rᵀ·a = (sin α cos β, −sin β, cos α cos β) (a unit vector for any α, β), and phase 1 is left out: about a
+// corner the block does not turn about its y axis. Both: rest after the rocking Rᵀ·a = e_z when there is one, and a
+// weak prior θ ≈ 0.
+template <int N>
+struct ClueSolution {
+  Eigen::Vector3d theta = Eigen::Vector3d::Zero();
+  double alpha_rad = 0.0;
+  double beta_rad = 0.0;  // N = 5 only
+  Eigen::Matrix<double, N, N> covariance;
+};
+
+template <int N>
+ClueSolution<N> SolveClues(const Eigen::Matrix3d& R0, const Clue& rest_before, const Clue& axis,
+                           const std::optional<Clue>& rest_after, double sigma_prior) {
+  static_assert(N == 4 || N == 5, "x = (δ, α) or (δ, α, β)");
+  using Jacobian = Eigen::Matrix<double, 3, N>;
+  ClueSolution<N> x;
+  Eigen::Vector3d& theta = x.theta;
+  const Eigen::Vector3d v0 = R0.transpose() * rest_before.direction;
+  double& alpha = x.alpha_rad;
+  double& beta = x.beta_rad;
+  alpha = std::atan2(v0.x(), v0.z());
+  Eigen::Matrix<double, N, N> H = Eigen::Matrix<double, N, N>::Zero();
+  constexpr int kMaxIterations = 30;
+  constexpr double kStepTolerance_rad = 1e-12;  // far below any measurable angle
+  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+    const Eigen::Matrix3d R = R0 * Exp(theta);
+    H.setZero();
+    Eigen::Matrix<double, N, 1> g = Eigen::Matrix<double, N, 1>::Zero();
+    const auto add = [&](const Eigen::Vector3d& residual, const Jacobian& J, double sigma) {
+      const double w = 1.0 / (sigma * sigma);
+      H += w * J.transpose() * J;
+      g += w * J.transpose() * residual;
+    };
+    // N = 5: the rotation about z is held at the given mounting (only the prior sees it), so that the lean at rest,
+    // which a turn about z would mix into the tilt, is all roll.
+    const auto data_clue = [&](const Eigen::Vector3d& residual, Jacobian J, double sigma) {
+      if constexpr (N == 5) J.col(2).setZero();
+      add(residual, J, sigma);
+    };
+    {  // rest before the release
+      const Eigen::Vector3d v = R.transpose() * rest_before.direction;
+      Jacobian J;
+      J.template leftCols<3>() = Skew(v);
+      if constexpr (N == 4) {
+        J.col(3) = -Eigen::Vector3d(std::cos(alpha), 0.0, -std::sin(alpha));
+        add(v - Eigen::Vector3d(std::sin(alpha), 0.0, std::cos(alpha)), J, rest_before.sigma_rad);
+      } else {
+        const double ca = std::cos(alpha), sa = std::sin(alpha), cb = std::cos(beta), sb = std::sin(beta);
+        J.col(3) = -Eigen::Vector3d(ca * cb, 0.0, -sa * cb);
+        J.col(4) = -Eigen::Vector3d(-sa * sb, -cb, -ca * sb);
+        data_clue(v - Eigen::Vector3d(sa * cb, -sb, ca * cb), J, rest_before.sigma_rad);
+      }
+    }
+    if constexpr (N == 4) {  // phase 1
+      const Eigen::Vector3d v = R.transpose() * axis.direction;
+      Jacobian J = Jacobian::Zero();
+      J.template leftCols<3>() = Skew(v);
+      add(v - Eigen::Vector3d::UnitY(), J, axis.sigma_rad);
+    }
+    if (rest_after) {  // rest after the rocking
+      const Eigen::Vector3d v = R.transpose() * rest_after->direction;
+      Jacobian J = Jacobian::Zero();
+      J.template leftCols<3>() = Skew(v);
+      data_clue(v - Eigen::Vector3d::UnitZ(), J, rest_after->sigma_rad);
+    }
+    {  // weak prior: θ ≈ 0
+      Jacobian J = Jacobian::Zero();
+      J.template leftCols<3>() = Eigen::Matrix3d::Identity();
+      add(theta, J, sigma_prior);
+    }
+    const Eigen::Matrix<double, N, 1> step = H.ldlt().solve(-g);
+    theta = Log(Exp(theta) * Exp(step.template head<3>()));
+    alpha += step(3);
+    if constexpr (N == 5) beta += step(4);
+    if (step.norm() < kStepTolerance_rad) break;
+  }
+  x.covariance = H.inverse();
+  return x;
+}
+
 }  // namespace
 
 void MountingEstimateOptions::Validate() const {
@@ -140,6 +264,8 @@ void MountingEstimateOptions::Validate() const {
   RequirePositive(prior_deg, "mounting estimate: prior_deg");
   RequirePositive(undetermined_std_deg, "mounting estimate: undetermined_std_deg");
   RequirePositive(direction_floor_deg, "mounting estimate: direction_floor_deg");
+  RequirePositive(phase1_across_to_noise, "mounting estimate: phase1_across_to_noise");
+  RequirePositive(max_roll_yaw_deg, "mounting estimate: max_roll_yaw_deg");
   RequireNonNegative(rest_margin_s, "mounting estimate: rest_margin_s");
   RequireNonNegative(max_turn_before_fall_deg, "mounting estimate: max_turn_before_fall_deg");
   if (!(phase1_min_fraction > 0.0 && phase1_min_fraction < 1.0) ||
@@ -271,55 +397,37 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
     R0 = Triad(axis.direction, up);
   }
 
-  // Gauss–Newton over x = (δ (3), α) with R = R0·Exp(θ), θ ← Log(Exp(θ)·Exp(δ)).
-  Eigen::Vector3d theta = Eigen::Vector3d::Zero();
-  const Eigen::Vector3d v0 = R0.transpose() * rest_before.direction;
-  double alpha = std::atan2(v0.x(), v0.z());
   const double sigma_prior = o.prior_deg * kRadPerDeg;
-  Eigen::Matrix4d H = Eigen::Matrix4d::Zero();
-  constexpr int kMaxIterations = 30;
-  constexpr double kStepTolerance_rad = 1e-12;  // far below any measurable angle
-  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
-    const Eigen::Matrix3d R = R0 * Exp(theta);
-    H.setZero();
-    Eigen::Vector4d g = Eigen::Vector4d::Zero();
-    const auto add = [&](const Eigen::Vector3d& residual, const Eigen::Matrix<double, 3, 4>& J, double sigma) {
-      const double w = 1.0 / (sigma * sigma);
-      H += w * J.transpose() * J;
-      g += w * J.transpose() * residual;
-    };
-    {  // rest before the release: Rᵀ·a = (sin α, 0, cos α)
-      const Eigen::Vector3d v = R.transpose() * rest_before.direction;
-      Eigen::Matrix<double, 3, 4> J;
-      J.leftCols<3>() = Skew(v);
-      J.col(3) = -Eigen::Vector3d(std::cos(alpha), 0.0, -std::sin(alpha));
-      add(v - Eigen::Vector3d(std::sin(alpha), 0.0, std::cos(alpha)), J, rest_before.sigma_rad);
-    }
-    {  // phase 1: Rᵀ·axis = e_y
-      const Eigen::Vector3d v = R.transpose() * axis.direction;
-      Eigen::Matrix<double, 3, 4> J = Eigen::Matrix<double, 3, 4>::Zero();
-      J.leftCols<3>() = Skew(v);
-      add(v - Eigen::Vector3d::UnitY(), J, axis.sigma_rad);
-    }
-    if (rest_after) {  // rest after the rocking: Rᵀ·a = e_z
-      const Eigen::Vector3d v = R.transpose() * rest_after->direction;
-      Eigen::Matrix<double, 3, 4> J = Eigen::Matrix<double, 3, 4>::Zero();
-      J.leftCols<3>() = Skew(v);
-      add(v - Eigen::Vector3d::UnitZ(), J, rest_after->sigma_rad);
-    }
-    {  // weak prior: θ ≈ 0
-      Eigen::Matrix<double, 3, 4> J = Eigen::Matrix<double, 3, 4>::Zero();
-      J.leftCols<3>() = Eigen::Matrix3d::Identity();
-      add(theta, J, sigma_prior);
-    }
-    const Eigen::Vector4d step = H.ldlt().solve(-g);
-    theta = Log(Exp(theta) * Exp(step.head<3>()));
-    alpha += step(3);
-    if (step.norm() < kStepTolerance_rad) break;
+  const ClueSolution<4> on_edge = SolveClues<4>(R0, rest_before, axis, rest_after, sigma_prior);
+  // A block released on one corner of its release edge (io/README.md, "Mounting estimate") leans sideways at rest and
+  // falls about the corner, off its y axis, which the clues above read as a sensor turned about z (0.3–0.4° per mrad
+  // of roll on a block of the paper's). Its phase 1 does not turn about one axis: the rate strays from the mean axis
+  // by far more than the gyro's noise at rest (a sensor yawed on a release about the edge turns the axis, not the
+  // rate's spread about it), and the roll it shows would fake a yaw of about β/sin α. Where both are large, phase 1 is
+  // left out, β is free and the rotation about z is held.
+  const double rest_noise_rad_s = RestRateRms(r.w_B, before, bias);
+  const double across_to_noise = rest_noise_rad_s > 0.0 ? AcrossAxisRms(phase1, axis.direction) / rest_noise_rad_s
+                                                         : std::numeric_limits<double>::infinity();
+  const Eigen::Vector3d& level = rest_after ? rest_after->direction : rest_before.direction;
+  const double roll_seen_rad = RollSeenInFall(r, bias, release, k_impact, axis.direction, level, rate_hz);
+  const double roll_yaw_deg = roll_seen_rad / std::sin(std::max(on_edge.alpha_rad, kSmallestTilt_rad)) * kDegPerRad;
+  // The rolled solution starts from the edge's without its turn about z, which it then holds: a rotation vector's z
+  // component is the turn about z only near the given mounting, so a mounting found far from it (a sensor on another
+  // face, a block that fell onto its side) keeps the edge's solution.
+  Eigen::Vector3d start_vector = Log(R0 * Exp(on_edge.theta));
+  const bool near_given = start_vector.norm() < kRoughlyRight_rad;
+  start_vector.z() = 0.0;
+  const Eigen::Matrix3d R0_rolled = Exp(start_vector);
+  std::optional<ClueSolution<5>> rolled;
+  if (near_given && across_to_noise > o.phase1_across_to_noise && roll_yaw_deg > o.max_roll_yaw_deg) {
+    rolled = SolveClues<5>(R0_rolled, rest_before, axis, rest_after, sigma_prior);
   }
-  const Eigen::Matrix4d covariance = H.inverse();
+  const double alpha = rolled ? rolled->alpha_rad : on_edge.alpha_rad;
+  const Eigen::Matrix4d covariance =
+      rolled ? Eigen::Matrix4d(rolled->covariance.topLeftCorner<4, 4>()) : on_edge.covariance;
 
-  const Eigen::Matrix3d R_BgB = R0 * Exp(theta);
+  const Eigen::Matrix3d R_BgB =
+      rolled ? Eigen::Matrix3d(R0_rolled * Exp(rolled->theta)) : Eigen::Matrix3d(R0 * Exp(on_edge.theta));
   e.R_BBg = R_BgB.transpose();
   MountingCheck& c = e.check;
   c.turn_before_fall_deg = turn_before_fall_rad * kDegPerRad;
@@ -335,6 +443,13 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
   }
   c.release_tilt_rad = alpha;
   c.release_tilt_std_error_rad = std::sqrt(covariance(3, 3));
+  const std::string roll_note =
+      rolled ? fmt::format(": the block fell rolling (a roll of {:.1f} mrad seen in the fall, its rate off the fall's "
+                           "axis by {:.0f} × the gyro's noise at rest), as one released on a corner of its release "
+                           "edge does, and a roll β reads as a sensor turned about z by up to about β/sin α ({:.1f}° "
+                           "here)",
+                           roll_seen_rad * 1e3, across_to_noise, roll_yaw_deg)
+             : std::string();
   std::vector<std::string> free_axes;
   for (int i = 0; i < 3; ++i) {
     if (!c.determined[static_cast<std::size_t>(i)]) free_axes.emplace_back(kAxisNames[i]);
@@ -353,7 +468,7 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
     for (const std::string& a : free_axes) which += (which.empty() ? "" : ", ") + a;
     c.message = fmt::format(
         "the data do not fix the rotation about block {} (kept at the given mounting){}{}", which,
-        has_after ? std::string()
+        has_after ? roll_note
                   : fmt::format(": the recording does not end at rest (at least {:.2f} s with |ω| < {:.3g} rad/s), "
                                 "and before the release a turn about y looks like a different tilt α; record until "
                                 "the block stands still",

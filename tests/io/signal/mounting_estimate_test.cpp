@@ -43,6 +43,10 @@ struct HandMadeTrial {
   bool lateral = true;  // ω_x after the first impact
   double lift_rad = 0.0;       // lifted by this much about y after the rest, stopped for a moment, then the fall
   double flat_before_s = 0.0;  // standing flat this long before being tilted into place (0.3 s) for the rest
+  // Released on one corner of its release edge, rolled by this much about x: it leans sideways at rest, its fall's
+  // axis is turned by −roll_rad/sin α about z (ω_x in proportion to ω_y), and the roll runs out during the fall (a bump
+  // of ω_x that integrates to −roll_rad), as `rockfit synth --release-roll` and MuJoCo's rolled releases show.
+  double roll_rad = 0.0;
   Eigen::Vector3d bias_rad_s = Eigen::Vector3d(0.004, -0.003, 0.002);
 };
 
@@ -64,7 +68,8 @@ Recording MakeRecording(const HandMadeTrial& t, const Eigen::Matrix3d& R_BBg, st
     r.w_B.push_back(R_BgB * w_B + t.bias_rad_s + noise(kGyroNoise_rad_s));
     r.accel_B.push_back(R_BgB * f_B + noise(kAccelNoise_m_s2));
   };
-  const Eigen::Vector3d tilted(std::sin(t.alpha_rad), 0.0, std::cos(t.alpha_rad));
+  const Eigen::Vector3d tilted(std::sin(t.alpha_rad) * std::cos(t.roll_rad), -std::sin(t.roll_rad),
+                               std::cos(t.alpha_rad) * std::cos(t.roll_rad));
   for (int k = 0; k < static_cast<int>(t.flat_before_s * kRate_hz); ++k) {
     push(Eigen::Vector3d::Zero(), kG * Eigen::Vector3d::UnitZ());
   }
@@ -91,7 +96,9 @@ Recording MakeRecording(const HandMadeTrial& t, const Eigen::Matrix3d& R_BBg, st
   const int fall = static_cast<int>(0.4 * kRate_hz);
   for (int k = 1; k <= fall; ++k) {
     const double s = static_cast<double>(k) / fall;
-    push(Eigen::Vector3d(0.0, 1.4 * s * s, 0.0), kG * tilted);
+    const double w_y = 1.4 * s * s;
+    const double w_x = -std::tan(t.roll_rad / std::sin(t.alpha_rad)) * w_y - t.roll_rad * 6.0 * s * (1.0 - s) / 0.4;
+    push(Eigen::Vector3d(w_x, w_y, 0.0), kG * tilted);
   }
   // Rocking: decaying oscillations about y, and about x when lateral, for 1.5 s.
   const int rocking = static_cast<int>(1.5 * kRate_hz);
@@ -127,6 +134,46 @@ TEST(MountingEstimate, RecoversASmallRotationAboutEachAxisWithItsStandardError) 
     EXPECT_GT(e.phase1_samples, 50u);  // |ω| ≥ 0.2 of the landing rate: the last 55 % of the fall
     EXPECT_GT(e.rest_after_samples, 200u);
   }
+}
+
+TEST(MountingEstimate, AReleaseOnACornerIsNotTakenForASensorTurnedAboutZ) {
+  // Rolled by 6 mrad on a corner: the lean at rest and the roll in the fall are, to the three clues, a sensor turned
+  // by about −β/sin α about z. Read as a release about the edge (the rule switched off), that is what they say; the
+  // estimate sees the roll in the fall instead, leaves phase 1 out and keeps z at the given mounting, so there is no
+  // warning about an aligned sensor, and the angles about x and y of a turned one are still found.
+  HandMadeTrial t;
+  t.roll_rad = 0.006;
+  MountingEstimateOptions edge_only;
+  edge_only.phase1_across_to_noise = 1e9;
+  const MountingEstimate read_as_edge = EstimateMounting(MakeRecording(t, Eigen::Matrix3d::Identity()), edge_only);
+  EXPECT_GT(std::abs(read_as_edge.check.angles_deg.z()), 1.0) << read_as_edge.check.message;
+  EXPECT_FALSE(MountingWarning(read_as_edge.check, Mounting()).empty());
+
+  const MountingEstimate e = EstimateMounting(MakeRecording(t, Eigen::Matrix3d::Identity()));
+  ASSERT_EQ(e.check.status, MountingStatus::kPartial) << e.check.message;
+  EXPECT_TRUE(e.check.determined[0]);
+  EXPECT_TRUE(e.check.determined[1]);
+  EXPECT_FALSE(e.check.determined[2]);
+  EXPECT_NEAR(e.check.angles_deg.z(), 0.0, kAngleTolerance_deg) << "kept at the given mounting";
+  EXPECT_THAT(e.check.message, HasSubstr("about block z"));
+  EXPECT_THAT(e.check.message, HasSubstr("fell rolling"));
+  EXPECT_EQ(MountingWarning(e.check, Mounting()), "");
+  EXPECT_NEAR(e.check.release_tilt_rad, t.alpha_rad, kTiltTolerance_deg * kRadPerDeg);
+
+  const Eigen::Vector3d truth_deg(-1.0, 2.0, 0.0);
+  const MountingEstimate turned = EstimateMounting(MakeRecording(t, RotationFromDeg(truth_deg)));
+  ASSERT_EQ(turned.check.status, MountingStatus::kPartial) << turned.check.message;
+  EXPECT_NEAR(turned.check.angles_deg.x(), truth_deg.x(), kAngleTolerance_deg);
+  EXPECT_NEAR(turned.check.angles_deg.y(), truth_deg.y(), kAngleTolerance_deg);
+}
+
+TEST(MountingEstimate, ASensorTurnedAboutZOnAReleaseAboutTheEdgeIsStillFound) {
+  // The rule's other side: a yawed sensor tilts the fall's axis but does not spread the rate about it.
+  const Eigen::Vector3d truth_deg(0.0, 0.0, 3.0);
+  const MountingEstimate e = EstimateMounting(MakeRecording(HandMadeTrial{}, RotationFromDeg(truth_deg)));
+  ASSERT_EQ(e.check.status, MountingStatus::kOk) << e.check.message;
+  EXPECT_NEAR(e.check.angles_deg.z(), truth_deg.z(), kAngleTolerance_deg);
+  EXPECT_THAT(e.check.message, ::testing::Not(HasSubstr("fell rolling")));
 }
 
 TEST(MountingEstimate, TheGyroBiasAtRestDoesNotTiltThePhaseOneAxis) {

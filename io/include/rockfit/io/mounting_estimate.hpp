@@ -12,6 +12,14 @@
 // measured scatter, with a weak prior on θ. Rest before the release and phase 1 fix the rotations about x and
 // z; the rotation about y looks like a change of α there and is fixed only by the final rest (or stays at
 // the given mounting, status "partial", with the reason in the message).
+//
+// A block released rolled by β on one corner of its release edge breaks two of the clues: at rest it leans sideways
+// (a = (sin α cos β, −sin β, cos α cos β)), and in phase 1 it turns about the corner, off its y axis. To first order
+// both are what a sensor turned by −β/sin α about z shows (0.3–0.4° per mrad of roll on a block of the paper's): the
+// three clues cannot tell the two apart. The gyro can: a rolled block's rate strays from its mean axis as the roll
+// runs out, a yawed sensor's does not. Where phase 1 shows such a roll (phase1_across_to_noise, max_roll_yaw_deg), the
+// estimate is made with β free and without phase 1: the rotation about z is then not fixed by the data (kept at the
+// given mounting, status "partial"), and the message says why.
 #pragma once
 
 #include <cstddef>
@@ -49,6 +57,14 @@ struct MountingEstimateOptions {
   // Per-clue floor on the direction uncertainty [deg]: accelerometer calibration and the gyro's axis
   // alignment are good to about this on the x-IMU.
   double direction_floor_deg = 0.02;
+  // A release on one corner (above) is recognised by two signs together: the RMS of phase 1's rate across its mean
+  // axis exceeds this many times the gyro's noise at rest (per axis; about 1 on a release about the edge, 19 on one
+  // rolled by 1 mrad)…
+  double phase1_across_to_noise = 4.0;
+  // … and the roll the gyro sees in the fall (largest |∫ω_x dt|, what is proportional to ω_y taken out) would fake a
+  // yaw β/sin α above this [deg]: half the 1° warning (a roll of 1 mrad at α = 0.18 rad shows about 0.5°, and moves the
+  // estimate about z by 0.3°).
+  double max_roll_yaw_deg = 0.5;
   // Throws InvalidArgument naming the bad option.
   void Validate() const;
 };
