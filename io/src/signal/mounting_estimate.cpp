@@ -266,6 +266,7 @@ void MountingEstimateOptions::Validate() const {
   RequirePositive(direction_floor_deg, "mounting estimate: direction_floor_deg");
   RequirePositive(phase1_across_to_noise, "mounting estimate: phase1_across_to_noise");
   RequirePositive(max_roll_yaw_deg, "mounting estimate: max_roll_yaw_deg");
+  RequirePositive(max_rests_apart_deg, "mounting estimate: max_rests_apart_deg");
   RequireNonNegative(rest_margin_s, "mounting estimate: rest_margin_s");
   RequireNonNegative(max_turn_before_fall_deg, "mounting estimate: max_turn_before_fall_deg");
   if (!(phase1_min_fraction > 0.0 && phase1_min_fraction < 1.0) ||
@@ -379,12 +380,17 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
   Stretch after{n, n};
   while (after.begin > k_impact + 1 && still(after.begin - 1)) --after.begin;
   after.begin = std::min(n, after.begin + margin);
-  const bool has_after = after.size() >= min_rest;
-  if (has_after) e.rest_after_samples = after.size();
-
   const double floor_rad = o.direction_floor_deg * kRadPerDeg;
   const Clue rest_before = RestClue(r.accel_B, before, floor_rad);
   const Clue axis = AxisClue(phase1, floor_rad);
+  // A block back on its base rests within its release tilt of the rest before the release; one that overturned rests
+  // on another face, which is no clue to the mounting (the angle between the two rests needs no mounting).
+  const bool still_after = after.size() >= min_rest;
+  const double rests_apart_deg =
+      still_after ? AngleBetween(RestClue(r.accel_B, after, floor_rad).direction, rest_before.direction) * kDegPerRad
+                  : 0.0;
+  const bool has_after = still_after && rests_apart_deg <= o.max_rests_apart_deg;
+  if (has_after) e.rest_after_samples = after.size();
   const std::optional<Clue> rest_after =
       has_after ? std::optional<Clue>(RestClue(r.accel_B, after, floor_rad)) : std::nullopt;
 
@@ -469,10 +475,15 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
     c.message = fmt::format(
         "the data do not fix the rotation about block {} (kept at the given mounting){}{}", which,
         has_after ? roll_note
-                  : fmt::format(": the recording does not end at rest (at least {:.2f} s with |ω| < {:.3g} rad/s), "
-                                "and before the release a turn about y looks like a different tilt α; record until "
-                                "the block stands still",
-                                o.min_rest_s, o.rest_rate_rad_s),
+        : still_after
+            ? fmt::format(": the block did not come back to rest on its base (its rest after the rocking is {:.0f}° "
+                          "from its rest before the release: it overturned), and before the release a turn about y "
+                          "looks like a different tilt α",
+                          rests_apart_deg)
+            : fmt::format(": the recording does not end at rest (at least {:.2f} s with |ω| < {:.3g} rad/s), "
+                          "and before the release a turn about y looks like a different tilt α; record until "
+                          "the block stands still",
+                          o.min_rest_s, o.rest_rate_rad_s),
         lift_note);
   }
   return e;

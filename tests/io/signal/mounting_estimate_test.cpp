@@ -47,6 +47,7 @@ struct HandMadeTrial {
   // axis is turned by −roll_rad/sin α about z (ω_x in proportion to ω_y), and the roll runs out during the fall (a bump
   // of ω_x that integrates to −roll_rad), as `rockfit synth --release-roll` and MuJoCo's rolled releases show.
   double roll_rad = 0.0;
+  bool overturned = false;  // at rest after the rocking on a side face
   Eigen::Vector3d bias_rad_s = Eigen::Vector3d(0.004, -0.003, 0.002);
 };
 
@@ -109,9 +110,9 @@ Recording MakeRecording(const HandMadeTrial& t, const Eigen::Matrix3d& R_BBg, st
                             envelope * std::cos(2 * kPi * 4.0 * time), 0.0);
     push(w, kG * Eigen::Vector3d::UnitZ());
   }
-  for (int k = 0; k < static_cast<int>(t.rest_after_s * kRate_hz); ++k) {
-    push(Eigen::Vector3d::Zero(), kG * Eigen::Vector3d::UnitZ());
-  }
+  // At rest after the rocking: on its base, or on its side face (+y up) when it overturned.
+  const Eigen::Vector3d up_after = t.overturned ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitZ();
+  for (int k = 0; k < static_cast<int>(t.rest_after_s * kRate_hz); ++k) push(Eigen::Vector3d::Zero(), kG * up_after);
   return r;
 }
 
@@ -174,6 +175,23 @@ TEST(MountingEstimate, ASensorTurnedAboutZOnAReleaseAboutTheEdgeIsStillFound) {
   ASSERT_EQ(e.check.status, MountingStatus::kOk) << e.check.message;
   EXPECT_NEAR(e.check.angles_deg.z(), truth_deg.z(), kAngleTolerance_deg);
   EXPECT_THAT(e.check.message, ::testing::Not(HasSubstr("fell rolling")));
+}
+
+TEST(MountingEstimate, ABlockThatOverturnedIsNotTakenForASensorOnAnotherFace) {
+  // At rest on its side after the rocking, 90° from its rest before the release: that rest is no clue to the
+  // mounting (read as one, it turned the estimate by tens of degrees). The angles about x and z come from the rest
+  // before the release and phase 1; y is open, as without a rest after the rocking, and the message says why.
+  HandMadeTrial t;
+  t.overturned = true;
+  t.lateral = false;
+  const Eigen::Vector3d truth_deg(-1.0, 2.0, 4.0);
+  const MountingEstimate e = EstimateMounting(MakeRecording(t, RotationFromDeg(truth_deg)));
+  ASSERT_EQ(e.check.status, MountingStatus::kPartial) << e.check.message;
+  EXPECT_FALSE(e.check.determined[1]);
+  EXPECT_NEAR(e.check.angles_deg.x(), truth_deg.x(), kAngleTolerance_deg);
+  EXPECT_NEAR(e.check.angles_deg.z(), truth_deg.z(), kAngleTolerance_deg);
+  EXPECT_THAT(e.check.message, HasSubstr("did not come back to rest on its base"));
+  EXPECT_EQ(e.rest_after_samples, 0u);
 }
 
 TEST(MountingEstimate, TheGyroBiasAtRestDoesNotTiltThePhaseOneAxis) {

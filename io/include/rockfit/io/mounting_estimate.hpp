@@ -65,6 +65,10 @@ struct MountingEstimateOptions {
   // yaw β/sin α above this [deg]: half the 1° warning (a roll of 1 mrad at α = 0.18 rad shows about 0.5°, and moves the
   // estimate about z by 0.3°).
   double max_roll_yaw_deg = 0.5;
+  // The rest after the rocking is a clue only when it lies within this of the rest before the release [deg]: a block
+  // back on its base rests within its release tilt of it (below θ_c ≤ 45° for a block no wider than tall), one that
+  // overturned about 90° away, on another face.
+  double max_rests_apart_deg = 60.0;
   // Throws InvalidArgument naming the bad option.
   void Validate() const;
 };
