@@ -354,6 +354,27 @@ SignalFit FitSignalWithoutIntervals(const testing::MujocoRockingOptions& o) {
   return {p.notes, Fit(p.objective, p.start, options)};
 }
 
+// What the motion before the fitted release says of a fit of trial `o`: pushed (push_w_y_rad_s ≠ 0), t0 late by more
+// than 20 ms and the recording turning before it by at most the push's rate times the part of the lookback after the
+// push, warned; released from rest, t0 within 5 ms and a turn of a tenth of the warning's at most, not warned.
+void ExpectMotionBeforeReleaseShowsThePush(const testing::MujocoRockingOptions& o, const FitSummary& s) {
+  const MotionBeforeRelease& m = s.motion_before_release;
+  ASSERT_TRUE(m.available);
+  const double late_s = s.parameters.value(ParameterId::kT0) - o.t0_s;
+  if (o.push_w_y_rad_s != 0.0) {
+    EXPECT_GT(late_s, 0.02) << s.FullReport();
+    EXPECT_TRUE(m.moving) << MotionBeforeReleaseText(m);
+    EXPECT_TRUE(s.HasWarning(WarningKind::kMovingAtRelease));
+    EXPECT_LE(m.turn_deg * io::kRadPerDeg, std::abs(o.push_w_y_rad_s) * std::min(late_s, m.lookback_s))
+        << MotionBeforeReleaseText(m);
+  } else {
+    EXPECT_LT(std::abs(late_s), 0.005) << s.FullReport();
+    EXPECT_FALSE(m.moving) << MotionBeforeReleaseText(m);
+    EXPECT_FALSE(s.HasWarning(WarningKind::kMovingAtRelease));
+    EXPECT_LT(m.turn_deg, 0.1 * MotionBeforeReleaseOptions{}.warn_turn_deg) << MotionBeforeReleaseText(m);
+  }
+}
+
 TEST(MujocoTrial, ANearlyCriticalReleasePushedSlightlyIsFittedInItsBasinNotAtAHoveringStart) {
   // α = 0.95 θc, rolled by 2 mrad and pushed towards the fall at 0.01 rad/s (trial 1 of the pushed MuJoCo study,
   // seed 71). A model block just below θc hovers as long as asked, and (28) is a mean over [t0, t_end]: on the
@@ -385,24 +406,12 @@ TEST(MujocoTrial, APushWithoutAStopAtTheTopIsCaughtByTheMotionBeforeTheFittedRel
     const SignalFit f = FitSignalWithoutIntervals(o);
     const FitSummary& s = f.summary;
     ASSERT_TRUE(s.feasible);
-    const MotionBeforeRelease& m = s.motion_before_release;
-    ASSERT_TRUE(m.available);
     ASSERT_TRUE(s.model_error.available);
     noise_floors_rad_s.push_back(s.model_error.noise_floor_rad_s);
-    const double late_s = s.parameters.value(ParameterId::kT0) - o.t0_s;
+    ExpectMotionBeforeReleaseShowsThePush(o, s);
     if (push_rad_s != 0.0) {
-      // The push's turn over the part of the lookback after the push: at most its rate times that time.
-      EXPECT_GT(late_s, 0.02) << s.FullReport();
-      EXPECT_TRUE(m.moving) << MotionBeforeReleaseText(m);
-      EXPECT_TRUE(s.HasWarning(WarningKind::kMovingAtRelease));
-      EXPECT_LE(m.turn_deg * io::kRadPerDeg, -push_rad_s * std::min(late_s, m.lookback_s)) << MotionBeforeReleaseText(m);
       EXPECT_TRUE(s.model_error.dominates) << ModelErrorText(s.model_error);
       EXPECT_THAT(f.notes, ::testing::Contains(::testing::HasSubstr("the recording already moves there")));
-    } else {
-      EXPECT_LT(std::abs(late_s), 0.005) << s.FullReport();
-      EXPECT_FALSE(m.moving) << MotionBeforeReleaseText(m);
-      EXPECT_FALSE(s.HasWarning(WarningKind::kMovingAtRelease));
-      EXPECT_LT(m.turn_deg, 0.1 * MotionBeforeReleaseOptions{}.warn_turn_deg) << MotionBeforeReleaseText(m);
     }
   }
   EXPECT_NEAR(noise_floors_rad_s[0], noise_floors_rad_s[1], 0.1 * noise_floors_rad_s[1]);
@@ -423,22 +432,9 @@ TEST(MujocoTrial, APushedPerturbedBodyIsWarnedAboutThePushWhereModelErrorIsFlagg
     o.proud_vertex = 3;
     const FitSummary s = FitSignalWithoutIntervals(o).summary;
     ASSERT_TRUE(s.feasible);
-    const MotionBeforeRelease& m = s.motion_before_release;
-    ASSERT_TRUE(m.available);
     ASSERT_TRUE(s.model_error.available);
     EXPECT_TRUE(s.model_error.dominates) << ModelErrorText(s.model_error);
-    const double late_s = s.parameters.value(ParameterId::kT0) - o.t0_s;
-    if (push_rad_s != 0.0) {
-      EXPECT_GT(late_s, 0.02) << s.FullReport();
-      EXPECT_TRUE(m.moving) << MotionBeforeReleaseText(m);
-      EXPECT_TRUE(s.HasWarning(WarningKind::kMovingAtRelease));
-      EXPECT_LE(m.turn_deg * io::kRadPerDeg, -push_rad_s * std::min(late_s, m.lookback_s)) << MotionBeforeReleaseText(m);
-    } else {
-      EXPECT_LT(std::abs(late_s), 0.005) << s.FullReport();
-      EXPECT_FALSE(m.moving) << MotionBeforeReleaseText(m);
-      EXPECT_FALSE(s.HasWarning(WarningKind::kMovingAtRelease));
-      EXPECT_LT(m.turn_deg, 0.1 * MotionBeforeReleaseOptions{}.warn_turn_deg) << MotionBeforeReleaseText(m);
-    }
+    ExpectMotionBeforeReleaseShowsThePush(o, s);
   }
 }
 
