@@ -365,6 +365,24 @@ OpenedDataset OpenDataset(const Group& group, const std::string& name) {
                                group.file_name(), where, shape, file_bytes));
   }
   out.count = static_cast<std::size_t>(count);
+  // Values stored in the object header (compact layout) or in one block (contiguous) take exactly count × the stored
+  // element size; a damaged header can claim a shape its storage does not hold, and Debian's libhdf5 1.10 then reads
+  // through a null pointer in H5Dread (a crash, not an error). Refused here, before any read. (Chunked storage can be
+  // compressed, and a contiguous block never written holds no bytes: the library reads the fill value, safely.)
+  const Handle creation(H5Dget_create_plist(out.dataset.id()), ClosePlist);
+  const Handle stored_type(H5Dget_type(out.dataset.id()), CloseType);
+  if (!creation.valid() || !stored_type.valid()) {
+    ThrowUnreadable(group.file_name(), fmt::format("cannot read how {} is stored", where));
+  }
+  const H5D_layout_t layout = H5Pget_layout(creation.id());
+  const double needed_bytes = count * static_cast<double>(H5Tget_size(stored_type.id()));
+  const double stored_bytes = static_cast<double>(H5Dget_storage_size(out.dataset.id()));
+  const bool one_block = layout == H5D_COMPACT || (layout == H5D_CONTIGUOUS && stored_bytes > 0.0);
+  if (out.count > 0 && one_block && stored_bytes < needed_bytes) {
+    throw BadInput(fmt::format("{}: dataset {} stores {} bytes where its shape needs {}: the file is damaged; write it "
+                               "again with rockfit or restore a copy",
+                               group.file_name(), where, stored_bytes, needed_bytes));
+  }
   return out;
 }
 
