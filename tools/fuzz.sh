@@ -37,6 +37,12 @@ CC=clang CXX=clang++ cmake -S "$here" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYP
 cmake --build "$build_dir" -j "${JOBS:-$(nproc)}" --target rockfit_fuzzers
 
 status=0
+# The first stack frame of a sanitizer report on stdin that is neither the sanitizers', libFuzzer's, an allocator, a
+# mem* interceptor, libc's nor the standard library's: whose code the report is about (libhdf5 or rockfit).
+first_own_frame() {
+  grep -E '^ +#[0-9]+ ' | grep -v -E '__sanitizer|__asan|__ubsan|__lsan|fuzzer::|__interceptor|in (malloc|calloc|realloc|free|operator new|__mem|mem(cpy|move|set))|__pthread_kill|in raise |in abort |libc\.so|std::' | head -1 || true
+}
+
 printf '%-16s %12s %8s %8s %s\n' target executions edges features result
 for t in "${targets[@]}"; do
   corpus="$build_dir/corpus/$t"
@@ -60,11 +66,10 @@ for t in "${targets[@]}"; do
       [ -f "$artifact" ] || continue
       replay=$(ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 timeout 120 \
         "$build_dir/tests/fuzz/fuzz_$t" -rss_limit_mb=2048 -malloc_limit_mb=2048 -timeout=10 "$artifact" 2>&1 || true)
-      # The first frame that is neither the sanitizers', libFuzzer's, an allocator, a mem* interceptor nor libc.
       # An out-of-memory report by resident size lists the live heap by allocation site: judge by its top site.
       frames=$replay
       if grep -q 'Live Heap Allocations' <<<"$replay"; then frames=$(sed -n '/Live Heap Allocations/,$p' <<<"$replay"); fi
-      first=$(grep -E '^ +#[0-9]+ ' <<<"$frames" | grep -v -E '__sanitizer|__asan|__ubsan|__lsan|fuzzer::|__interceptor|in (malloc|calloc|realloc|free|operator new|__mem|mem(cpy|move|set))|__pthread_kill|in raise |in abort |libc\.so|std::' | head -1 || true)
+      first=$(first_own_frame <<<"$frames")
       if ! grep -q -E 'ERROR: |runtime error:' <<<"$replay"; then
         alone_ok=$((alone_ok + 1))
       elif grep -q 'libhdf5' <<<"$first"; then
@@ -84,7 +89,7 @@ for t in "${targets[@]}"; do
   # of the long run are: a null read in libc's memcpy called by libhdf5's H5VM_memcpyvv is HDF5's, and a timeout's
   # stack starts in libFuzzer's alarm handler and the signal frame (a hang inside libhdf5, such as its global-heap
   # reader looping on a corrupt file, is HDF5's).
-  first_frame=$(grep -E '^ +#[0-9]+ ' "$log" | grep -v -E '__sanitizer|__asan|__ubsan|__lsan|fuzzer::|__interceptor|in (malloc|calloc|realloc|free|operator new|__mem|mem(cpy|move|set))|__pthread_kill|in raise |in abort |libc\.so|std::' | head -1 || true)
+  first_frame=$(first_own_frame <"$log")
   if [ "${FUZZ_KEEP_GOING:-0}" = 1 ]; then
     :
   elif [ "$result" != ok ] && { grep -E '^ +#[01] .*libhdf5' "$log" >/dev/null || grep -q 'libhdf5' <<<"$first_frame"; }; then
