@@ -323,6 +323,7 @@ namespace {
 struct OpenedDataset {
   Handle dataset;
   Handle space;
+  Handle type;  // the stored element type
   std::vector<hsize_t> dims;
   std::size_t count = 0;  // number of elements (checked against the file's size, see below)
   double max_bytes = 0.0;  // the most bytes its values can take when read (kMaxExpansion × the file's size)
@@ -370,12 +371,12 @@ OpenedDataset OpenDataset(const Group& group, const std::string& name) {
   // through a null pointer in H5Dread (a crash, not an error). Refused here, before any read. (Chunked storage can be
   // compressed, and a contiguous block never written holds no bytes: the library reads the fill value, safely.)
   const Handle creation(H5Dget_create_plist(out.dataset.id()), ClosePlist);
-  const Handle stored_type(H5Dget_type(out.dataset.id()), CloseType);
-  if (!creation.valid() || !stored_type.valid()) {
+  out.type = Handle(H5Dget_type(out.dataset.id()), CloseType);
+  if (!creation.valid() || !out.type.valid()) {
     ThrowUnreadable(group.file_name(), fmt::format("cannot read how {} is stored", where));
   }
   const H5D_layout_t layout = H5Pget_layout(creation.id());
-  const double needed_bytes = count * static_cast<double>(H5Tget_size(stored_type.id()));
+  const double needed_bytes = count * static_cast<double>(H5Tget_size(out.type.id()));
   const double stored_bytes = static_cast<double>(H5Dget_storage_size(out.dataset.id()));
   const bool one_block = layout == H5D_COMPACT || (layout == H5D_CONTIGUOUS && stored_bytes > 0.0);
   if (out.count > 0 && one_block && stored_bytes < needed_bytes) {
@@ -395,8 +396,7 @@ std::vector<std::size_t> Group::Shape(const std::string& name) const {
 
 std::vector<double> Group::ReadDoubles(const std::string& name, std::vector<std::size_t>* shape) const {
   const OpenedDataset d = OpenDataset(*this, name);
-  const Handle type(H5Dget_type(d.dataset.id()), CloseType);
-  const H5T_class_t type_class = H5Tget_class(type.id());
+  const H5T_class_t type_class = H5Tget_class(d.type.id());
   if (type_class != H5T_FLOAT && type_class != H5T_INTEGER) {
     throw BadInput(fmt::format("{}: dataset {} is not numeric", file_name_, ChildPath(name)));
   }
@@ -424,8 +424,7 @@ std::vector<Eigen::Vector3d> Group::ReadVectors(const std::string& name) const {
 
 std::vector<std::int64_t> Group::ReadInts(const std::string& name) const {
   const OpenedDataset d = OpenDataset(*this, name);
-  const Handle type(H5Dget_type(d.dataset.id()), CloseType);
-  if (H5Tget_class(type.id()) != H5T_INTEGER) {
+  if (H5Tget_class(d.type.id()) != H5T_INTEGER) {
     throw BadInput(fmt::format("{}: dataset {} is not an integer dataset", file_name_, ChildPath(name)));
   }
   std::vector<std::int64_t> values(d.count);
@@ -438,7 +437,7 @@ std::vector<std::int64_t> Group::ReadInts(const std::string& name) const {
 
 std::vector<std::string> Group::ReadStrings(const std::string& name) const {
   const OpenedDataset d = OpenDataset(*this, name);
-  const Handle file_type(H5Dget_type(d.dataset.id()), CloseType);
+  const Handle& file_type = d.type;
   if (H5Tget_class(file_type.id()) != H5T_STRING) {
     throw BadInput(fmt::format("{}: dataset {} does not hold strings", file_name_, ChildPath(name)));
   }
