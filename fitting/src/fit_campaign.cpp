@@ -57,7 +57,7 @@ void FitOne(CampaignRun& run, const CampaignTrial& trial, TrialOutcome& o) {
   const PreparedTrial prepared = trial.prepare();
   const FitSummary summary =
       FitRecordedTrial(prepared.objective, prepared.start, prepared.options, prepared.release_roll_choice,
-                       prepared.recording ? &prepared.recording->mounting_check : nullptr);
+                       prepared.recording ? &*prepared.recording : nullptr);
   o.epsilon_rad_s = summary.epsilon_rad_s;
   o.fit_wall_s = summary.wall_time_s;
   o.model_error = summary.model_error;

@@ -33,12 +33,13 @@ const char* ToString(WarningKind kind) {
     case WarningKind::kReleaseTiltDisagrees: return "release_tilt_disagrees";
     case WarningKind::kTurnedBeforeFall: return "turned_before_fall";
     case WarningKind::kMovingAtRelease: return "moving_at_release";
+    case WarningKind::kSensorTurnedAboutZ: return "sensor_turned_about_z";
   }
   return "?";
 }
 
 bool FromString(std::string_view text, WarningKind* value) {
-  static constexpr WarningKind kAll[] = {WarningKind::kAtBound, WarningKind::kNotIdentifiable, WarningKind::kSimulationFailures, WarningKind::kNotConverged, WarningKind::kStdErrorUnavailable, WarningKind::kInfeasible, WarningKind::kPoorFit, WarningKind::kSecondBasin, WarningKind::kNotDetermined, WarningKind::kMovedByIntervals, WarningKind::kLateralMotionUnexplained, WarningKind::kMovedByLateralRescan, WarningKind::kModelErrorDominates, WarningKind::kWindowExtended, WarningKind::kReleaseTiltDisagrees, WarningKind::kTurnedBeforeFall, WarningKind::kMovingAtRelease};
+  static constexpr WarningKind kAll[] = {WarningKind::kAtBound, WarningKind::kNotIdentifiable, WarningKind::kSimulationFailures, WarningKind::kNotConverged, WarningKind::kStdErrorUnavailable, WarningKind::kInfeasible, WarningKind::kPoorFit, WarningKind::kSecondBasin, WarningKind::kNotDetermined, WarningKind::kMovedByIntervals, WarningKind::kLateralMotionUnexplained, WarningKind::kMovedByLateralRescan, WarningKind::kModelErrorDominates, WarningKind::kWindowExtended, WarningKind::kReleaseTiltDisagrees, WarningKind::kTurnedBeforeFall, WarningKind::kMovingAtRelease, WarningKind::kSensorTurnedAboutZ};
   return core::FromStringAmong(text, kAll, value);
 }
 

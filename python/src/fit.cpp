@@ -194,7 +194,7 @@ FitOutcome RunFit(const std::string& trial, const io::Recording& recording, cons
   o.prepared = std::make_unique<app::PreparedFit>(app::PrepareFit(recording, block, args));
   const fitting::Objective objective = Interruptible(o.prepared->objective, interrupted);
   o.summary = fitting::FitRecordedTrial(objective, o.prepared->start, o.prepared->options,
-                                        o.prepared->release_roll_choice, &recording.mounting_check);
+                                        o.prepared->release_roll_choice, &recording);
   // The nodes of (28) and the model at the result, for plots (one more simulation).
   // On the fit's window, which the fit may have extended (fitting/README.md, "End of the fitting window").
   o.prepared->objective.WithWindowEnd(o.summary.t_end_s).EvaluateDetailed(o.summary.parameters, &o.nodes, &o.output);

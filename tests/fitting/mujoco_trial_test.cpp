@@ -269,7 +269,7 @@ WrittenMujocoFit FitWrittenMujocoTrial(const testing::MujocoRockingOptions& o) {
   FitOptions options;
   options.intervals.method = IntervalMethod::kFast;  // the check needs α's standard error only
   options.num_threads = 1;
-  return {FitRecordedTrial(p.objective, p.start, options, p.release_roll, &recording.mounting_check),
+  return {FitRecordedTrial(p.objective, p.start, options, p.release_roll, &recording),
           recording.mounting_check};
 }
 

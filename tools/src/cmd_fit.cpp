@@ -102,7 +102,7 @@ int RunFit(const FitCommand& cmd) {
 
   const fitting::FitSummary summary =
       fitting::FitRecordedTrial(prepared.objective, prepared.start, prepared.options, prepared.release_roll_choice,
-                                &input.recording.mounting_check);
+                                &input.recording);
   const std::string trial = TrialNameFrom(input.trial_id);
   if (!cmd.output.empty()) {
     io::hdf5::Transaction tx(cmd.output, {"/fits/" + trial});

@@ -183,7 +183,7 @@ TEST(EnumNames, FittingAndQuakeEnumsRoundTripThroughTextJsonAndHdf5) {
                     WarningKind::kMovedByIntervals, WarningKind::kLateralMotionUnexplained,
                     WarningKind::kMovedByLateralRescan, WarningKind::kModelErrorDominates,
                     WarningKind::kWindowExtended, WarningKind::kReleaseTiltDisagrees,
-                    WarningKind::kTurnedBeforeFall, WarningKind::kMovingAtRelease},
+                    WarningKind::kTurnedBeforeFall, WarningKind::kMovingAtRelease, WarningKind::kSensorTurnedAboutZ},
                    ByFromString(WarningKind::kAtBound));
   ExpectRoundTrips("TrialStatus", {TrialStatus::kFitted, TrialStatus::kSkipped, TrialStatus::kInfeasible,
                                    TrialStatus::kFailed}, ByFromString(TrialStatus::kFitted));

@@ -44,6 +44,7 @@ enum class WarningKind {
   kReleaseTiltDisagrees,       // "release_tilt_disagrees"
   kTurnedBeforeFall,           // "turned_before_fall"
   kMovingAtRelease,            // "moving_at_release"
+  kSensorTurnedAboutZ,         // "sensor_turned_about_z"
 };
 const char* ToString(WarningKind kind);
 bool FromString(std::string_view text, WarningKind* value);  // the inverse of ToString
