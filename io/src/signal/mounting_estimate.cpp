@@ -267,6 +267,7 @@ void MountingEstimateOptions::Validate() const {
   RequirePositive(phase1_across_to_noise, "mounting estimate: phase1_across_to_noise");
   RequirePositive(max_roll_yaw_deg, "mounting estimate: max_roll_yaw_deg");
   RequirePositive(max_rests_apart_deg, "mounting estimate: max_rests_apart_deg");
+  RequirePositive(max_fall_turn_deg, "mounting estimate: max_fall_turn_deg");
   RequireNonNegative(rest_margin_s, "mounting estimate: rest_margin_s");
   RequireNonNegative(max_turn_before_fall_deg, "mounting estimate: max_turn_before_fall_deg");
   if (!(phase1_min_fraction > 0.0 && phase1_min_fraction < 1.0) ||
@@ -375,6 +376,16 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
                                              r.t_s[k_impact], phase1.size()));
   }
   e.phase1_samples = phase1.size();
+  // A block pushed over its release edge falls onto a side, not onto its base: no fall to read the mounting from.
+  Eigen::Vector3d fall_turn_rad = Eigen::Vector3d::Zero();
+  for (std::size_t k = release; k < k_impact; ++k) fall_turn_rad += (r.w_B[k] - bias) / rate_hz;
+  if (fall_turn_rad.norm() * kDegPerRad > o.max_fall_turn_deg) {
+    return Fail(e, MountingStatus::kNoRelease,
+                fmt::format("the block turned by {:.0f}° between its release at {:.3f} s and its first impact at {:.3f} s "
+                            "(a fall onto its base turns by its release tilt): it fell over its release edge onto "
+                            "another face, which shows nothing of the mounting",
+                            fall_turn_rad.norm() * kDegPerRad, r.t_s[release], r.t_s[k_impact]));
+  }
 
   // Rest after the rocking: the trailing stretch of small |ω − bias|, after the first impact.
   Stretch after{n, n};

@@ -48,6 +48,9 @@ struct HandMadeTrial {
   // of ω_x that integrates to −roll_rad), as `rockfit synth --release-roll` and MuJoCo's rolled releases show.
   double roll_rad = 0.0;
   bool overturned = false;  // at rest after the rocking on a side face
+  // Pushed past its critical tilt: it falls over its release edge (ω_y < 0) onto a side, turning by π/2 − α before
+  // its first impact, and comes to rest there without rocking.
+  bool over_release_edge = false;
   Eigen::Vector3d bias_rad_s = Eigen::Vector3d(0.004, -0.003, 0.002);
 };
 
@@ -92,6 +95,17 @@ Recording MakeRecording(const HandMadeTrial& t, const Eigen::Matrix3d& R_BBg, st
       push(Eigen::Vector3d(0.0, -2.0 * t.lift_rad / 0.15 * (1.0 - s), 0.0),
            kG * Eigen::Vector3d(std::sin(angle), 0.0, std::cos(angle)));
     }
+  }
+  if (t.over_release_edge) {
+    // 0.5 s about −y, ω growing as s² so that it integrates to π/2 − α, then at rest on the side face (+x down).
+    const int over = static_cast<int>(0.5 * kRate_hz);
+    const double peak_rad_s = 3.0 * (kPi / 2.0 - t.alpha_rad) / 0.5;
+    for (int k = 1; k <= over; ++k) {
+      const double s = static_cast<double>(k) / over;
+      push(Eigen::Vector3d(0.0, -peak_rad_s * s * s, 0.0), kG * tilted);
+    }
+    for (int k = 0; k < static_cast<int>(t.rest_after_s * kRate_hz); ++k) push(Eigen::Vector3d::Zero(), -kG * Eigen::Vector3d::UnitX());
+    return r;
   }
   // Phase 1: 0.4 s about y, ω growing to 1.4 rad/s (the specific force is not used there).
   const int fall = static_cast<int>(0.4 * kRate_hz);
@@ -192,6 +206,25 @@ TEST(MountingEstimate, ABlockThatOverturnedIsNotTakenForASensorOnAnotherFace) {
   EXPECT_NEAR(e.check.angles_deg.z(), truth_deg.z(), kAngleTolerance_deg);
   EXPECT_THAT(e.check.message, HasSubstr("did not come back to rest on its base"));
   EXPECT_EQ(e.rest_after_samples, 0u);
+}
+
+TEST(MountingEstimate, ABlockPushedOverItsReleaseEdgeIsNotTakenForASensorTurnedAboutZ) {
+  // Its fall turns the other way and onto a side: read as a fall onto the base, it looked like a sensor turned by
+  // about 180° about z (MuJoCo boxes pushed past θ_c: 178.7–179.0°, with the advice to turn the data by it). The fall
+  // shows nothing of the mounting: no estimate, a status and a message, no warning.
+  HandMadeTrial t;
+  t.over_release_edge = true;
+  const MountingEstimate e = EstimateMounting(MakeRecording(t, RotationFromDeg({-1.0, 2.0, 4.0})));
+  EXPECT_EQ(e.check.status, MountingStatus::kNoRelease) << e.check.message;
+  EXPECT_THAT(e.check.message, HasSubstr("fell over its release edge"));
+  EXPECT_THAT(e.check.message, HasSubstr("turned by 78°"));  // π/2 − α = 78.5°, the samples before the impact
+  EXPECT_TRUE(e.check.warning.empty()) << e.check.warning;
+  // A fall onto the base read through a sensor turned by 180° about z is a turned sensor, still found.
+  HandMadeTrial onto_base;
+  const Eigen::Matrix3d turned_about_z = RotationFromDeg(Eigen::Vector3d(1.0, -0.5, 177.0));
+  const MountingEstimate turned = EstimateMounting(MakeRecording(onto_base, turned_about_z));
+  ASSERT_EQ(turned.check.status, MountingStatus::kOk) << turned.check.message;
+  EXPECT_LT(Eigen::AngleAxisd(turned.R_BBg * turned_about_z.transpose()).angle() / kRadPerDeg, kAngleTolerance_deg);
 }
 
 TEST(MountingEstimate, TheGyroBiasAtRestDoesNotTiltThePhaseOneAxis) {

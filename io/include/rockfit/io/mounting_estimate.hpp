@@ -69,6 +69,11 @@ struct MountingEstimateOptions {
   // back on its base rests within its release tilt of it (below θ_c ≤ 45° for a block no wider than tall), one that
   // overturned far from it, on another face (77–78° on MuJoCo boxes pushed over onto their side).
   double max_rests_apart_deg = 60.0;
+  // The fall before the first impact is a clue only when the block turns by at most this in it [deg]: a fall onto the
+  // base turns by the release tilt and a lift (below θ_c ≤ 45°), a block pushed over its release edge falls onto a
+  // side, turning by 90° − α or so (73–77° on MuJoCo boxes pushed past θ_c), and its fall's axis, reversed, would
+  // read as a sensor turned by 180° about z.
+  double max_fall_turn_deg = 60.0;
   // Throws InvalidArgument naming the bad option.
   void Validate() const;
 };
