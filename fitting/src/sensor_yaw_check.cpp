@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "rockfit/fitting/fit_summary.hpp"
+#include "rockfit/io/units.hpp"
 
 namespace rockfit::fitting {
 
@@ -31,7 +32,7 @@ SensorYawCheck CheckSensorYaw(const ErrorNodes& nodes, const std::vector<Eigen::
   c.epsilon_turned_rad_s = TrajectoryError(nodes, turned);
   if (!std::isfinite(c.epsilon_rad_s) || !std::isfinite(c.epsilon_turned_rad_s)) return c;
   c.available = true;
-  c.yaw_deg = yaw_rad * 180.0 / M_PI;
+  c.yaw_deg = yaw_rad / io::kRadPerDeg;
   c.turned = std::abs(c.yaw_deg) >= kSensorYawWarningDeg &&
              c.epsilon_turned_rad_s <= kSensorYawMaxEpsilonRatio * c.epsilon_rad_s;
   // ω_B as read = R_BS,applied·R_BS,trueᵀ·ω_B = Rz(ψ)·ω_B, so R_BS,true = Rz(−ψ)·R_BS,applied.
@@ -44,7 +45,7 @@ SensorYawCheck CheckSensorYaw(const ErrorNodes& nodes, const std::vector<Eigen::
 void AttachSensorYawCheck(const Objective& objective, const io::Recording& recording, FitSummary* summary) {
   const io::MountingCheck& mounting = recording.mounting_check;
   if (!mounting.has_estimate() || mounting.determined[2] || !summary->feasible) return;
-  const Objective window = summary->t_end_s == objective.t_end_s() ? objective : objective.WithWindowEnd(summary->t_end_s);
+  const Objective window = objective.WithWindowEnd(summary->t_end_s);  // the fit's window, extended or not
   ErrorNodes nodes;
   ModelOutput output;
   if (!window.EvaluateDetailed(summary->parameters, &nodes, &output).feasible) return;
