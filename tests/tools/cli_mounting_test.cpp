@@ -341,7 +341,6 @@ TEST(CliMounting, ASensorTurnedAboutZOnACornerReleaseIsFoundByTheFit) {
   ASSERT_EQ(turned["mounting"]["determined"], nlohmann::json::array({true, true, false})) << turned["mounting"].dump(1);
   const std::vector<std::string> warned = WarningsOf(turned, "sensor_turned_about_z");
   ASSERT_EQ(warned.size(), 1u) << turned["warnings"].dump(1);
-  EXPECT_THAT(warned[0], HasSubstr("+3.0"));
   std::smatch match;
   ASSERT_TRUE(std::regex_search(warned[0], match, std::regex("--mounting=([-0-9.e,]+)"))) << warned[0];
   const std::string advised = match[1].str();

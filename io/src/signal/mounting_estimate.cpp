@@ -381,9 +381,9 @@ MountingEstimate EstimateMounting(const Recording& r, const MountingEstimateOpti
   for (std::size_t k = release; k < k_impact; ++k) fall_turn_rad += (r.w_B[k] - bias) / rate_hz;
   if (fall_turn_rad.norm() * kDegPerRad > o.max_fall_turn_deg) {
     return Fail(e, MountingStatus::kNoRelease,
-                fmt::format("the block turned by {:.0f}° between its release at {:.3f} s and its first impact at {:.3f} s "
-                            "(a fall onto its base turns by its release tilt): it fell over its release edge onto "
-                            "another face, which shows nothing of the mounting",
+                fmt::format("the block turned by {:.0f}° between its release at {:.3f} s and its first impact at "
+                            "{:.3f} s (a fall onto its base turns by its release tilt): it fell over its release edge "
+                            "onto another face, which shows nothing of the mounting",
                             fall_turn_rad.norm() * kDegPerRad, r.t_s[release], r.t_s[k_impact]));
   }
 

@@ -104,7 +104,9 @@ Recording MakeRecording(const HandMadeTrial& t, const Eigen::Matrix3d& R_BBg, st
       const double s = static_cast<double>(k) / over;
       push(Eigen::Vector3d(0.0, -peak_rad_s * s * s, 0.0), kG * tilted);
     }
-    for (int k = 0; k < static_cast<int>(t.rest_after_s * kRate_hz); ++k) push(Eigen::Vector3d::Zero(), -kG * Eigen::Vector3d::UnitX());
+    for (int k = 0; k < static_cast<int>(t.rest_after_s * kRate_hz); ++k) {
+      push(Eigen::Vector3d::Zero(), -kG * Eigen::Vector3d::UnitX());
+    }
     return r;
   }
   // Phase 1: 0.4 s about y, ω growing to 1.4 rad/s (the specific force is not used there).

@@ -25,6 +25,7 @@
 #include "rockfit/fitting/objective.hpp"
 #include "rockfit/fitting/trajectory_error.hpp"
 #include "rockfit/io/mounting.hpp"
+#include "rockfit/io/mounting_estimate.hpp"
 #include "rockfit/io/recording.hpp"
 
 namespace rockfit::fitting {
@@ -32,7 +33,7 @@ namespace rockfit::fitting {
 struct FitSummary;
 
 // A turn about z smaller than this [deg] is not warned about: the mounting check's own warning threshold.
-inline constexpr double kSensorYawWarningDeg = 1.0;
+inline constexpr double kSensorYawWarningDeg = io::kMountingWarningDeg;
 // The turn is warned about only where it lowers (28) to this fraction of the fit's or below: a turn that explains
 // a fifth of the misfit is the sensor's, not the model error of a soft contact, whose lateral swing a turn of the
 // rocking plane's rate does not reproduce (the MuJoCo studies, fitting/README.md).
